@@ -1,0 +1,138 @@
+#include "slam/pose_graph.hpp"
+
+#include <cassert>
+#include <stdexcept>
+
+namespace lifelong::slam {
+
+void PoseGraph::AddNode(NodeId id) {
+  if (!adjacency_.emplace(id, std::set<NodeId>{}).second) {
+    throw std::logic_error("PoseGraph::AddNode: duplicate node id " + std::to_string(id));
+  }
+}
+
+std::size_t PoseGraph::AddEdge(const PoseEdge& edge) {
+  if (!HasNode(edge.from) || !HasNode(edge.to) || edge.from == edge.to) {
+    throw std::logic_error("PoseGraph::AddEdge: bad endpoints " + std::to_string(edge.from) +
+                           " -> " + std::to_string(edge.to));
+  }
+  edges_.push_back(edge);
+  adjacency_[edge.from].insert(edge.to);
+  adjacency_[edge.to].insert(edge.from);
+  return edges_.size() - 1;
+}
+
+std::size_t PoseGraph::AddClique(const CliqueFactor& clique) {
+  const std::size_t k = clique.nodes.size();
+  if (k < 2 || clique.T_root_node.size() != k - 1 ||
+      clique.information.rows() != static_cast<Eigen::Index>(3 * (k - 1)) ||
+      clique.information.cols() != clique.information.rows()) {
+    throw std::logic_error("PoseGraph::AddClique: inconsistent clique dimensions");
+  }
+  for (NodeId n : clique.nodes) {
+    if (!HasNode(n)) throw std::logic_error("PoseGraph::AddClique: unknown node");
+  }
+  cliques_.push_back(clique);
+  for (NodeId a : clique.nodes) {
+    for (NodeId b : clique.nodes) {
+      if (a != b) adjacency_[a].insert(b);
+    }
+  }
+  return cliques_.size() - 1;
+}
+
+void PoseGraph::RemoveNode(NodeId id) {
+  if (!HasNode(id)) throw std::logic_error("PoseGraph::RemoveNode: unknown node");
+  std::vector<PoseEdge> kept_edges;
+  kept_edges.reserve(edges_.size());
+  for (const PoseEdge& e : edges_) {
+    if (e.from != id && e.to != id) kept_edges.push_back(e);
+  }
+  edges_.swap(kept_edges);
+  std::vector<CliqueFactor> kept_cliques;
+  for (const CliqueFactor& c : cliques_) {
+    bool touches = false;
+    for (NodeId n : c.nodes) touches = touches || n == id;
+    if (!touches) kept_cliques.push_back(c);
+  }
+  cliques_.swap(kept_cliques);
+  adjacency_.erase(id);
+  RebuildAdjacency();
+}
+
+void PoseGraph::RebuildAdjacency() {
+  for (auto& [node, neighbours] : adjacency_) neighbours.clear();
+  for (const PoseEdge& e : edges_) {
+    adjacency_[e.from].insert(e.to);
+    adjacency_[e.to].insert(e.from);
+  }
+  for (const CliqueFactor& c : cliques_) {
+    for (NodeId a : c.nodes) {
+      for (NodeId b : c.nodes) {
+        if (a != b) adjacency_[a].insert(b);
+      }
+    }
+  }
+}
+
+std::size_t PoseGraph::NumEdgesForGamma() const {
+  std::size_t n = edges_.size();
+  for (const CliqueFactor& c : cliques_) n += c.nodes.size() * (c.nodes.size() - 1) / 2;
+  return n;
+}
+
+double PoseGraph::Gamma() const {
+  const double v = static_cast<double>(NumNodes());
+  if (v < 2.0) return 0.0;
+  return static_cast<double>(NumEdgesForGamma()) / (v * (v - 1.0) / 2.0);
+}
+
+std::vector<NodeId> PoseGraph::NodeIds() const {
+  std::vector<NodeId> ids;
+  ids.reserve(adjacency_.size());
+  for (const auto& [id, unused] : adjacency_) ids.push_back(id);
+  return ids;
+}
+
+const std::set<NodeId>& PoseGraph::Neighbours(NodeId id) const {
+  auto it = adjacency_.find(id);
+  if (it == adjacency_.end()) throw std::logic_error("PoseGraph::Neighbours: unknown node");
+  return it->second;
+}
+
+std::vector<std::size_t> PoseGraph::EdgesOf(NodeId id) const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < edges_.size(); ++i) {
+    if (edges_[i].from == id || edges_[i].to == id) out.push_back(i);
+  }
+  return out;
+}
+
+std::vector<std::size_t> PoseGraph::CliquesOf(NodeId id) const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < cliques_.size(); ++i) {
+    for (NodeId n : cliques_[i].nodes) {
+      if (n == id) {
+        out.push_back(i);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+std::size_t PoseGraph::Bytes() const {
+  std::size_t bytes = sizeof(*this) + edges_.capacity() * sizeof(PoseEdge);
+  for (const CliqueFactor& c : cliques_) {
+    bytes += sizeof(CliqueFactor) + c.nodes.capacity() * sizeof(NodeId) +
+             c.T_root_node.capacity() * sizeof(Pose2) +
+             static_cast<std::size_t>(c.information.size()) * sizeof(double);
+  }
+  for (const auto& [id, neighbours] : adjacency_) {
+    // A std::map / std::set node is roughly three pointers, a colour and the payload.
+    bytes += 48 + sizeof(NodeId) + neighbours.size() * (40 + sizeof(NodeId));
+  }
+  return bytes;
+}
+
+}  // namespace lifelong::slam

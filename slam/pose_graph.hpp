@@ -1,0 +1,88 @@
+// Pose graph: the factors (relative-pose edges and dense marginal cliques) over SE(2)
+// nodes. The estimate (Values) and the optimizer are separate objects (GTSAM style).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sensor/pose2.hpp"
+
+namespace lifelong::slam {
+
+using NodeId = std::int64_t;
+
+/// The current estimate: one pose per node, T_world_node.
+using Values = std::map<NodeId, Pose2>;
+
+enum class EdgeKind : std::uint8_t {
+  kOdometry,  ///< sequential: incremental scan matching / odometry
+  kLoop,      ///< loop closure from scan matching against an older node
+  kMarginal,  ///< produced by marginalizing a node out (Chow-Liu tree or naive composition)
+  kPrior,     ///< unary-like edge, unused by the standard front-end
+};
+
+/// Relative-pose constraint Z = T_from_to with information Omega (3x3, order x, y, theta).
+/// Error (DESIGN.md):  e = t2v(Z^-1 * (X_from^-1 * X_to)).
+struct PoseEdge {
+  NodeId from = 0;
+  NodeId to = 0;
+  Pose2 T_from_to;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
+  EdgeKind kind = EdgeKind::kOdometry;
+  bool robust = false;  ///< apply the optimizer's robust kernel (loop closures)
+};
+
+/// A dense factor over a clique, as left by exact marginalization (seed §5.3), in
+/// root-relative coordinates (Carlevaris-Bianco's generic linear constraint): for
+/// nodes = {r, n_1..n_k} it stacks e_j = t2v(Z_j^-1 * (X_r^-1 * X_{n_j})), j = 1..k,
+/// with one dense 3k x 3k information over the stacked error. Block j starts at row 3(j-1).
+struct CliqueFactor {
+  std::vector<NodeId> nodes;           ///< nodes[0] is the root r
+  std::vector<Pose2> T_root_node;      ///< Z_j for nodes[1..], size nodes.size() - 1
+  Eigen::MatrixXd information;         ///< 3k x 3k, symmetric positive (semi)definite
+};
+
+/// The graph's factors plus adjacency. Node ids are stable and never reused.
+class PoseGraph {
+ public:
+  void AddNode(NodeId id);
+  bool HasNode(NodeId id) const { return adjacency_.count(id) != 0; }
+  /// Adds an edge; both nodes must exist. Returns its index into edges().
+  std::size_t AddEdge(const PoseEdge& edge);
+  std::size_t AddClique(const CliqueFactor& clique);
+  /// Removes a node and every edge and clique factor touching it (no marginalization:
+  /// that is the caller's job, see marginalization.hpp).
+  void RemoveNode(NodeId id);
+
+  const std::vector<PoseEdge>& edges() const { return edges_; }
+  const std::vector<CliqueFactor>& cliques() const { return cliques_; }
+  std::size_t NumNodes() const { return adjacency_.size(); }
+  /// Edges counted as for the gamma index: each PoseEdge once, each clique factor over
+  /// m nodes as its m(m-1)/2 pairs (DESIGN.md).
+  std::size_t NumEdgesForGamma() const;
+  /// gamma = e / (v (v - 1) / 2); 0 for fewer than two nodes.
+  double Gamma() const;
+  /// Node ids in ascending order.
+  std::vector<NodeId> NodeIds() const;
+  /// Nodes sharing an edge or clique with `id`.
+  const std::set<NodeId>& Neighbours(NodeId id) const;
+  /// Indices into edges() of the edges touching `id`.
+  std::vector<std::size_t> EdgesOf(NodeId id) const;
+  /// Indices into cliques() of the clique factors touching `id`.
+  std::vector<std::size_t> CliquesOf(NodeId id) const;
+  /// Approximate heap bytes held by the graph's factors and adjacency.
+  std::size_t Bytes() const;
+
+ private:
+  void RebuildAdjacency();
+  std::map<NodeId, std::set<NodeId>> adjacency_;
+  std::vector<PoseEdge> edges_;
+  std::vector<CliqueFactor> cliques_;
+};
+
+}  // namespace lifelong::slam

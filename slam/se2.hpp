@@ -1,0 +1,45 @@
+// SE(2) maths for the back-end and marginalization, in Eigen. Poses are parametrized as
+// (x, y, theta) with additive increments, as g2o's VertexSE2.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "sensor/pose2.hpp"
+
+namespace lifelong::slam {
+
+inline Eigen::Vector3d T2V(const Pose2& p) { return {p.x, p.y, p.theta}; }
+inline Pose2 V2T(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// Error of a relative-pose constraint (DESIGN.md):  e = t2v(Z^-1 * (Xi^-1 * Xj)),
+/// with the angle normalized. Written out, with R(.) the 2D rotation:
+///   e_t     = R(th_z)^T (R(th_i)^T (t_j - t_i) - t_z)
+///   e_theta = th_j - th_i - th_z
+inline Eigen::Vector3d RelativeError(const Pose2& Xi, const Pose2& Xj, const Pose2& Z) {
+  return T2V(Z.Inverse() * (Xi.Inverse() * Xj));
+}
+
+/// Analytic Jacobians of RelativeError with respect to additive increments of Xi and Xj.
+///   de_t/dt_i = -R_z^T R_i^T,  de_t/dth_i = R_z^T dR_i^T/dth (t_j - t_i),  de_th/dth_i = -1
+///   de_t/dt_j =  R_z^T R_i^T,                                            de_th/dth_j = +1
+inline void RelativeErrorJacobians(const Pose2& Xi, const Pose2& Xj, const Pose2& Z,
+                                   Eigen::Matrix3d* J_i, Eigen::Matrix3d* J_j) {
+  const double ci = std::cos(Xi.theta), si = std::sin(Xi.theta);
+  const double cz = std::cos(Z.theta), sz = std::sin(Z.theta);
+  Eigen::Matrix2d RiT;
+  RiT << ci, si, -si, ci;
+  Eigen::Matrix2d dRiT;
+  dRiT << -si, ci, -ci, -si;
+  Eigen::Matrix2d RzT;
+  RzT << cz, sz, -sz, cz;
+  const Eigen::Vector2d dt(Xj.x - Xi.x, Xj.y - Xi.y);
+  J_i->setZero();
+  J_j->setZero();
+  J_i->block<2, 2>(0, 0) = -RzT * RiT;
+  J_i->block<2, 1>(0, 2) = RzT * dRiT * dt;
+  (*J_i)(2, 2) = -1.0;
+  J_j->block<2, 2>(0, 0) = RzT * RiT;
+  (*J_j)(2, 2) = 1.0;
+}
+
+}  // namespace lifelong::slam

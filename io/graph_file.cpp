@@ -1,0 +1,309 @@
+#include "io/graph_file.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "sensor/input_error.hpp"
+
+namespace lifelong::io {
+namespace {
+
+// Tokens of one line, each parsed with the field name that goes into InputError.
+class LineReader {
+ public:
+  LineReader(const std::string& file, int line, const std::string& text)
+      : file_(file), line_(line), in_(text) {}
+
+  int line() const { return line_; }
+  std::string Tag() {
+    std::string tag;
+    in_ >> tag;
+    return tag;
+  }
+  double Number(const std::string& field) {
+    const std::string token = Token(field);
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(token.c_str(), &end);
+    if (*end != '\0' || errno == ERANGE || !std::isfinite(v))
+      Fail(field, "not a finite number: '" + token + "'");
+    return v;
+  }
+  slam::NodeId Id(const std::string& field) {
+    const std::string token = Token(field);
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(token.c_str(), &end, 10);
+    if (*end != '\0' || errno == ERANGE) Fail(field, "not an integer id: '" + token + "'");
+    return v;
+  }
+  void ExpectEnd() {
+    std::string extra;
+    if (in_ >> extra) Fail("", "unexpected extra token '" + extra + "'");
+  }
+  [[noreturn]] void Fail(const std::string& field, const std::string& what) const {
+    throw InputError(file_, line_, field, what);
+  }
+
+ private:
+  std::string Token(const std::string& field) {
+    std::string token;
+    if (!(in_ >> token)) Fail(field, "missing (truncated line)");
+    return token;
+  }
+  const std::string& file_;
+  int line_;
+  std::istringstream in_;
+};
+
+// Information upper triangle in the file's order -> symmetric 3x3, checked SPD.
+Eigen::Matrix3d ReadInformation(LineReader* r, GraphFormat format) {
+  // Index pairs (row, col) in reading order.
+  static const int kG2o[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  static const int kToro[6][2] = {{0, 0}, {0, 1}, {1, 1}, {2, 2}, {0, 2}, {1, 2}};
+  const auto& order = format == GraphFormat::kG2o ? kG2o : kToro;
+  Eigen::Matrix3d info;
+  for (const auto& rc : order) {
+    const std::string field = "I" + std::to_string(rc[0] + 1) + std::to_string(rc[1] + 1);
+    info(rc[0], rc[1]) = info(rc[1], rc[0]) = r->Number(field);
+  }
+  if (info.llt().info() != Eigen::Success) {
+    r->Fail("information", "information matrix is not positive definite");
+  }
+  return info;
+}
+
+Pose2 ReadPose(LineReader* r, const std::string& prefix) {
+  const double x = r->Number(prefix + "x");
+  const double y = r->Number(prefix + "y");
+  return {x, y, r->Number(prefix + "theta")};
+}
+
+struct PendingEdge {
+  slam::PoseEdge edge;
+  int line;
+};
+struct PendingClique {
+  slam::CliqueFactor clique;
+  int line;
+};
+
+struct Parsed {
+  GraphFile result;
+  std::vector<PendingEdge> edges;
+  std::vector<PendingClique> cliques;
+  bool has_format = false;
+};
+
+void SetFormat(Parsed* p, GraphFormat format, LineReader* r) {
+  if (p->has_format && p->result.format != format)
+    r->Fail("tag", "file mixes g2o and TORO records");
+  p->result.format = format;
+  p->has_format = true;
+}
+
+void ReadVertex(Parsed* p, LineReader* r) {
+  const slam::NodeId id = r->Id("id");
+  const Pose2 pose = ReadPose(r, "");
+  r->ExpectEnd();
+  if (p->result.graph.HasNode(id)) r->Fail("id", "duplicate vertex " + std::to_string(id));
+  p->result.graph.AddNode(id);
+  p->result.values[id] = pose;
+}
+
+void ReadEdge(Parsed* p, LineReader* r) {
+  slam::PoseEdge e;
+  e.from = r->Id("from");
+  e.to = r->Id("to");
+  e.T_from_to = ReadPose(r, "d");
+  e.information = ReadInformation(r, p->result.format);
+  r->ExpectEnd();
+  if (e.from == e.to) r->Fail("to", "edge from a vertex to itself");
+  e.kind = e.to == e.from + 1 ? slam::EdgeKind::kOdometry : slam::EdgeKind::kLoop;
+  e.robust = e.kind == slam::EdgeKind::kLoop;
+  p->edges.push_back({e, r->line()});
+}
+
+void ReadClique(Parsed* p, LineReader* r) {
+  const slam::NodeId m = r->Id("size");
+  if (m < 2 || m > 1000) r->Fail("size", "clique size must be in [2, 1000]");
+  slam::CliqueFactor c;
+  for (slam::NodeId k = 0; k < m; ++k) c.nodes.push_back(r->Id("node"));
+  for (slam::NodeId k = 1; k < m; ++k) c.T_root_node.push_back(ReadPose(r, "d"));
+  const Eigen::Index d = 3 * (m - 1);
+  c.information.resize(d, d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    for (Eigen::Index j = i; j < d; ++j) c.information(i, j) = c.information(j, i) = r->Number("I");
+  }
+  r->ExpectEnd();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c.information, Eigen::EigenvaluesOnly);
+  const double max_ev = eig.eigenvalues().cwiseAbs().maxCoeff();
+  if (eig.eigenvalues().minCoeff() < -1e-9 * max_ev) {
+    r->Fail("information", "clique information is not positive semidefinite");
+  }
+  p->cliques.push_back({c, r->line()});
+}
+
+void ReadLine(Parsed* p, LineReader* r) {
+  const std::string tag = r->Tag();
+  if (tag.empty() || tag[0] == '#') return;
+  if (tag == "VERTEX_SE2" || tag == "VERTEX2") {
+    SetFormat(p, tag == "VERTEX2" ? GraphFormat::kToro : GraphFormat::kG2o, r);
+    ReadVertex(p, r);
+  } else if (tag == "EDGE_SE2" || tag == "EDGE2") {
+    SetFormat(p, tag == "EDGE2" ? GraphFormat::kToro : GraphFormat::kG2o, r);
+    ReadEdge(p, r);
+  } else if (tag == "LIFELONG_CLIQUE_SE2") {
+    SetFormat(p, GraphFormat::kG2o, r);
+    ReadClique(p, r);
+  } else if (tag == "FIX") {
+    SetFormat(p, GraphFormat::kG2o, r);
+    p->result.fixed.push_back(r->Id("id"));
+  } else {
+    r->Fail("tag", "unsupported record '" + tag + "'");
+  }
+}
+
+// Initial guess for an edges-only file: origin at the smallest id, compose i -> i+1
+// odometry, then spread over any edge touching a placed node until nothing changes.
+void ChainValues(GraphFile* g) {
+  slam::Values& v = g->values;
+  const std::vector<slam::NodeId> ids = g->graph.NodeIds();
+  if (ids.empty()) return;
+  v[ids.front()] = Pose2();
+  std::map<slam::NodeId, const slam::PoseEdge*> odometry;
+  for (const slam::PoseEdge& e : g->graph.edges()) {
+    if (e.to == e.from + 1) odometry.emplace(e.from, &e);
+  }
+  for (slam::NodeId id : ids) {
+    auto it = odometry.find(id - 1);
+    if (!v.count(id) && it != odometry.end() && v.count(id - 1)) {
+      v[id] = v[id - 1] * it->second->T_from_to;
+    }
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const slam::PoseEdge& e : g->graph.edges()) {
+      const bool has_from = v.count(e.from) != 0, has_to = v.count(e.to) != 0;
+      if (has_from && !has_to) v[e.to] = v[e.from] * e.T_from_to;
+      if (!has_from && has_to) v[e.from] = v[e.to] * e.T_from_to.Inverse();
+      changed = changed || has_from != has_to;
+    }
+  }
+  for (slam::NodeId id : ids) v.emplace(id, Pose2());  // disconnected pieces at the origin
+}
+
+void AddFactors(Parsed* p, const std::string& name) {
+  GraphFile& g = p->result;
+  const bool no_vertices = g.graph.NumNodes() == 0;
+  for (const PendingEdge& pe : p->edges) {
+    for (slam::NodeId id : {pe.edge.from, pe.edge.to}) {
+      if (g.graph.HasNode(id)) continue;
+      if (!no_vertices)
+        throw InputError(name, pe.line, "id", "edge to unknown vertex " + std::to_string(id));
+      g.graph.AddNode(id);
+    }
+    g.graph.AddEdge(pe.edge);
+  }
+  for (const PendingClique& pc : p->cliques) {
+    for (slam::NodeId id : pc.clique.nodes) {
+      if (!g.graph.HasNode(id)) throw InputError(name, pc.line, "node", "clique on unknown vertex");
+    }
+    g.graph.AddClique(pc.clique);
+  }
+  if (no_vertices && g.graph.NumNodes() > 0) {
+    ChainValues(&g);
+    g.values_from_edges = true;
+  }
+}
+
+void WritePose(std::ostream& out, const Pose2& p) {
+  out << ' ' << p.x << ' ' << p.y << ' ' << p.theta;
+}
+
+const Pose2& ValueOf(const slam::Values& values, slam::NodeId id) {
+  auto it = values.find(id);
+  if (it == values.end())
+    throw std::invalid_argument("WriteG2o: no value for node " + std::to_string(id));
+  return it->second;
+}
+
+}  // namespace
+
+GraphFile ParseGraph(std::istream& in, const std::string& name) {
+  Parsed p;
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    LineReader reader(name, line, text);
+    ReadLine(&p, &reader);
+  }
+  AddFactors(&p, name);
+  return std::move(p.result);
+}
+
+GraphFile ReadGraphFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", "cannot open graph file");
+  return ParseGraph(in, path);
+}
+
+void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values) {
+  out << std::setprecision(std::numeric_limits<double>::max_digits10);
+  for (slam::NodeId id : graph.NodeIds()) {
+    out << "VERTEX_SE2 " << id;
+    WritePose(out, ValueOf(values, id));
+    out << '\n';
+  }
+  for (const slam::PoseEdge& e : graph.edges()) {
+    const Eigen::Matrix3d& I = e.information;
+    out << "EDGE_SE2 " << e.from << ' ' << e.to;
+    WritePose(out, e.T_from_to);
+    out << ' ' << I(0, 0) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 1) << ' ' << I(1, 2)
+        << ' ' << I(2, 2) << '\n';
+  }
+  for (const slam::CliqueFactor& c : graph.cliques()) {
+    out << "LIFELONG_CLIQUE_SE2 " << c.nodes.size();
+    for (slam::NodeId id : c.nodes) out << ' ' << id;
+    for (const Pose2& z : c.T_root_node) WritePose(out, z);
+    for (Eigen::Index i = 0; i < c.information.rows(); ++i) {
+      for (Eigen::Index j = i; j < c.information.cols(); ++j) out << ' ' << c.information(i, j);
+    }
+    out << '\n';
+  }
+}
+
+void WriteG2o(const std::string& path, const slam::PoseGraph& graph, const slam::Values& values) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, 0, "", "cannot open graph file for writing");
+  WriteG2o(out, graph, values);
+  if (!out.flush()) throw InputError(path, 0, "", "write failed");
+}
+
+void WriteToro(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values) {
+  if (!graph.cliques().empty())
+    throw std::invalid_argument("WriteToro: clique factors have no TORO form");
+  out << std::setprecision(std::numeric_limits<double>::max_digits10);
+  for (slam::NodeId id : graph.NodeIds()) {
+    out << "VERTEX2 " << id;
+    WritePose(out, ValueOf(values, id));
+    out << '\n';
+  }
+  for (const slam::PoseEdge& e : graph.edges()) {
+    const Eigen::Matrix3d& I = e.information;
+    out << "EDGE2 " << e.from << ' ' << e.to;
+    WritePose(out, e.T_from_to);
+    out << ' ' << I(0, 0) << ' ' << I(0, 1) << ' ' << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 2)
+        << ' ' << I(1, 2) << '\n';
+  }
+}
+
+}  // namespace lifelong::io

@@ -1,0 +1,80 @@
+// Sparse least-squares back-end for the pose graph: Levenberg-Marquardt (or plain
+// Gauss-Newton) over all nodes, one node anchored, the normal equations factorized with
+// CHOLMOD. Seed §2.3 (graph-based SLAM as least squares, F(x) = sum e_ij^T Omega_ij e_ij);
+// the damping follows Nielsen (1999) / Madsen et al. "Methods for non-linear least squares"
+// §3.2: solve (H + lambda I) dx = -g, accept when the gain ratio is positive.
+//
+// Steps per call:
+//  1. map NodeId -> column block once (anchor and factor-less nodes get no columns);
+//  2. build the upper-triangular block pattern of H in CSC form once, analyze it once
+//     (fill-reducing ordering, symbolic factorization) and reuse it every iteration;
+//  3. per iteration: linearize every factor (se2.hpp's analytic Jacobians), scatter the
+//     3x3 blocks straight into the CSC value array, factorize numerically, solve, update
+//     x <- x + dx additively with the angle normalized, evaluate chi2, accept or reject.
+//
+// Robust kernels (IRLS) act on edges with `robust = true`: with s = e^T Omega e,
+//   Huber:  rho(s) = s                    (s <= d^2),  2 d sqrt(s) - d^2  otherwise
+//   Cauchy: rho(s) = d^2 log(1 + s / d^2)
+// and the edge is weighted by rho'(s). The reported chi2 is the robust cost sum rho(s)
+// (identical to sum e^T Omega e when no robust edge is active).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::slam {
+
+enum class RobustKernel : std::uint8_t { kNone, kHuber, kCauchy };
+enum class OptimizerMethod : std::uint8_t { kLevenbergMarquardt, kGaussNewton };
+
+struct OptimizerParams {
+  OptimizerMethod method = OptimizerMethod::kLevenbergMarquardt;
+  /// Maximum number of linear solves (each LM trial step counts, accepted or not).
+  int max_iterations = 100;
+  /// Stop when an accepted step lowers chi2 by less than this fraction of chi2.
+  double relative_tolerance = 1e-9;
+  /// Stop when the largest increment component is below this (m and rad).
+  double step_tolerance = 1e-10;
+  /// Stop when chi2 itself is below this (a perfectly consistent graph).
+  double absolute_tolerance = 1e-18;
+  /// The node held fixed (gauge); default: the smallest node id.
+  std::optional<NodeId> anchor;
+  RobustKernel robust_kernel = RobustKernel::kNone;
+  /// Kernel width d, in units of Mahalanobis distance sqrt(e^T Omega e) (dimensionless).
+  double robust_delta = 1.0;
+  /// Initial LM damping: lambda_0 = factor * max diag(H).
+  double initial_lambda_factor = 1e-5;
+  /// Gauss-Newton only: spend one extra error pass at the end so that final_chi2 is the
+  /// chi2 of the returned values. When false, final_chi2 is the chi2 at the last
+  /// linearization point (before the last step), and no extra pass is made.
+  bool evaluate_final_chi2 = true;
+};
+
+struct OptimizerSummary {
+  double initial_chi2 = 0.0;  ///< robust cost at the warm start (see header comment)
+  double final_chi2 = 0.0;    ///< robust cost at the returned values
+  int iterations = 0;         ///< linear solves performed
+  double solve_time_s = 0.0;  ///< wall time of the whole Optimize call
+  bool converged = false;     ///< a tolerance was met (not just max_iterations)
+  std::string message;        ///< which stopping rule fired
+  int accepted_steps = 0;
+  int rejected_steps = 0;          ///< LM steps that raised chi2
+  int factorization_failures = 0;  ///< non-SPD systems met (damping was raised)
+  double final_lambda = 0.0;       ///< LM damping at exit
+};
+
+/// Optimizes `values` in place, warm-started from them. Every node of `graph` must have a
+/// value (std::invalid_argument otherwise); extra entries in `values` are left untouched.
+OptimizerSummary Optimize(const PoseGraph& graph, Values* values,
+                          const OptimizerParams& params = {});
+
+/// The objective at `values`: sum of e^T Omega e over edges and clique factors, robust
+/// edges through params' kernel.
+double ComputeChi2(const PoseGraph& graph, const Values& values,
+                   const OptimizerParams& params = {});
+
+}  // namespace lifelong::slam

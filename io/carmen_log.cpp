@@ -1,0 +1,443 @@
+// CARMEN log reader and writer; see carmen_log.hpp for the formats and conventions.
+#include "io/carmen_log.hpp"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string_view>
+
+#include "sensor/input_error.hpp"
+
+namespace lifelong::io {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+/// Reads a plain or gzipped text file line by line (zlib reads both transparently).
+class GzLines {
+ public:
+  explicit GzLines(const std::string& path) : path_(path), file_(gzopen(path.c_str(), "rb")) {
+    if (file_ == nullptr) throw InputError(path, 0, "", "cannot open file");
+  }
+  ~GzLines() { gzclose(file_); }
+  GzLines(const GzLines&) = delete;
+  GzLines& operator=(const GzLines&) = delete;
+
+  bool Next(std::string* line) {
+    line->clear();
+    char buf[1 << 16];
+    while (gzgets(file_, buf, sizeof buf) != nullptr) {
+      line->append(buf);
+      if (line->back() == '\n') break;
+    }
+    int err = Z_OK;
+    const char* msg = gzerror(file_, &err);
+    if (err != Z_OK && err != Z_STREAM_END) {
+      throw InputError(path_, line_number_ + 1, "", std::string("corrupt gzip data: ") + msg);
+    }
+    if (line->empty()) return false;
+    ++line_number_;
+    return true;
+  }
+  int line_number() const { return line_number_; }
+
+ private:
+  std::string path_;
+  gzFile file_;
+  int line_number_ = 0;
+};
+
+std::vector<std::string_view> Split(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    std::size_t j = i;
+    while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
+    if (j > i) out.push_back(s.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+/// Walks the fields of one message, throwing line-numbered InputErrors.
+class Fields {
+ public:
+  Fields(const std::vector<std::string_view>& tokens, const std::string& path, int line)
+      : tokens_(tokens), path_(path), line_(line) {}
+
+  [[noreturn]] void Fail(const std::string& field, const std::string& message) const {
+    throw InputError(path_, line_, field, message);
+  }
+  void Need(std::size_t count, const std::string& field) const {
+    if (tokens_.size() < i_ + count) {
+      Fail(field, std::string(tokens_[0]) + " line too short: " + std::to_string(tokens_.size()) +
+                      " fields, expected at least " + std::to_string(i_ + count));
+    }
+  }
+  double Number(const std::string& field) {
+    Need(1, field);
+    const std::string_view t = tokens_[i_++];
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size())
+      Fail(field, "not a number: '" + std::string(t) + "'");
+    if (!std::isfinite(v)) Fail(field, "not a finite number: '" + std::string(t) + "'");
+    return v;
+  }
+  int Count(const std::string& field) {
+    const double v = Number(field);
+    if (v < 0.0 || v != std::floor(v) || v > 1e6) Fail(field, "not a valid count");
+    return static_cast<int>(v);
+  }
+  Pose2 Pose(const std::string& field) {
+    const double x = Number(field + "_x"), y = Number(field + "_y");
+    return {x, y, Number(field + "_theta")};
+  }
+  std::string Word(const std::string& field) {
+    Need(1, field);
+    return std::string(tokens_[i_++]);
+  }
+  /// `ipc_timestamp ipc_hostname logger_timestamp`, which must end the line.
+  double Stamp() {
+    const double ipc = Number("ipc_timestamp");
+    Word("ipc_hostname");
+    Number("logger_timestamp");
+    if (i_ != tokens_.size()) {
+      Fail(std::string(tokens_[0]),
+           "line has " + std::to_string(tokens_.size() - i_) + " extra fields (beam count wrong?)");
+    }
+    return ipc;
+  }
+  std::vector<float> Ranges(int n) {
+    Need(static_cast<std::size_t>(n), "range_readings");
+    std::vector<float> r(static_cast<std::size_t>(n));
+    for (auto& v : r) v = static_cast<float>(Number("range_readings"));
+    return r;
+  }
+  std::size_t size() const { return tokens_.size(); }
+
+ private:
+  const std::vector<std::string_view>& tokens_;
+  const std::string& path_;
+  int line_;
+  std::size_t i_ = 1;
+};
+
+/// FLASER n r_1..r_n x y theta odom_x odom_y odom_theta ipc_timestamp host logger_timestamp
+struct FlaserMessage {
+  Observation observation;
+  Pose2 T_world_robot;  ///< first pose triple (corrected in GMapping logs)
+};
+FlaserMessage ParseFlaser(Fields& f) {
+  FlaserMessage m;
+  LaserScan& scan = m.observation.scan;
+  const int n = f.Count("num_readings");
+  f.Need(static_cast<std::size_t>(n) + 9, "range_readings");
+  scan.ranges_m = f.Ranges(n);
+  const double step_deg = (n % 2 == 1 && n > 1) ? 180.0 / (n - 1) : 180.0 / std::max(n, 1);
+  scan.angle_min_rad = -90.0 * kDeg;
+  scan.angle_increment_rad = step_deg * kDeg;
+  m.T_world_robot = f.Pose("");
+  m.observation.T_odom_robot = f.Pose("odom");
+  m.observation.stamp_s = scan.stamp_s = f.Stamp();
+  return m;
+}
+
+/// ROBOTLASER1 type start fov res max_range accuracy remission_mode n r.. n_rem rem..
+///   laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv fwd side turn stamps
+Observation ParseRobotLaser(Fields& f) {
+  Observation o;
+  LaserScan& scan = o.scan;
+  f.Number("laser_type");
+  scan.angle_min_rad = f.Number("start_angle");
+  const double fov = f.Number("fov");
+  const double res = f.Number("angular_res");
+  scan.range_max_m = f.Number("max_range");
+  f.Number("accuracy");
+  f.Number("remission_mode");
+  const int n = f.Count("num_readings");
+  scan.ranges_m = f.Ranges(n);
+  const int n_rem = f.Count("num_remissions");
+  for (int i = 0; i < n_rem; ++i) f.Number("remissions");
+  scan.angle_increment_rad = res > 0.0 ? res : (n > 1 ? fov / (n - 1) : 0.0);
+  const Pose2 laser = f.Pose("laser");
+  o.T_odom_robot = f.Pose("robot");
+  scan.T_robot_laser = Between(o.T_odom_robot, laser);
+  for (const char* name : {"tv", "rv", "forward_safety_dist", "side_safety_dist", "turn_axis"}) {
+    f.Number(name);
+  }
+  o.stamp_s = scan.stamp_s = f.Stamp();
+  return o;
+}
+
+/// ODOM x y theta tv rv accel ipc_timestamp host logger_timestamp
+Odometry ParseOdom(Fields& f) {
+  Odometry o;
+  o.T_odom_robot = f.Pose("");
+  f.Number("tv");
+  f.Number("rv");
+  f.Number("accel");
+  o.stamp_s = f.Stamp();
+  return o;
+}
+
+/// PARAM name value [host timestamp]; a value may hold spaces.
+CarmenParam ParseParam(const std::vector<std::string_view>& t, Fields& f) {
+  f.Need(2, "param_value");
+  CarmenParam p{std::string(t[1]), std::string(t[2])};
+  const std::size_t end = t.size() >= 5 ? t.size() - 2 : t.size();
+  for (std::size_t i = 3; i < end; ++i) p.value += " " + std::string(t[i]);
+  return p;
+}
+
+/// Laser and odometry messages in file order, for the odometry recovery.
+struct Event {
+  bool is_scan = false;
+  std::size_t index = 0;  ///< into observations or odometry
+  int line = 0;
+  Pose2 corrected;  ///< scans: the FLASER's first pose triple
+};
+
+bool SamePose(const Pose2& a, const Pose2& b) {
+  return std::abs(a.x - b.x) < 1e-9 && std::abs(a.y - b.y) < 1e-9 &&
+         std::abs(NormalizeAngle(a.theta - b.theta)) < 1e-9;
+}
+
+/// The GMapping pattern: every scan has an ODOM of the same stamp just before it and an
+/// ODOM repeating its corrected pose just after it (the last scan may end the log).
+bool LooksCorrected(const std::vector<Event>& ev, const CarmenLog& log) {
+  bool any = false;
+  for (std::size_t i = 0; i < ev.size(); ++i) {
+    if (!ev[i].is_scan) continue;
+    any = true;
+    if (i == 0 || ev[i - 1].is_scan) return false;
+    if (log.odometry[ev[i - 1].index].stamp_s != log.observations[ev[i].index].stamp_s) {
+      return false;
+    }
+    if (i + 1 < ev.size() &&
+        (ev[i + 1].is_scan ||
+         !SamePose(log.odometry[ev[i + 1].index].T_odom_robot, ev[i].corrected))) {
+      return false;
+    }
+  }
+  return any;
+}
+
+/// Rebuilds raw odometry: raw(t) = raw_{k-1} * Between(corrected_{k-1}, ODOM(t)).
+void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, CarmenLog* log) {
+  Pose2 corrected_prev, raw_prev;
+  std::vector<Odometry> odometry;
+  for (std::size_t i = 0; i < ev.size(); ++i) {
+    if (ev[i].is_scan) {
+      if (i == 0 || ev[i - 1].is_scan) {
+        throw InputError(path, ev[i].line, "ODOM",
+                         "odometry recovery needs an ODOM line just before each scan");
+      }
+      const Pose2& odom_before = log->odometry[ev[i - 1].index].T_odom_robot;
+      Observation& o = log->observations[ev[i].index];
+      o.T_odom_robot = raw_prev * Between(corrected_prev, odom_before);
+      corrected_prev = ev[i].corrected;
+      raw_prev = o.T_odom_robot;
+    } else if (i > 0 && ev[i - 1].is_scan) {
+      ++log->dropped_odometry;  // repeats the corrected pose, garbage stamp
+    } else {
+      Odometry o = log->odometry[ev[i].index];
+      o.T_odom_robot = raw_prev * Between(corrected_prev, o.T_odom_robot);
+      odometry.push_back(o);
+    }
+  }
+  log->odometry = std::move(odometry);
+  log->odometry_recovered = true;
+}
+
+/// TRUEPOS true_x true_y true_theta odom_x odom_y odom_theta stamps: attached to the scan
+/// just before it when the stamps agree (as CarmenWriter writes it); otherwise skipped.
+bool AttachTruePose(const std::vector<Event>& ev, Fields& f, CarmenLog* log) {
+  const Pose2 truth = f.Pose("true");
+  f.Pose("odom");
+  const double stamp = f.Stamp();
+  if (ev.empty() || !ev.back().is_scan) return false;
+  Observation& o = log->observations[ev.back().index];
+  if (o.stamp_s != stamp || o.T_world_robot_true) return false;
+  o.T_world_robot_true = truth;
+  return true;
+}
+
+template <typename T>
+int CountBackward(const std::vector<T>& v) {
+  int n = 0;
+  for (std::size_t i = 1; i < v.size(); ++i) n += v[i].stamp_s < v[i - 1].stamp_s ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
+  CarmenLog log;
+  GzLines lines(path);
+  std::vector<Event> events;
+  std::vector<std::size_t> flasers;
+  float flaser_max = 0.0f;
+  std::string line;
+  while (lines.Next(&line)) {
+    const auto tokens = Split(line);
+    if (tokens.empty()) continue;
+    if (tokens[0][0] == '#') {
+      ++log.comment_lines;
+      continue;
+    }
+    Fields f(tokens, path, lines.line_number());
+    const std::string_view type = tokens[0];
+    if (type == "FLASER") {
+      FlaserMessage m = ParseFlaser(f);
+      for (float r : m.observation.scan.ranges_m) flaser_max = std::max(flaser_max, r);
+      flasers.push_back(log.observations.size());
+      events.push_back({true, log.observations.size(), lines.line_number(), m.T_world_robot});
+      log.observations.push_back(std::move(m.observation));
+    } else if (type == "ROBOTLASER1") {
+      Observation o = ParseRobotLaser(f);
+      events.push_back({true, log.observations.size(), lines.line_number(), o.T_odom_robot});
+      log.observations.push_back(std::move(o));
+    } else if (type == "ODOM") {
+      events.push_back({false, log.odometry.size(), lines.line_number(), Pose2()});
+      log.odometry.push_back(ParseOdom(f));
+    } else if (type == "TRUEPOS" && AttachTruePose(events, f, &log)) {
+      continue;
+    } else if (type == "PARAM") {
+      log.params.push_back(ParseParam(tokens, f));
+    } else {
+      ++log.skipped[std::string(type)];
+    }
+  }
+  const double range_max =
+      options.flaser_range_max_m > 0.0 ? options.flaser_range_max_m : flaser_max;
+  for (std::size_t i : flasers) log.observations[i].scan.range_max_m = range_max;
+
+  const bool recover = options.recovery == OdometryRecovery::kOn ||
+                       (options.recovery == OdometryRecovery::kAuto && !flasers.empty() &&
+                        (log.skipped.count("NEFF") > 0 || LooksCorrected(events, log)));
+  if (recover) RecoverOdometry(events, path, &log);
+  log.backward_scan_stamps = CountBackward(log.observations);
+  log.backward_odom_stamps = CountBackward(log.odometry);
+  return log;
+}
+
+namespace {
+
+/// Locale-independent fixed-point formatting (std::to_chars), so output is byte-stable.
+void Put(std::string* s, double v, int decimals) {
+  char buf[512];
+  const auto [end, ec] =
+      std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
+  if (ec != std::errc()) throw std::invalid_argument("CarmenWriter: cannot format a number");
+  s->push_back(' ');
+  s->append(buf, end);
+}
+void PutPose(std::string* s, const Pose2& p) {
+  Put(s, p.x, 6);
+  Put(s, p.y, 6);
+  Put(s, p.theta, 6);
+}
+void PutStamp(std::string* s, double stamp_s) {
+  Put(s, stamp_s, 6);
+  s->append(" lifelong");
+  Put(s, stamp_s, 6);
+}
+void CheckFinite(double v, const char* field) {
+  if (!std::isfinite(v))
+    throw std::invalid_argument(std::string("CarmenWriter: ") + field + " is not finite");
+}
+
+}  // namespace
+
+CarmenWriter::CarmenWriter(const std::string& path) : path_(path), tmp_path_(path + ".tmp") {
+  const bool gz = path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0;
+  file_ = gzopen(tmp_path_.c_str(), gz ? "wb6" : "wT");
+  if (file_ == nullptr) throw InputError(path, 0, "", "cannot open for writing");
+  WriteLine("# CARMEN log written by lifelong");
+  WriteLine("# PARAM name value host timestamp");
+  WriteLine("# ODOM x y theta tv rv accel ipc_timestamp ipc_hostname logger_timestamp");
+  WriteLine(
+      "# ROBOTLASER1 laser_type start_angle fov angular_res max_range accuracy "
+      "remission_mode num_readings [range_readings] num_remissions [remissions] laser_x "
+      "laser_y laser_theta robot_x robot_y robot_theta tv rv forward_safety_dist "
+      "side_safety_dist turn_axis ipc_timestamp ipc_hostname logger_timestamp");
+  WriteLine(
+      "# TRUEPOS true_x true_y true_theta odom_x odom_y odom_theta ipc_timestamp "
+      "ipc_hostname logger_timestamp (ground truth of the scan just before, if known)");
+}
+
+CarmenWriter::~CarmenWriter() {
+  if (file_ == nullptr) return;
+  gzclose(static_cast<gzFile>(file_));
+  std::remove(tmp_path_.c_str());
+}
+
+void CarmenWriter::WriteLine(const std::string& line) {
+  if (file_ == nullptr) throw std::logic_error("CarmenWriter: write after Close");
+  auto* f = static_cast<gzFile>(file_);
+  if (gzputs(f, line.c_str()) < 0 || gzputc(f, '\n') < 0) {
+    throw InputError(path_, 0, "", "write failed");
+  }
+}
+
+void CarmenWriter::WriteParam(const std::string& name, const std::string& value) {
+  WriteLine("PARAM " + name + " " + value + " lifelong 0");
+}
+
+void CarmenWriter::WriteOdometry(const Odometry& odometry) {
+  const Pose2& p = odometry.T_odom_robot;
+  for (double v : {p.x, p.y, p.theta, odometry.stamp_s}) CheckFinite(v, "odometry");
+  std::string s = "ODOM";
+  PutPose(&s, p);
+  s.append(" 0 0 0");
+  PutStamp(&s, odometry.stamp_s);
+  WriteLine(s);
+}
+
+void CarmenWriter::WriteScan(const Observation& o) {
+  const LaserScan& scan = o.scan;
+  const double n = static_cast<double>(scan.ranges_m.size());
+  std::string s = "ROBOTLASER1 0";
+  Put(&s, scan.angle_min_rad, 9);
+  Put(&s, scan.angle_increment_rad * std::max(n - 1.0, 0.0), 9);
+  Put(&s, scan.angle_increment_rad, 9);
+  Put(&s, scan.range_max_m, 4);
+  s.append(" 0.01 0 ");
+  s.append(std::to_string(scan.ranges_m.size()));
+  for (float r : scan.ranges_m) {
+    CheckFinite(r, "range");
+    Put(&s, r, 4);
+  }
+  s.append(" 0");
+  PutPose(&s, o.T_odom_robot * scan.T_robot_laser);
+  PutPose(&s, o.T_odom_robot);
+  s.append(" 0 0 0 0 0");
+  PutStamp(&s, o.stamp_s);
+  WriteLine(s);
+  if (o.T_world_robot_true) {
+    std::string t = "TRUEPOS";
+    PutPose(&t, *o.T_world_robot_true);
+    PutPose(&t, o.T_odom_robot);
+    PutStamp(&t, o.stamp_s);
+    WriteLine(t);
+  }
+}
+
+void CarmenWriter::Close() {
+  if (file_ == nullptr) return;
+  const int rc = gzclose(static_cast<gzFile>(file_));
+  file_ = nullptr;
+  if (rc != Z_OK || std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
+    std::remove(tmp_path_.c_str());
+    throw InputError(path_, 0, "", "cannot finish writing the file");
+  }
+}
+
+}  // namespace lifelong::io

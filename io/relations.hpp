@@ -1,0 +1,27 @@
+// Relations files of Kümmerle et al. 2009 ("On measuring the accuracy of SLAM
+// algorithms"): one line `t1 t2 x y z roll pitch yaw` per ground-truth relative pose of
+// the robot at t2 in the frame of the robot at t1. Planar use keeps x, y and yaw.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sensor/pose2.hpp"
+
+namespace lifelong::io {
+
+/// s; intel.relations stamps are absolute: relation time = log time + this offset.
+constexpr double kIntelRelationsTimeOffsetS = 976052857.337284;
+
+struct Relation {
+  double t1_s = 0.0;  ///< s, log time of the first pose
+  double t2_s = 0.0;  ///< s, log time of the second pose
+  Pose2 T_1_2;        ///< pose at t2 in the frame of the pose at t1
+};
+
+/// Reads a relations file and subtracts `time_offset_s` from both stamps so they are log
+/// times. Blank lines and `#` comments are skipped; anything else malformed throws
+/// lifelong::InputError with the line number and field.
+std::vector<Relation> ReadRelations(const std::string& path, double time_offset_s);
+
+}  // namespace lifelong::io

@@ -1,0 +1,26 @@
+// TUM RGB-D benchmark trajectories (Sturm et al. 2012): `stamp x y z qx qy qz qw` per line,
+// the pose of the robot in the world frame. Planar poses: z = 0, rotation about z only,
+// q = (0, 0, sin(yaw/2), cos(yaw/2)).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sensor/pose2.hpp"
+
+namespace lifelong::io {
+
+struct StampedPose {
+  double stamp_s = 0.0;  ///< s
+  Pose2 T_world_robot;
+};
+
+/// Writes stamps and positions with 6 decimals, quaternions with 9 (locale-independent),
+/// via `path + ".tmp"` renamed into place. Throws InputError when unwritable.
+void WriteTum(const std::string& path, const std::vector<StampedPose>& poses);
+
+/// Reads a TUM file back, converting each quaternion to yaw (roll and pitch ignored).
+/// `#` comments and blank lines are skipped; malformed lines throw InputError.
+std::vector<StampedPose> ReadTum(const std::string& path);
+
+}  // namespace lifelong::io

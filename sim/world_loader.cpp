@@ -1,0 +1,166 @@
+#include "sim/world_loader.hpp"
+
+#include <cmath>
+
+#include "sensor/input_error.hpp"
+#include "sim/yaml_fields.hpp"
+
+namespace lifelong::sim {
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+template <typename F>
+void ForEachItem(Fields* f, const std::string& key, F&& fn) {
+  const YAML::Node list = f->Optional(key);
+  if (!list) return;
+  if (!list.IsSequence()) Fail(f->file(), list, f->Name(key), "expected a list");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    fn(list[i], f->Name(key) + "[" + std::to_string(i) + "]");
+  }
+}
+
+Wall ParseWall(const std::string& file, const YAML::Node& n, const std::string& field) {
+  Fields f(file, n, field);
+  Wall w;
+  w.closed = f.Has("polygon");
+  if (w.closed == f.Has("polyline")) Fail(file, n, field, "needs exactly one of polyline, polygon");
+  const std::string key = w.closed ? "polygon" : "polyline";
+  const YAML::Node pts = f.Required(key);
+  w.points = AsPoints(file, pts, f.Name(key));
+  f.Finish();
+  if (w.points.size() < (w.closed ? 3u : 2u)) Fail(file, pts, f.Name(key), "too few points");
+  for (const Segment& s : ToSegments(w.points, w.closed)) {
+    if (std::hypot(s.x1 - s.x0, s.y1 - s.y0) < 1e-6) {
+      Fail(file, pts, f.Name(key), "zero-length segment (repeated point)");
+    }
+  }
+  if (w.closed && PolygonSelfIntersects(w.points)) {
+    Fail(file, pts, f.Name(key), "polygon is self-intersecting");
+  }
+  return w;
+}
+
+Door ParseDoor(const std::string& file, const YAML::Node& n, const std::string& field) {
+  Fields f(file, n, field);
+  Door d;
+  d.name = f.String("name");
+  const Point a = f.GetPoint("from"), b = f.GetPoint("to");
+  d.segment = {a.x, a.y, b.x, b.y};
+  if (std::hypot(b.x - a.x, b.y - a.y) < 1e-6) Fail(file, n, field, "door has zero width");
+  const YAML::Node iv = f.Optional("closed_s");
+  if (iv) {
+    if (!iv.IsSequence()) Fail(file, iv, f.Name("closed_s"), "expected [[t0, t1], ...]");
+    for (const YAML::Node& p : iv) {
+      const Point t = AsPoint(file, p, f.Name("closed_s"));
+      if (t.y < t.x) Fail(file, p, f.Name("closed_s"), "interval ends before it begins");
+      d.closed_intervals_s.emplace_back(t.x, t.y);
+    }
+  }
+  f.Finish();
+  return d;
+}
+
+Box ParseBox(const std::string& file, const YAML::Node& n, const std::string& field) {
+  Fields f(file, n, field);
+  Box b;
+  b.name = f.String("name");
+  b.center = f.GetPoint("center");
+  const Point size = f.GetPoint("size");
+  if (size.x <= 0.0 || size.y <= 0.0) Fail(file, n, f.Name("size"), "size must be positive");
+  b.width_m = size.x;
+  b.height_m = size.y;
+  b.yaw_rad = f.Double("yaw_deg", 0.0) * kDegToRad;
+  ForEachItem(&f, "moves", [&](const YAML::Node& m, const std::string& name) {
+    Fields mf(file, m, name);
+    BoxMove mv{mf.Double("t_s"), mf.GetPoint("center"), mf.Double("yaw_deg", 0.0) * kDegToRad};
+    mf.Finish();
+    if (!b.moves.empty() && mv.t_s < b.moves.back().t_s) Fail(file, m, name, "moves not sorted");
+    b.moves.push_back(mv);
+  });
+  f.Finish();
+  return b;
+}
+
+}  // namespace
+
+namespace {
+
+void ParsePlaces(Fields* f, World* w) {
+  ForEachItem(f, "places", [&](const YAML::Node& n, const std::string& name) {
+    Fields pf(f->file(), n, name);
+    Place p{pf.String("name"), pf.GetPoint("at")};
+    pf.Finish();
+    if (w->FindPlace(p.name) >= 0) Fail(f->file(), n, name, "duplicate place '" + p.name + "'");
+    const std::string why = CheckFree(*w, p.at, w->clearance_m);
+    if (!why.empty()) Fail(f->file(), n, name, "place '" + p.name + "' " + why);
+    w->places.push_back(p);
+  });
+}
+
+void ParseRoadmap(Fields* f, World* w) {
+  ForEachItem(f, "roadmap", [&](const YAML::Node& n, const std::string& name) {
+    if (!n.IsSequence() || n.size() != 2) Fail(f->file(), n, name, "expected [place, place]");
+    int idx[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string p = AsString(f->file(), n[k], name);
+      idx[k] = w->FindPlace(p);
+      if (idx[k] < 0) Fail(f->file(), n[k], name, "unknown place '" + p + "'");
+    }
+    const std::string why =
+        CheckPath(*w, w->places[idx[0]].at, w->places[idx[1]].at, w->clearance_m);
+    if (!why.empty()) Fail(f->file(), n, name, "roadmap edge " + why);
+    w->roadmap.emplace_back(idx[0], idx[1]);
+  });
+}
+
+World ParseWorld(const YAML::Node& root, const std::string& file) {
+  Fields f(file, root, "");
+  World w;
+  w.source = file;
+  w.clearance_m = f.Double("clearance_m", w.clearance_m);
+  const YAML::Node walls = f.Required("walls");
+  if (!walls.IsSequence() || walls.size() == 0)
+    Fail(file, walls, "walls", "expected a non-empty list");
+  ForEachItem(&f, "walls", [&](const YAML::Node& n, const std::string& name) {
+    w.walls.push_back(ParseWall(file, n, name));
+  });
+  ForEachItem(&f, "doors", [&](const YAML::Node& n, const std::string& name) {
+    w.doors.push_back(ParseDoor(file, n, name));
+  });
+  ForEachItem(&f, "boxes", [&](const YAML::Node& n, const std::string& name) {
+    w.boxes.push_back(ParseBox(file, n, name));
+  });
+  ParsePlaces(&f, &w);
+  ParseRoadmap(&f, &w);
+  f.Finish();
+  return w;
+}
+
+}  // namespace
+
+World LoadWorld(const std::string& path) { return ParseWorld(ParseYamlFile(path), path); }
+
+World LoadWorldFromString(const std::string& yaml, const std::string& name) {
+  return ParseWorld(ParseYamlString(yaml, name), name);
+}
+
+void ValidateWorld(const World& world) {
+  const std::string& file = world.source;
+  if (world.walls.empty()) throw InputError(file, 0, "walls", "world has no walls");
+  for (std::size_t i = 0; i < world.walls.size(); ++i) {
+    const Wall& wall = world.walls[i];
+    const std::string field = "walls[" + std::to_string(i) + "]";
+    if (wall.points.size() < (wall.closed ? 3u : 2u))
+      throw InputError(file, 0, field, "too few points");
+    if (wall.closed && PolygonSelfIntersects(wall.points)) {
+      throw InputError(file, 0, field, "polygon is self-intersecting");
+    }
+  }
+  for (const Place& p : world.places) {
+    const std::string why = CheckFree(world, p.at, world.clearance_m);
+    if (!why.empty()) throw InputError(file, 0, "places", "place '" + p.name + "' " + why);
+  }
+}
+
+}  // namespace lifelong::sim

@@ -1,0 +1,243 @@
+#include "slam/optimizer.hpp"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "slam/se2.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Central differences of RelativeError w.r.t. additive increments, angle wrapped.
+Eigen::Matrix3d NumericJacobian(const Pose2& Xi, const Pose2& Xj, const Pose2& Z, bool wrt_i) {
+  const double h = 1e-6;
+  Eigen::Matrix3d J;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    d[k] = h;
+    const Pose2 base = wrt_i ? Xi : Xj;
+    const Pose2 plus = V2T(T2V(base) + d), minus = V2T(T2V(base) - d);
+    const Eigen::Vector3d ep = wrt_i ? RelativeError(plus, Xj, Z) : RelativeError(Xi, plus, Z);
+    const Eigen::Vector3d em = wrt_i ? RelativeError(minus, Xj, Z) : RelativeError(Xi, minus, Z);
+    Eigen::Vector3d diff = ep - em;
+    diff[2] = NormalizeAngle(diff[2]);
+    J.col(k) = diff / (2.0 * h);
+  }
+  return J;
+}
+
+TEST(Se2Jacobians, MatchNumericalDerivativesIncludingNearPi) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> pos(-5.0, 5.0), ang(-kPi, kPi), tiny(-1e-3, 1e-3);
+  for (int trial = 0; trial < 200; ++trial) {
+    const bool near_pi = trial % 2 == 0;  // every other trial: headings straddling +-pi
+    auto angle = [&] { return near_pi ? kPi + tiny(rng) : ang(rng); };
+    const Pose2 Xi(pos(rng), pos(rng), angle()), Xj(pos(rng), pos(rng), angle());
+    const Pose2 Z(pos(rng), pos(rng), angle());
+    Eigen::Matrix3d Ji, Jj;
+    RelativeErrorJacobians(Xi, Xj, Z, &Ji, &Jj);
+    EXPECT_LT((Ji - NumericJacobian(Xi, Xj, Z, true)).cwiseAbs().maxCoeff(), 1e-6) << trial;
+    EXPECT_LT((Jj - NumericJacobian(Xi, Xj, Z, false)).cwiseAbs().maxCoeff(), 1e-6) << trial;
+  }
+}
+
+PoseEdge Edge(NodeId from, NodeId to, const Pose2& z, const Eigen::Matrix3d& info) {
+  PoseEdge e;
+  e.from = from;
+  e.to = to;
+  e.T_from_to = z;
+  e.information = info;
+  return e;
+}
+
+PoseGraph Nodes(int n) {
+  PoseGraph g;
+  for (int i = 0; i < n; ++i) g.AddNode(i);
+  return g;
+}
+
+TEST(Optimizer, ChiSquaredOfOneEdgeByHand) {
+  PoseGraph g = Nodes(2);
+  g.AddEdge(Edge(0, 1, Pose2(), Eigen::Vector3d(2.0, 3.0, 5.0).asDiagonal()));
+  const Values v{{0, Pose2()}, {1, Pose2(1.0, -1.0, 0.5)}};
+  EXPECT_NEAR(ComputeChi2(g, v), 2.0 * 1.0 + 3.0 * 1.0 + 5.0 * 0.25, 1e-12);
+}
+
+// A square loop whose measurements agree with `truth`: any start converges to it.
+TEST(Optimizer, ConsistentLoopConvergesToZeroAndTruth) {
+  const Values truth{{0, Pose2(0, 0, 0)},
+                     {1, Pose2(2, 0, kPi / 2)},
+                     {2, Pose2(2, 2, kPi)},
+                     {3, Pose2(0, 2, -kPi / 2)}};
+  PoseGraph g = Nodes(4);
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    g.AddEdge(Edge(i, j, Between(truth.at(i), truth.at(j)), Eigen::Matrix3d::Identity()));
+  }
+  Values v = truth;
+  v[1] = Pose2(2.3, -0.4, 1.2);
+  v[2] = Pose2(1.5, 2.5, 2.8);
+  v[3] = Pose2(-0.3, 1.6, -1.9);
+  const OptimizerSummary s = Optimize(g, &v);
+  EXPECT_TRUE(s.converged) << s.message;
+  EXPECT_GT(s.initial_chi2, 1.0);
+  EXPECT_LT(s.final_chi2, 1e-12);
+  for (const auto& [id, p] : truth) {
+    EXPECT_NEAR(v[id].x, p.x, 1e-6);
+    EXPECT_NEAR(v[id].y, p.y, 1e-6);
+    EXPECT_NEAR(NormalizeAngle(v[id].theta - p.theta), 0.0, 1e-6);
+  }
+}
+
+// Three nodes on a line: 0->1 and 1->2 measure 1 m (weight 1), 0->2 measures 2.3 m (weight
+// 2 in x). Minimizing (x1-1)^2 + (x2-x1-1)^2 + 2 (x2-2.3)^2 gives x2 = 2 x1 and
+// 3 x2 - x1 = 5.6, so x1 = 1.12, x2 = 2.24, chi2 = 0.12^2 + 0.12^2 + 2 * 0.06^2 = 0.036.
+PoseGraph Triangle() {
+  PoseGraph g = Nodes(3);
+  g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), Eigen::Matrix3d::Identity()));
+  g.AddEdge(Edge(1, 2, Pose2(1, 0, 0), Eigen::Matrix3d::Identity()));
+  g.AddEdge(Edge(0, 2, Pose2(2.3, 0, 0), Eigen::Vector3d(2.0, 1.0, 1.0).asDiagonal()));
+  return g;
+}
+
+TEST(Optimizer, ConflictingTriangleReachesWeightedCompromise) {
+  for (OptimizerMethod method :
+       {OptimizerMethod::kLevenbergMarquardt, OptimizerMethod::kGaussNewton}) {
+    Values v{{0, Pose2()}, {1, Pose2(0.8, 0.2, 0.1)}, {2, Pose2(2.5, -0.3, -0.2)}};
+    OptimizerParams params;
+    params.method = method;
+    const OptimizerSummary s = Optimize(Triangle(), &v, params);
+    EXPECT_TRUE(s.converged) << s.message;
+    EXPECT_NEAR(v[1].x, 1.12, 1e-6);
+    EXPECT_NEAR(v[2].x, 2.24, 1e-6);
+    EXPECT_NEAR(v[1].y, 0.0, 1e-6);
+    EXPECT_NEAR(v[2].theta, 0.0, 1e-6);
+    EXPECT_NEAR(s.final_chi2, 0.036, 1e-9);
+    EXPECT_EQ(v[0].x, 0.0);  // the anchor does not move at all
+  }
+}
+
+TEST(Optimizer, ChosenAnchorStaysFixed) {
+  Values v{{0, Pose2(0.1, 0.2, 0.3)}, {1, Pose2(0.8, 0.2, 0.1)}, {2, Pose2(5.0, 5.0, 1.0)}};
+  OptimizerParams params;
+  params.anchor = 2;
+  const OptimizerSummary s = Optimize(Triangle(), &v, params);
+  EXPECT_TRUE(s.converged) << s.message;
+  EXPECT_EQ(v[2].x, 5.0);
+  EXPECT_EQ(v[2].y, 5.0);
+  EXPECT_EQ(v[2].theta, 1.0);
+  EXPECT_NEAR(s.final_chi2, 0.036, 1e-9);  // the optimum does not depend on the gauge
+}
+
+TEST(Optimizer, MissingValueIsAProgrammerError) {
+  Values v{{0, Pose2()}, {1, Pose2()}};
+  EXPECT_THROW(Optimize(Triangle(), &v), std::invalid_argument);
+}
+
+// Edges 0->1 and 0->2 replaced by one clique factor rooted at 0 with block-diagonal
+// information: the objective is the same function, so is the solution.
+TEST(Optimizer, CliqueEquivalentToSeparateEdgesGivesSameSolution) {
+  const Pose2 z01(1.0, 0.1, 0.2), z02(0.9, 1.1, 1.4);
+  const Eigen::Matrix3d o01 = Eigen::Vector3d(4.0, 2.0, 9.0).asDiagonal();
+  Eigen::Matrix3d o02;
+  o02 << 3.0, 0.5, 0.1, 0.5, 2.0, 0.2, 0.1, 0.2, 5.0;
+  auto others = [](PoseGraph* g) {
+    g->AddEdge(Edge(1, 2, Pose2(-0.2, 0.9, 1.1), Eigen::Matrix3d::Identity()));
+    g->AddEdge(Edge(2, 3, Pose2(1.0, 0.0, 0.3), Eigen::Matrix3d::Identity()));
+    g->AddEdge(Edge(3, 0, Pose2(-1.3, -1.5, -1.9), Eigen::Matrix3d::Identity()));
+  };
+  PoseGraph with_edges = Nodes(4), with_clique = Nodes(4);
+  with_edges.AddEdge(Edge(0, 1, z01, o01));
+  with_edges.AddEdge(Edge(0, 2, z02, o02));
+  CliqueFactor c;
+  c.nodes = {0, 1, 2};
+  c.T_root_node = {z01, z02};
+  c.information = Eigen::MatrixXd::Zero(6, 6);
+  c.information.topLeftCorner<3, 3>() = o01;
+  c.information.bottomRightCorner<3, 3>() = o02;
+  with_clique.AddClique(c);
+  others(&with_edges);
+  others(&with_clique);
+  const Values start{{0, Pose2()}, {1, Pose2(1, 0, 0)}, {2, Pose2(1, 1, 1)}, {3, Pose2(2, 1, 1)}};
+  Values a = start, b = start;
+  EXPECT_NEAR(ComputeChi2(with_edges, a), ComputeChi2(with_clique, b), 1e-12);
+  const OptimizerSummary sa = Optimize(with_edges, &a);
+  const OptimizerSummary sb = Optimize(with_clique, &b);
+  EXPECT_GT(sa.final_chi2, 1e-3);  // the loop is inconsistent: a real compromise
+  EXPECT_NEAR(sa.final_chi2, sb.final_chi2, 1e-9);
+  for (NodeId id = 1; id < 4; ++id) {
+    EXPECT_NEAR(a[id].x, b[id].x, 1e-7);
+    EXPECT_NEAR(a[id].y, b[id].y, 1e-7);
+    EXPECT_NEAR(a[id].theta, b[id].theta, 1e-7);
+  }
+}
+
+// A hexagon with exact odometry and one exact loop, plus one loop that is 4 m off.
+double WorstErrorWithKernel(RobustKernel kernel) {
+  Values truth;
+  for (int i = 0; i < 6; ++i) {
+    const double a = i * kPi / 3.0;
+    truth[i] = Pose2(2.0 * std::cos(a), 2.0 * std::sin(a), a + kPi / 2.0);
+  }
+  PoseGraph g = Nodes(6);
+  for (int i = 0; i < 6; ++i) {
+    PoseEdge e = Edge(i, (i + 1) % 6, Between(truth[i], truth[(i + 1) % 6]),
+                      Eigen::Vector3d(100.0, 100.0, 400.0).asDiagonal());
+    e.robust = i == 5;
+    g.AddEdge(e);
+  }
+  PoseEdge wrong = Edge(0, 3, Between(truth[0], truth[3]) * Pose2(4.0, 0.0, 0.0),
+                        Eigen::Vector3d(100.0, 100.0, 400.0).asDiagonal());
+  wrong.kind = EdgeKind::kLoop;
+  wrong.robust = true;
+  g.AddEdge(wrong);
+  Values v = truth;
+  OptimizerParams params;
+  params.robust_kernel = kernel;
+  params.robust_delta = 1.0;
+  Optimize(g, &v, params);
+  double worst = 0.0;
+  for (int i = 0; i < 6; ++i)
+    worst = std::max(worst, std::hypot(v[i].x - truth[i].x, v[i].y - truth[i].y));
+  return worst;
+}
+
+TEST(Optimizer, RobustKernelDownWeightsGrosslyWrongLoop) {
+  const double plain = WorstErrorWithKernel(RobustKernel::kNone);
+  const double huber = WorstErrorWithKernel(RobustKernel::kHuber);
+  const double cauchy = WorstErrorWithKernel(RobustKernel::kCauchy);
+  EXPECT_GT(plain, 0.5);  // least squares splits the 4 m between the two paths
+  EXPECT_LT(huber, 0.5 * plain);
+  EXPECT_LT(cauchy, 0.05);
+}
+
+TEST(Optimizer, SingularSystemIsFlaggedNotFatal) {
+  // No information on theta and no other edge: node 1's heading is unobservable.
+  PoseGraph g = Nodes(2);
+  g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal()));
+  Values v{{0, Pose2()}, {1, Pose2(0.5, 0.5, 0.3)}};
+  OptimizerParams params;
+  params.method = OptimizerMethod::kGaussNewton;
+  const OptimizerSummary s = Optimize(g, &v, params);
+  EXPECT_GT(s.factorization_failures, 0);
+  EXPECT_TRUE(std::isfinite(v[1].x) && std::isfinite(v[1].theta));
+  EXPECT_LT(s.final_chi2, s.initial_chi2);
+}
+
+TEST(Optimizer, MaxIterationsBoundsTheWork) {
+  Values v{{0, Pose2()}, {1, Pose2(0.8, 0.2, 0.1)}, {2, Pose2(2.5, -0.3, -0.2)}};
+  OptimizerParams params;
+  params.max_iterations = 1;
+  params.method = OptimizerMethod::kGaussNewton;
+  const OptimizerSummary s = Optimize(Triangle(), &v, params);
+  EXPECT_EQ(s.iterations, 1);
+  EXPECT_FALSE(s.converged);
+  EXPECT_NEAR(s.final_chi2, ComputeChi2(Triangle(), v), 1e-12);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

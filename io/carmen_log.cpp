@@ -96,8 +96,9 @@ class Fields {
     return static_cast<int>(v);
   }
   Pose2 Pose(const std::string& field) {
-    const double x = Number(field + "_x"), y = Number(field + "_y");
-    return {x, y, Number(field + "_theta")};
+    const std::string p = field.empty() ? "" : field + "_";
+    const double x = Number(p + "x"), y = Number(p + "y");
+    return {x, y, Number(p + "theta")};
   }
   std::string Word(const std::string& field) {
     Need(1, field);
@@ -138,7 +139,11 @@ FlaserMessage ParseFlaser(Fields& f) {
   FlaserMessage m;
   LaserScan& scan = m.observation.scan;
   const int n = f.Count("num_readings");
-  f.Need(static_cast<std::size_t>(n) + 9, "range_readings");
+  if (f.size() != static_cast<std::size_t>(n) + 11) {
+    f.Fail("num_readings", "announces " + std::to_string(n) + " beams but the line has " +
+                               std::to_string(f.size()) + " fields, expected " +
+                               std::to_string(n + 11));
+  }
   scan.ranges_m = f.Ranges(n);
   const double step_deg = (n % 2 == 1 && n > 1) ? 180.0 / (n - 1) : 180.0 / std::max(n, 1);
   scan.angle_min_rad = -90.0 * kDeg;
@@ -196,9 +201,9 @@ CarmenParam ParseParam(const std::vector<std::string_view>& t, Fields& f) {
   return p;
 }
 
-/// Laser and odometry messages in file order, for the odometry recovery.
+/// FLASER and ODOM messages in file order, for the odometry recovery.
 struct Event {
-  bool is_scan = false;
+  bool is_flaser = false;
   std::size_t index = 0;  ///< into observations or odometry
   int line = 0;
   Pose2 corrected;  ///< scans: the FLASER's first pose triple
@@ -214,14 +219,14 @@ bool SamePose(const Pose2& a, const Pose2& b) {
 bool LooksCorrected(const std::vector<Event>& ev, const CarmenLog& log) {
   bool any = false;
   for (std::size_t i = 0; i < ev.size(); ++i) {
-    if (!ev[i].is_scan) continue;
+    if (!ev[i].is_flaser) continue;
     any = true;
-    if (i == 0 || ev[i - 1].is_scan) return false;
+    if (i == 0 || ev[i - 1].is_flaser) return false;
     if (log.odometry[ev[i - 1].index].stamp_s != log.observations[ev[i].index].stamp_s) {
       return false;
     }
     if (i + 1 < ev.size() &&
-        (ev[i + 1].is_scan ||
+        (ev[i + 1].is_flaser ||
          !SamePose(log.odometry[ev[i + 1].index].T_odom_robot, ev[i].corrected))) {
       return false;
     }
@@ -234,8 +239,8 @@ void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, Carm
   Pose2 corrected_prev, raw_prev;
   std::vector<Odometry> odometry;
   for (std::size_t i = 0; i < ev.size(); ++i) {
-    if (ev[i].is_scan) {
-      if (i == 0 || ev[i - 1].is_scan) {
+    if (ev[i].is_flaser) {
+      if (i == 0 || ev[i - 1].is_flaser) {
         throw InputError(path, ev[i].line, "ODOM",
                          "odometry recovery needs an ODOM line just before each scan");
       }
@@ -244,7 +249,7 @@ void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, Carm
       o.T_odom_robot = raw_prev * Between(corrected_prev, odom_before);
       corrected_prev = ev[i].corrected;
       raw_prev = o.T_odom_robot;
-    } else if (i > 0 && ev[i - 1].is_scan) {
+    } else if (i > 0 && ev[i - 1].is_flaser) {
       ++log->dropped_odometry;  // repeats the corrected pose, garbage stamp
     } else {
       Odometry o = log->odometry[ev[i].index];
@@ -257,15 +262,14 @@ void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, Carm
 }
 
 /// TRUEPOS true_x true_y true_theta odom_x odom_y odom_theta stamps: attached to the scan
-/// just before it when the stamps agree (as CarmenWriter writes it); otherwise skipped.
-bool AttachTruePose(const std::vector<Event>& ev, Fields& f, CarmenLog* log) {
+/// on the line just before it when the stamps agree (as CarmenWriter writes it).
+bool AttachTruePose(Fields& f, Observation* previous_scan) {
   const Pose2 truth = f.Pose("true");
   f.Pose("odom");
   const double stamp = f.Stamp();
-  if (ev.empty() || !ev.back().is_scan) return false;
-  Observation& o = log->observations[ev.back().index];
-  if (o.stamp_s != stamp || o.T_world_robot_true) return false;
-  o.T_world_robot_true = truth;
+  if (previous_scan == nullptr || previous_scan->stamp_s != stamp) return false;
+  if (previous_scan->T_world_robot_true) return false;
+  previous_scan->T_world_robot_true = truth;
   return true;
 }
 
@@ -284,6 +288,7 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
   std::vector<Event> events;
   std::vector<std::size_t> flasers;
   float flaser_max = 0.0f;
+  bool previous_was_scan = false;
   std::string line;
   while (lines.Next(&line)) {
     const auto tokens = Split(line);
@@ -294,6 +299,8 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
     }
     Fields f(tokens, path, lines.line_number());
     const std::string_view type = tokens[0];
+    Observation* previous_scan = previous_was_scan ? &log.observations.back() : nullptr;
+    previous_was_scan = type == "FLASER" || type == "ROBOTLASER1";
     if (type == "FLASER") {
       FlaserMessage m = ParseFlaser(f);
       for (float r : m.observation.scan.ranges_m) flaser_max = std::max(flaser_max, r);
@@ -301,13 +308,11 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
       events.push_back({true, log.observations.size(), lines.line_number(), m.T_world_robot});
       log.observations.push_back(std::move(m.observation));
     } else if (type == "ROBOTLASER1") {
-      Observation o = ParseRobotLaser(f);
-      events.push_back({true, log.observations.size(), lines.line_number(), o.T_odom_robot});
-      log.observations.push_back(std::move(o));
+      log.observations.push_back(ParseRobotLaser(f));  // never GMapping-corrected
     } else if (type == "ODOM") {
       events.push_back({false, log.odometry.size(), lines.line_number(), Pose2()});
       log.odometry.push_back(ParseOdom(f));
-    } else if (type == "TRUEPOS" && AttachTruePose(events, f, &log)) {
+    } else if (type == "TRUEPOS" && AttachTruePose(f, previous_scan)) {
       continue;
     } else if (type == "PARAM") {
       log.params.push_back(ParseParam(tokens, f));
@@ -319,9 +324,15 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
       options.flaser_range_max_m > 0.0 ? options.flaser_range_max_m : flaser_max;
   for (std::size_t i : flasers) log.observations[i].scan.range_max_m = range_max;
 
-  const bool recover = options.recovery == OdometryRecovery::kOn ||
-                       (options.recovery == OdometryRecovery::kAuto && !flasers.empty() &&
-                        (log.skipped.count("NEFF") > 0 || LooksCorrected(events, log)));
+  bool recover = options.recovery == OdometryRecovery::kOn;
+  if (options.recovery == OdometryRecovery::kAuto) {
+    recover = LooksCorrected(events, log);
+    if (!recover && log.skipped.count("NEFF") > 0 && !flasers.empty()) {
+      throw InputError(path, 0, "NEFF",
+                       "GMapping output (NEFF lines) without the ODOM-before-FLASER pattern: "
+                       "set CarmenReadOptions::recovery explicitly");
+    }
+  }
   if (recover) RecoverOdometry(events, path, &log);
   log.backward_scan_stamps = CountBackward(log.observations);
   log.backward_odom_stamps = CountBackward(log.odometry);

@@ -24,7 +24,8 @@
 namespace lifelong::io {
 
 enum class OdometryRecovery {
-  kAuto,  ///< recover when the log has NEFF lines or the ODOM-before-FLASER pattern
+  kAuto,  ///< recover when every FLASER shows the GMapping pattern (see LooksCorrected);
+          ///< NEFF lines without the pattern throw rather than guess
   kOn,    ///< always treat the FLASER poses as corrected estimates
   kOff,   ///< never: the FLASER odometry triple is used as is
 };

@@ -1,0 +1,262 @@
+// Counting grid map: see grid_map.hpp (seed eqs. 3.10, 5.10, 5.11).
+#include "slam/grid_map.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace lifelong::slam {
+
+namespace {
+
+constexpr int kChunkBits = 5;  // 32 x 32 cells per chunk
+constexpr int kChunkSide = 1 << kChunkBits;
+constexpr int kChunkMask = kChunkSide - 1;
+
+std::uint64_t ChunkKey(int chunk_x, int chunk_y) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(chunk_x)) << 32) |
+         static_cast<std::uint64_t>(static_cast<std::uint32_t>(chunk_y));
+}
+
+// Floor division by the chunk side (arithmetic shift, as GCC and Clang define it).
+int ChunkOf(int cell) { return cell >> kChunkBits; }
+
+int Offset(CellIndex c) { return ((c.y & kChunkMask) << kChunkBits) | (c.x & kChunkMask); }
+
+// Calls f(x, y) for every cell on the Bresenham line from a to b, both inclusive.
+template <typename F>
+void Bresenham(CellIndex a, CellIndex b, F&& f) {
+  const int dx = std::abs(b.x - a.x), dy = -std::abs(b.y - a.y);
+  const int sx = a.x < b.x ? 1 : -1, sy = a.y < b.y ? 1 : -1;
+  int err = dx + dy, x = a.x, y = a.y;
+  while (true) {
+    f(x, y);
+    if (x == b.x && y == b.y) return;
+    const int e2 = 2 * err;
+    if (e2 >= dy) {
+      err += dy;
+      x += sx;
+    }
+    if (e2 <= dx) {
+      err += dx;
+      y += sy;
+    }
+  }
+}
+
+struct Beam {
+  CellIndex end;
+  bool hit;
+};
+
+// Sums the beams' increments per cell, each cell once, ordered by (y, x). A dense scratch
+// box is used when the scan's bounding box is small, a sort otherwise.
+std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& beams, CellIndex lo,
+                                   CellIndex hi) {
+  constexpr std::int64_t kMaxDenseCells = std::int64_t{1} << 21;
+  const std::int64_t w = hi.x - lo.x + 1, h = hi.y - lo.y + 1;
+  std::vector<CellUpdate> out;
+  if (w * h <= kMaxDenseCells) {
+    std::vector<CellCounts> box(static_cast<std::size_t>(w * h));
+    for (const Beam& b : beams) {
+      Bresenham(origin, b.end, [&](int x, int y) {
+        CellCounts& c = box[static_cast<std::size_t>((y - lo.y) * w + (x - lo.x))];
+        ++(b.hit && x == b.end.x && y == b.end.y ? c.hits : c.misses);
+      });
+    }
+    for (std::int64_t i = 0; i < w * h; ++i) {
+      const CellCounts& c = box[static_cast<std::size_t>(i)];
+      if (c.hits != 0 || c.misses != 0) {
+        out.push_back({{lo.x + static_cast<int>(i % w), lo.y + static_cast<int>(i / w)}, c});
+      }
+    }
+    return out;
+  }
+  for (const Beam& b : beams) {
+    Bresenham(origin, b.end, [&](int x, int y) {
+      const bool hit = b.hit && x == b.end.x && y == b.end.y;
+      out.push_back({{x, y}, {hit ? 1u : 0u, hit ? 0u : 1u}});
+    });
+  }
+  std::sort(out.begin(), out.end(), [](const CellUpdate& a, const CellUpdate& b) {
+    return a.cell.y != b.cell.y ? a.cell.y < b.cell.y : a.cell.x < b.cell.x;
+  });
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (n > 0 && out[n - 1].cell == out[i].cell) {
+      out[n - 1].delta.hits += out[i].delta.hits;
+      out[n - 1].delta.misses += out[i].delta.misses;
+    } else {
+      out[n++] = out[i];
+    }
+  }
+  out.resize(n);
+  return out;
+}
+
+}  // namespace
+
+struct GridMap::Chunk {
+  std::array<CellCounts, kChunkSide * kChunkSide> cells{};
+};
+
+double CellEntropyBits(CellCounts counts) {
+  if (counts.hits == 0 || counts.misses == 0) return counts.hits == counts.misses ? 1.0 : 0.0;
+  const double n = static_cast<double>(counts.hits) + static_cast<double>(counts.misses);
+  const double p = static_cast<double>(counts.hits) / n;
+  return -p * std::log2(p) - (1.0 - p) * std::log2(1.0 - p);
+}
+
+GridMap::GridMap(const GridMapConfig& config) : config_(config) {}
+GridMap::~GridMap() = default;
+GridMap::GridMap(GridMap&&) noexcept = default;
+GridMap& GridMap::operator=(GridMap&&) noexcept = default;
+
+CellIndex GridMap::CellOf(double x_m, double y_m) const {
+  return {static_cast<int>(std::floor(x_m / config_.resolution_m)),
+          static_cast<int>(std::floor(y_m / config_.resolution_m))};
+}
+
+std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
+                                              const Pose2& T_world_robot) const {
+  const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
+  const CellIndex origin = CellOf(T_world_laser.x, T_world_laser.y);
+  std::vector<Beam> beams;
+  beams.reserve(scan.ranges_m.size());
+  CellIndex lo = origin, hi = origin;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    const double r = scan.ranges_m[i];
+    if (!(r > 0.0)) continue;
+    const bool hit = scan.IsReturn(i);
+    const double range = hit ? r : config_.max_free_range_m;
+    const double a = scan.Bearing(i);
+    double x = 0.0, y = 0.0;
+    T_world_laser.Apply(range * std::cos(a), range * std::sin(a), &x, &y);
+    const CellIndex end = CellOf(x, y);
+    beams.push_back({end, hit});
+    lo = {std::min(lo.x, end.x), std::min(lo.y, end.y)};
+    hi = {std::max(hi.x, end.x), std::max(hi.y, end.y)};
+  }
+  return Accumulate(origin, beams, lo, hi);
+}
+
+CellCounts* GridMap::Find(CellIndex c) const {
+  const auto it = chunks_.find(ChunkKey(ChunkOf(c.x), ChunkOf(c.y)));
+  if (it == chunks_.end()) return nullptr;
+  return &it->second->cells[static_cast<std::size_t>(Offset(c))];
+}
+
+CellCounts* GridMap::FindOrCreate(CellIndex c) {
+  std::unique_ptr<Chunk>& chunk = chunks_[ChunkKey(ChunkOf(c.x), ChunkOf(c.y))];
+  if (!chunk) chunk = std::make_unique<Chunk>();
+  return &chunk->cells[static_cast<std::size_t>(Offset(c))];
+}
+
+void GridMap::Add(const std::vector<CellUpdate>& updates) {
+  for (const CellUpdate& u : updates) {
+    CellCounts* c = FindOrCreate(u.cell);
+    c->hits += u.delta.hits;
+    c->misses += u.delta.misses;
+  }
+}
+
+void GridMap::Remove(const std::vector<CellUpdate>& updates) {
+  for (const CellUpdate& u : updates) {
+    CellCounts* c = Find(u.cell);
+    if (c == nullptr || c->hits < u.delta.hits || c->misses < u.delta.misses) {
+      throw std::logic_error("GridMap::Remove: removing counts that were never added");
+    }
+    c->hits -= u.delta.hits;
+    c->misses -= u.delta.misses;
+  }
+}
+
+void GridMap::AddScan(const LaserScan& scan, const Pose2& T_world_robot) {
+  Add(TouchedCells(scan, T_world_robot));
+}
+
+void GridMap::RemoveScan(const LaserScan& scan, const Pose2& T_world_robot) {
+  Remove(TouchedCells(scan, T_world_robot));
+}
+
+void GridMap::MoveScan(const LaserScan& scan, const Pose2& T_world_old, const Pose2& T_world_new) {
+  RemoveScan(scan, T_world_old);
+  AddScan(scan, T_world_new);
+}
+
+CellCounts GridMap::Counts(CellIndex c) const {
+  const CellCounts* counts = Find(c);
+  return counts ? *counts : CellCounts{};
+}
+
+double GridMap::Probability(CellIndex c) const {
+  const CellCounts n = Counts(c);
+  if (n.hits == 0 && n.misses == 0) return 0.5;
+  return static_cast<double>(n.hits) /
+         (static_cast<double>(n.hits) + static_cast<double>(n.misses));
+}
+
+bool GridMap::IsKnown(CellIndex c) const {
+  const CellCounts n = Counts(c);
+  return n.hits != 0 || n.misses != 0;
+}
+
+void GridMap::ForEachKnownCell(const std::function<void(CellIndex, CellCounts)>& f) const {
+  for (const auto& [key, chunk] : chunks_) {
+    const int base_x = static_cast<int>(static_cast<std::uint32_t>(key >> 32)) * kChunkSide;
+    const int base_y = static_cast<int>(static_cast<std::uint32_t>(key)) * kChunkSide;
+    for (int i = 0; i < kChunkSide * kChunkSide; ++i) {
+      const CellCounts& c = chunk->cells[static_cast<std::size_t>(i)];
+      if (c.hits == 0 && c.misses == 0) continue;
+      f({base_x + (i & kChunkMask), base_y + (i >> kChunkBits)}, c);
+    }
+  }
+}
+
+CellBounds GridMap::Bounds() const {
+  CellBounds b;
+  ForEachKnownCell([&b](CellIndex c, CellCounts) {
+    if (b.empty) {
+      b = {c, c, false};
+      return;
+    }
+    b.min = {std::min(b.min.x, c.x), std::min(b.min.y, c.y)};
+    b.max = {std::max(b.max.x, c.x), std::max(b.max.y, c.y)};
+  });
+  return b;
+}
+
+std::size_t GridMap::NumKnownCells() const {
+  std::size_t n = 0;
+  ForEachKnownCell([&n](CellIndex, CellCounts) { ++n; });
+  return n;
+}
+
+double GridMap::EntropyBits(const CellBounds& region) const {
+  if (region.empty) return 0.0;
+  double h = 0.0;
+  for (int y = region.min.y; y <= region.max.y; ++y) {
+    for (int x = region.min.x; x <= region.max.x; ++x) h += CellEntropyBits(Counts({x, y}));
+  }
+  return h;
+}
+
+double GridMap::InformationGain(const std::vector<CellUpdate>& updates) const {
+  double gain = 0.0;
+  for (const CellUpdate& u : updates) {
+    const CellCounts now = Counts(u.cell);
+    if (now.hits < u.delta.hits || now.misses < u.delta.misses) {
+      throw std::logic_error("GridMap::InformationGain: the scan is not in the map");
+    }
+    const CellCounts without{now.hits - u.delta.hits, now.misses - u.delta.misses};
+    gain += CellEntropyBits(without) - CellEntropyBits(now);
+  }
+  return gain;
+}
+
+double GridMap::InformationGain(const LaserScan& scan, const Pose2& T_world_robot) const {
+  return InformationGain(TouchedCells(scan, T_world_robot));
+}
+
+}  // namespace lifelong::slam

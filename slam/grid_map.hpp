@@ -1,0 +1,110 @@
+// Counting grid map (reflection / simple counting model, seed eq. 3.10):
+//   p(c) = hits(c) / (hits(c) + misses(c)),   p = 0.5 for a cell never observed,
+// and its entropy and the information gain of one scan (seed eqs. 5.10, 5.11):
+//   H(m) = sum_c -p log2 p - (1-p) log2 (1-p)        (bits; an unknown cell is 1 bit)
+//   I(z_i) = H(m without z_i) - H(m).
+// Each scan's contribution is a list of per-cell increments (TouchedCells), so a scan can be
+// added, subtracted bit-exactly or moved without rebuilding the map. Cell (x, y) covers
+// [x * res, (x + 1) * res) x [y * res, (y + 1) * res) in the world frame.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "sensor/laser_scan.hpp"
+#include "sensor/pose2.hpp"
+
+namespace lifelong::slam {
+
+struct CellIndex {
+  int x = 0;
+  int y = 0;
+  bool operator==(const CellIndex& o) const { return x == o.x && y == o.y; }
+};
+
+struct CellCounts {
+  std::uint32_t hits = 0;    ///< beams that ended in the cell
+  std::uint32_t misses = 0;  ///< beams that passed through the cell
+};
+
+/// One scan's increment of one cell (summed over all beams of that scan).
+struct CellUpdate {
+  CellIndex cell;
+  CellCounts delta;
+};
+
+/// Inclusive cell-index box. `empty` when the map holds no counts.
+struct CellBounds {
+  CellIndex min;
+  CellIndex max;
+  bool empty = true;
+};
+
+struct GridMapConfig {
+  double resolution_m = 0.05;     ///< m, cell side
+  double max_free_range_m = 8.0;  ///< m, "no return" beams add misses up to this range
+};
+
+/// Binary entropy in bits of a cell with these counts (1 bit when unknown).
+double CellEntropyBits(CellCounts counts);
+
+class GridMap {
+ public:
+  explicit GridMap(const GridMapConfig& config = {});
+  ~GridMap();
+  GridMap(GridMap&&) noexcept;
+  GridMap& operator=(GridMap&&) noexcept;
+  GridMap(const GridMap&) = delete;
+  GridMap& operator=(const GridMap&) = delete;
+
+  const GridMapConfig& config() const { return config_; }
+  double resolution_m() const { return config_.resolution_m; }
+  CellIndex CellOf(double x_m, double y_m) const;
+
+  /// Cells a scan touches from T_world_robot, traced with Bresenham from the laser origin:
+  /// misses along each beam, a hit in the end cell of a return; a "no return" beam adds
+  /// misses up to max_free_range_m and no hit. Beams with range <= 0 are skipped. Each cell
+  /// appears once, ordered by (y, x).
+  std::vector<CellUpdate> TouchedCells(const LaserScan& scan, const Pose2& T_world_robot) const;
+
+  void AddScan(const LaserScan& scan, const Pose2& T_world_robot);
+  /// Exactly undoes AddScan with the same arguments.
+  void RemoveScan(const LaserScan& scan, const Pose2& T_world_robot);
+  void MoveScan(const LaserScan& scan, const Pose2& T_world_old, const Pose2& T_world_new);
+  void Add(const std::vector<CellUpdate>& updates);
+  /// Throws std::logic_error when a count would go negative (the updates were never added).
+  void Remove(const std::vector<CellUpdate>& updates);
+
+  CellCounts Counts(CellIndex c) const;
+  std::uint32_t Hits(CellIndex c) const { return Counts(c).hits; }
+  std::uint32_t Misses(CellIndex c) const { return Counts(c).misses; }
+  /// p(occ), 0.5 for an unknown cell.
+  double Probability(CellIndex c) const;
+  bool IsKnown(CellIndex c) const;
+  /// Box of the cells with any count (recomputed by a scan over the allocated chunks).
+  CellBounds Bounds() const;
+  /// Calls f for every cell with any count, chunk by chunk (order unspecified).
+  void ForEachKnownCell(const std::function<void(CellIndex, CellCounts)>& f) const;
+  std::size_t NumKnownCells() const;
+
+  /// Seed eq. 5.10 over an inclusive cell box, in bits (unknown cells count 1 bit).
+  double EntropyBits(const CellBounds& region) const;
+  /// Seed eq. 5.11 for a scan currently in the map, computed over its touched cells only.
+  double InformationGain(const LaserScan& scan, const Pose2& T_world_robot) const;
+  /// Same, for an increment list previously added with Add().
+  double InformationGain(const std::vector<CellUpdate>& updates) const;
+
+ private:
+  struct Chunk;
+  CellCounts* Find(CellIndex c) const;
+  CellCounts* FindOrCreate(CellIndex c);
+
+  GridMapConfig config_;
+  std::unordered_map<std::uint64_t, std::unique_ptr<Chunk>> chunks_;
+};
+
+}  // namespace lifelong::slam

@@ -1,0 +1,124 @@
+// Likelihood-field lookup tables and scan point extraction for the correlative matcher
+// (Olson 2009, §III-A/B); see scan_matcher.hpp.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "slam/scan_matcher.hpp"
+
+namespace lifelong::slam {
+
+namespace {
+
+// Appends the return end points of `scan` seen from T_frame_robot, keeping the first point
+// of each spacing_m voxel (voxels shared through `seen`).
+void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spacing_m,
+                  std::unordered_set<std::uint64_t>* seen, std::vector<Eigen::Vector2d>* out) {
+  const Pose2 T_frame_laser = T_frame_robot * scan.T_robot_laser;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (!scan.IsReturn(i)) continue;
+    const double r = scan.ranges_m[i], a = scan.Bearing(i);
+    Eigen::Vector2d p;
+    T_frame_laser.Apply(r * std::cos(a), r * std::sin(a), &p.x(), &p.y());
+    if (spacing_m > 0.0) {
+      const auto vx = static_cast<std::int32_t>(std::floor(p.x() / spacing_m));
+      const auto vy = static_cast<std::int32_t>(std::floor(p.y() / spacing_m));
+      const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(vx)) << 32) |
+                                static_cast<std::uint32_t>(vy);
+      if (!seen->insert(key).second) continue;
+    }
+    out->push_back(p);
+  }
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> ScanToPoints(const LaserScan& scan, double spacing_m) {
+  return PointsInReference({PosedScan{&scan, Pose2()}}, spacing_m);
+}
+
+std::vector<Eigen::Vector2d> PointsInReference(const std::vector<PosedScan>& scans,
+                                               double spacing_m) {
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<Eigen::Vector2d> out;
+  for (const PosedScan& s : scans) AppendPoints(*s.scan, s.T_ref_robot, spacing_m, &seen, &out);
+  return out;
+}
+
+ReferenceGrid::ReferenceGrid(const std::vector<Eigen::Vector2d>& points_in_ref,
+                             const MatcherConfig& config)
+    : resolution_m_(config.resolution_m), coarse_factor_(std::max(1, config.coarse_factor)) {
+  if (!(resolution_m_ > 0.0) || !(config.sigma_m > 0.0)) {
+    throw std::invalid_argument("ReferenceGrid: resolution_m and sigma_m must be > 0");
+  }
+  Rasterize(points_in_ref, config.sigma_m);
+  BuildCoarse();
+}
+
+float ReferenceGrid::LogLikelihood(int x, int y) const {
+  return Contains(x, y) ? log_fine_[Index(x, y)] : kLogFloor;
+}
+
+Eigen::Vector2i ReferenceGrid::CellOf(const Eigen::Vector2d& p) const {
+  const Eigen::Vector2d c = (p - origin_m_) / resolution_m_;
+  return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
+}
+
+// Step 1: v = exp(-d^2 / (2 sigma^2)) of the nearest point within 3 sigma, at cell centres.
+void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m) {
+  if (points.empty()) return;
+  Eigen::Vector2d lo = points.front(), hi = points.front();
+  for (const Eigen::Vector2d& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double r = resolution_m_;
+  const int kernel = static_cast<int>(std::ceil(3.0 * sigma_m / r));
+  const int margin = kernel + coarse_factor_ + 1;
+  origin_m_ = (lo / r).array().floor().matrix() * r - Eigen::Vector2d::Constant(margin * r);
+  width_ = static_cast<int>(std::ceil((hi.x() - origin_m_.x()) / r)) + margin + 1;
+  height_ = static_cast<int>(std::ceil((hi.y() - origin_m_.y()) / r)) + margin + 1;
+  fine_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
+  const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector2i c = CellOf(p);
+    for (int y = c.y() - kernel; y <= c.y() + kernel; ++y) {
+      for (int x = c.x() - kernel; x <= c.x() + kernel; ++x) {
+        const Eigen::Vector2d centre = origin_m_ + Eigen::Vector2d(x + 0.5, y + 0.5) * r;
+        const double d2 = (centre - p).squaredNorm();
+        if (d2 > max_d2) continue;
+        float& v = fine_[Index(x, y)];
+        v = std::max(v, static_cast<float>(std::exp(-d2 * inv_2s2)));
+      }
+    }
+  }
+  log_fine_.resize(fine_.size());
+  for (std::size_t i = 0; i < fine_.size(); ++i) {
+    log_fine_[i] = fine_[i] > 0.0f ? std::max(std::log(fine_[i]), kLogFloor) : kLogFloor;
+  }
+}
+
+// Step 2: coarse(x, y) = max of fine over [x, x + f) x [y, y + f), separably.
+void ReferenceGrid::BuildCoarse() {
+  const int f = coarse_factor_;
+  std::vector<float> rows(fine_.size(), 0.0f);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      float m = 0.0f;
+      for (int k = x; k < std::min(x + f, width_); ++k) m = std::max(m, fine_[Index(k, y)]);
+      rows[Index(x, y)] = m;
+    }
+  }
+  coarse_.assign(fine_.size(), 0.0f);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      float m = 0.0f;
+      for (int k = y; k < std::min(y + f, height_); ++k) m = std::max(m, rows[Index(x, k)]);
+      coarse_[Index(x, y)] = m;
+    }
+  }
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,180 @@
+// Counting grid map (seed eq. 3.10), entropy and information gain (seed eqs. 5.10, 5.11).
+#include "slam/grid_map.hpp"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "tests/slam/synthetic_scans.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+using CountMap = std::map<std::pair<int, int>, std::pair<std::uint32_t, std::uint32_t>>;
+
+CountMap Snapshot(const GridMap& map) {
+  CountMap out;
+  map.ForEachKnownCell([&out](CellIndex c, CellCounts n) { out[{c.x, c.y}] = {n.hits, n.misses}; });
+  return out;
+}
+
+// One beam along +x from the centre of cell (0, 0).
+LaserScan OneBeam(float range_m, double range_max_m = 10.0) {
+  LaserScan scan;
+  scan.range_max_m = range_max_m;
+  scan.ranges_m = {range_m};
+  return scan;
+}
+
+const Pose2 kCellCentre(0.025, 0.025, 0.0);
+
+TEST(GridMapTest, OneReturnMissesAlongTheBeamAndHitsAtTheEnd) {
+  GridMap map;
+  // End point x = 0.025 + 0.26 = 0.285 m: cell 5 (0.25..0.30).
+  const std::vector<CellUpdate> cells = map.TouchedCells(OneBeam(0.26f), kCellCentre);
+  ASSERT_EQ(cells.size(), 6u);
+  for (int x = 0; x < 6; ++x) {
+    EXPECT_EQ(cells[static_cast<std::size_t>(x)].cell, (CellIndex{x, 0}));
+    EXPECT_EQ(cells[static_cast<std::size_t>(x)].delta.hits, x == 5 ? 1u : 0u);
+    EXPECT_EQ(cells[static_cast<std::size_t>(x)].delta.misses, x == 5 ? 0u : 1u);
+  }
+  map.AddScan(OneBeam(0.26f), kCellCentre);
+  EXPECT_DOUBLE_EQ(map.Probability({5, 0}), 1.0);
+  EXPECT_DOUBLE_EQ(map.Probability({2, 0}), 0.0);
+  EXPECT_DOUBLE_EQ(map.Probability({6, 0}), 0.5);
+  EXPECT_FALSE(map.IsKnown({0, 1}));
+  const CellBounds b = map.Bounds();
+  ASSERT_FALSE(b.empty);
+  EXPECT_EQ(b.min, (CellIndex{0, 0}));
+  EXPECT_EQ(b.max, (CellIndex{5, 0}));
+}
+
+TEST(GridMapTest, NoReturnAddsMissesUpToMaxFreeRange) {
+  GridMapConfig config;
+  config.max_free_range_m = 0.5;  // end x = 0.525: cell 10
+  GridMap map(config);
+  map.AddScan(OneBeam(10.0f, 10.0), kCellCentre);
+  EXPECT_EQ(map.NumKnownCells(), 11u);
+  for (int x = 0; x <= 10; ++x) {
+    EXPECT_EQ(map.Hits({x, 0}), 0u);
+    EXPECT_EQ(map.Misses({x, 0}), 1u);
+  }
+}
+
+TEST(GridMapTest, CountsAccumulateAndProbabilityIsTheirRatio) {
+  GridMap map;
+  map.AddScan(OneBeam(0.26f), kCellCentre);  // cell 5: hit
+  map.AddScan(OneBeam(0.36f), kCellCentre);  // cell 5: miss, cell 7: hit
+  map.AddScan(OneBeam(0.36f), kCellCentre);
+  map.AddScan(OneBeam(0.36f), kCellCentre);
+  EXPECT_EQ(map.Hits({5, 0}), 1u);
+  EXPECT_EQ(map.Misses({5, 0}), 3u);
+  EXPECT_DOUBLE_EQ(map.Probability({5, 0}), 0.25);
+  // H(0.25) = -0.25 log2 0.25 - 0.75 log2 0.75.
+  EXPECT_NEAR(CellEntropyBits(map.Counts({5, 0})), 0.5 + 0.75 * std::log2(4.0 / 3.0), 1e-12);
+}
+
+TEST(GridMapTest, EntropyOfARegionByHand) {
+  GridMap map;
+  const CellBounds region{{0, 0}, {9, 9}, false};  // 100 cells
+  EXPECT_DOUBLE_EQ(map.EntropyBits(region), 100.0);
+  map.AddScan(OneBeam(0.26f), kCellCentre);  // six cells become certain
+  EXPECT_DOUBLE_EQ(map.EntropyBits(region), 94.0);
+  map.AddScan(OneBeam(0.36f), kCellCentre);  // cell 5 now 1 hit / 1 miss; cells 6, 7 known
+  EXPECT_DOUBLE_EQ(map.EntropyBits(region), 93.0);
+}
+
+TEST(GridMapTest, AddThenRemoveRestoresCountsExactly) {
+  const testing::World room = testing::RoomWorld();
+  GridMap map;
+  const Pose2 a(2.0, 3.0, 0.3), b(5.0, 2.0, 2.0), c(4.0, 1.5, -1.0);
+  map.AddScan(testing::SimulateScan(room, a), a);
+  map.AddScan(testing::SimulateScan(room, b), b);
+  const CountMap before = Snapshot(map);
+  const LaserScan scan_c = testing::SimulateScan(room, c);
+  map.AddScan(scan_c, c);
+  EXPECT_NE(Snapshot(map), before);
+  map.RemoveScan(scan_c, c);
+  EXPECT_EQ(Snapshot(map), before);
+  EXPECT_THROW(map.RemoveScan(scan_c, c), std::logic_error);
+}
+
+TEST(GridMapTest, MoveScanEqualsAddingAtTheNewPose) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 a(2.0, 3.0, 0.3), wrong(2.3, 2.8, 0.5);
+  const LaserScan scan = testing::SimulateScan(room, a);
+  GridMap moved, direct;
+  moved.AddScan(scan, wrong);
+  moved.MoveScan(scan, wrong, a);
+  direct.AddScan(scan, a);
+  EXPECT_EQ(Snapshot(moved), Snapshot(direct));
+}
+
+TEST(GridMapTest, NegativeCellIndicesWork) {
+  GridMap map;
+  map.AddScan(OneBeam(0.26f), Pose2(-0.025, -0.025, 3.14159265358979323846));
+  // From the centre of cell (-1, -1) towards -x: end x = -0.285, cell -6.
+  EXPECT_EQ(map.Hits({-6, -1}), 1u);
+  EXPECT_EQ(map.Misses({-1, -1}), 1u);
+  EXPECT_EQ(map.Bounds().min, (CellIndex{-6, -1}));
+}
+
+TEST(GridMapTest, GainOfTheOnlyScanIsOneBitPerTouchedCell) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 a(2.0, 3.0, 0.3);
+  const LaserScan scan = testing::SimulateScan(room, a);
+  GridMap map;
+  map.AddScan(scan, a);
+  // Every touched cell goes from unknown (1 bit) to hits-only or misses-only (0 bits) unless
+  // the scan itself both hit and missed it.
+  double expected = 0.0;
+  for (const CellUpdate& u : map.TouchedCells(scan, a)) expected += 1.0 - CellEntropyBits(u.delta);
+  EXPECT_GT(expected, 100.0);
+  EXPECT_NEAR(map.InformationGain(scan, a), expected, 1e-9);
+}
+
+TEST(GridMapTest, RepeatedScanHasZeroGain) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 a(2.0, 3.0, 0.3);
+  const LaserScan scan = testing::SimulateScan(room, a);
+  GridMap map;
+  map.AddScan(scan, a);
+  map.AddScan(scan, a);
+  map.AddScan(scan, a);
+  // Removing one of three identical copies leaves every p(occ) unchanged.
+  EXPECT_NEAR(map.InformationGain(scan, a), 0.0, 1e-12);
+}
+
+// The room seen densely from a 3 x 3 grid of poses (360 deg scans): the interior is known.
+GridMap DenseRoomMap(const testing::World& room) {
+  GridMap map;
+  for (double x : {1.5, 4.0, 7.0}) {
+    for (double y : {0.7, 2.5, 4.5}) {
+      const Pose2 p(x, y, 0.0);
+      map.AddScan(testing::SimulateScan(room, p, 721, 2.0 * 3.14159265358979323846), p);
+    }
+  }
+  return map;
+}
+
+TEST(GridMapTest, MisalignedCopyHasNegativeGain) {
+  // Seed §5.1: an observation that disagrees with former ones raises the entropy. A copy of
+  // a scan facing the x = 8 wall, displaced 0.3 m back and turned 3 deg, puts its end points
+  // into known free space (the map knows the interior densely).
+  const testing::World room = testing::RoomWorld();
+  GridMap map = DenseRoomMap(room);
+  const Pose2 truth(5.0, 2.5, 0.0);
+  const LaserScan scan = testing::SimulateScan(room, truth);
+  const Pose2 misaligned = truth * Pose2(-0.3, 0.0, 3.0 * 3.14159265358979323846 / 180.0);
+  map.AddScan(scan, misaligned);
+  const double misaligned_gain = map.InformationGain(scan, misaligned);
+  EXPECT_LT(misaligned_gain, 0.0);
+  map.MoveScan(scan, misaligned, truth);
+  EXPECT_GT(map.InformationGain(scan, truth), misaligned_gain);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

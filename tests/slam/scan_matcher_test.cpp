@@ -1,0 +1,117 @@
+// Correlative multi-resolution scan matcher (Olson 2009) on hand-made scans of a room with
+// two boxes, a featureless corridor and an unrelated lattice of posts.
+#include "slam/scan_matcher.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "tests/slam/synthetic_scans.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+std::vector<Eigen::Vector2d> Points(const LaserScan& scan) { return ScanToPoints(scan, 0.03); }
+
+// Translation within one fine cell (plus rounding), heading within two angular steps.
+void ExpectNear(const Pose2& a, const Pose2& b) {
+  EXPECT_NEAR(a.x, b.x, 0.04);
+  EXPECT_NEAR(a.y, b.y, 0.04);
+  EXPECT_NEAR(NormalizeAngle(a.theta - b.theta), 0.0, 0.01);
+}
+
+TEST(ScanMatcherTest, ScanToPointsKeepsReturnsOnlyAndThins) {
+  LaserScan scan;
+  scan.range_max_m = 10.0;
+  scan.angle_increment_rad = 0.001;  // beams 1 mm apart at 1 m: one voxel of 3 cm
+  scan.ranges_m = {1.0f, 1.0f, 10.0f, 0.0f, 1.0f};
+  const std::vector<Eigen::Vector2d> pts = ScanToPoints(scan, 0.03);
+  ASSERT_EQ(pts.size(), 1u);
+  EXPECT_NEAR(pts[0].x(), 1.0, 1e-6);
+  EXPECT_EQ(ScanToPoints(scan, 0.0).size(), 3u);
+}
+
+TEST(ScanMatcherTest, RecoversKnownOffsetForwardAndInverse) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 pose_a(3.0, 2.5, 0.2), pose_b = pose_a * Pose2(0.17, -0.11, 4.0 * kDeg);
+  const LaserScan a = testing::SimulateScan(room, pose_a), b = testing::SimulateScan(room, pose_b);
+  const MatcherConfig config;
+  const MatchResult ab = Match(ReferenceGrid(Points(a), config), Points(b), Pose2(), config);
+  const MatchResult ba = Match(ReferenceGrid(Points(b), config), Points(a), Pose2(), config);
+  ASSERT_TRUE(ab.ok);
+  ASSERT_TRUE(ba.ok);
+  EXPECT_GT(ab.score, 0.8);
+  ExpectNear(ab.T_ref_cur, Between(pose_a, pose_b));
+  ExpectNear(ba.T_ref_cur, Between(pose_b, pose_a));
+  ExpectNear(ab.T_ref_cur * ba.T_ref_cur, Pose2());
+}
+
+TEST(ScanMatcherTest, RecoversTruePoseFromPerturbedGuessAgainstLocalMap) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 p0(1.5, 2.0, 0.0), p1(2.5, 2.3, 0.4), p2(3.5, 2.0, -0.3), truth(4.2, 2.6, 0.1);
+  const LaserScan s0 = testing::SimulateScan(room, p0), s1 = testing::SimulateScan(room, p1),
+                  s2 = testing::SimulateScan(room, p2);
+  MatcherConfig config;
+  config.angular_step_rad = 0.5 * kDeg;  // 61 rotations over +-15 deg
+  const ReferenceGrid local_map(PointsInReference({{&s0, p0}, {&s1, p1}, {&s2, p2}}, 0.03), config);
+  const Pose2 guess = truth * Pose2(0.22, -0.17, -9.0 * kDeg);
+  const MatchResult r = Match(local_map, Points(testing::SimulateScan(room, truth)), guess, config);
+  ASSERT_TRUE(r.ok);
+  ExpectNear(r.T_ref_cur, truth);
+  // Branch and bound scores far fewer fine poses than the exhaustive lattice.
+  const int W = static_cast<int>(std::ceil(config.linear_window_m / config.resolution_m));
+  EXPECT_LT(r.evaluations, 61 * (2 * W + 1) * (2 * W + 1) / 4);
+  // A well-constrained match: covariance near its floor, information = its inverse.
+  EXPECT_LT(std::sqrt(r.covariance(0, 0)), 0.03);
+  EXPECT_LT(std::sqrt(r.covariance(2, 2)), 1.0 * kDeg);
+  EXPECT_TRUE((r.covariance * r.information).isIdentity(1e-9));
+}
+
+TEST(ScanMatcherTest, CorridorIsUncertainAndAmbiguousAlongItsAxis) {
+  const testing::World corridor = testing::CorridorWorld();
+  const Pose2 pose_a(0.0, 1.0, 0.0), pose_b(0.4, 1.05, 0.02);
+  const LaserScan a = testing::SimulateScan(corridor, pose_a, 181, 180.0 * kDeg, 8.0);
+  const LaserScan b = testing::SimulateScan(corridor, pose_b, 181, 180.0 * kDeg, 8.0);
+  MatcherConfig config;
+  config.linear_window_m = 1.0;
+  const ReferenceGrid ref(PointsInReference({{&a, pose_a}}, 0.03), config);
+  const MatchResult r = Match(ref, Points(b), pose_b * Pose2(0.1, 0.1, 0.0), config);
+  ASSERT_TRUE(r.ok);
+  EXPECT_NEAR(r.T_ref_cur.y, pose_b.y, 0.04);  // across the axis: well determined
+  EXPECT_GT(r.covariance(0, 0), 10.0 * r.covariance(1, 1));
+  EXPECT_GT(r.ambiguity, 0.9);
+}
+
+TEST(ScanMatcherTest, RoomMatchIsNotAmbiguous) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 pose(3.0, 2.5, 0.2);
+  const LaserScan scan = testing::SimulateScan(room, pose);
+  MatcherConfig config;
+  config.linear_window_m = 1.0;
+  const MatchResult r = Match(ReferenceGrid(Points(scan), config), Points(scan), Pose2(), config);
+  ASSERT_TRUE(r.ok);
+  EXPECT_LT(r.ambiguity, 0.8);
+}
+
+TEST(ScanMatcherTest, UnrelatedGeometryScoresLow) {
+  const testing::World room = testing::RoomWorld(), posts = testing::PostsWorld();
+  const Pose2 pose(3.0, 2.5, 0.2);
+  MatcherConfig config;
+  config.linear_window_m = 1.0;
+  const LaserScan ref_scan = testing::SimulateScan(posts, Pose2(3.5, 2.0, 0.0), 361, 360.0 * kDeg);
+  const ReferenceGrid ref(Points(ref_scan), config);
+  const MatchResult r = Match(ref, Points(testing::SimulateScan(room, pose)), Pose2(), config);
+  EXPECT_FALSE(r.ok);
+  EXPECT_LT(r.score, 0.3);
+}
+
+TEST(ScanMatcherTest, EmptyQueryIsNotOk) {
+  const MatcherConfig config;
+  const ReferenceGrid ref({{1.0, 0.0}}, config);
+  EXPECT_FALSE(Match(ref, {}, Pose2(), config).ok);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

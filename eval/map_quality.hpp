@@ -1,0 +1,62 @@
+// Map quality. Against ground truth (issue #5, DESIGN.md "Metrics"): the true walls are
+// rasterized at the map resolution (cv::line), distance-transformed (cv::distanceTransform,
+// DIST_L2, DIST_MASK_PRECISE), and every occupied cell of the estimated map, moved into the
+// true frame by the ATE alignment T_truth_est, is scored by its distance to the nearest
+// true wall. Without truth (real logs): map entropy, seed eqs. (5.8)-(5.9), and the
+// occupied share.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "eval/types.hpp"
+#include "io/occupancy_grid.hpp"
+#include "sensor/pose2.hpp"
+
+namespace lifelong::eval {
+
+struct BlurConfig {
+  float occupied_threshold = 0.65f;     ///< p_occ >= this counts as occupied
+  double recall_tolerance_cells = 1.5;  ///< cells; a true-wall cell is recalled when an
+                                        ///< occupied cell lies within this (1.5: diagonals)
+  double visibility_range_m = 8.0;      ///< m; recall only counts true-wall cells within this
+                                        ///< range of the true trajectory (no line-of-sight
+                                        ///< test); ignored when the trajectory is empty
+};
+
+struct BlurResult {
+  std::size_t occupied_cells = 0;  ///< occupied cells of the estimated map
+  double mean_cm = 0.0;            ///< cm, mean distance occupied cell -> nearest true wall
+  double p95_cm = 0.0;             ///< cm, 95th percentile of the same
+  double wall_length_m = 0.0;      ///< m, true wall length considered (visible part)
+  double thickness = 0.0;          ///< occupied cells per metre of true wall
+  std::size_t wall_cells = 0;      ///< true-wall raster cells considered (visible)
+  std::size_t wall_cells_recalled = 0;
+  double recall = 0.0;  ///< wall_cells_recalled / wall_cells
+};
+
+/// Scores `map` against the true `walls`. T_truth_est maps the estimate's frame into the
+/// truth frame (AteResult::T_truth_est). `true_trajectory` (truth frame) limits recall and
+/// thickness to the walls the robot could have seen; pass {} to use every wall.
+/// Distances are between cell centres, so they are quantized to the resolution.
+BlurResult ComputeBlur(const io::OccupancyGrid& map, const std::vector<Segment>& walls,
+                       const Pose2& T_truth_est, const std::vector<Pose2>& true_trajectory,
+                       const BlurConfig& config = {});
+
+/// An occupancy grid holding the true walls rasterized (p = 1 on walls, 0 elsewhere) on
+/// the given geometry. Useful as truth/map.pgm and as a perfect map in tests.
+io::OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
+                                 double margin_m = 1.0);
+
+struct EntropyResult {
+  double entropy_bits = 0.0;       ///< sum over known cells of H(p) (seed eq. 5.8), bits
+  std::size_t known_cells = 0;     ///< cells with p_occ >= 0; unknown cells do not count
+  std::size_t occupied_cells = 0;  ///< known cells with p_occ >= occupied_threshold
+  double occupied_share = 0.0;     ///< occupied_cells / known_cells
+};
+
+/// Map entropy for maps without ground truth. Unknown cells (p < 0) are left out: each
+/// would add 1 bit and the map's extent is arbitrary.
+EntropyResult ComputeMapEntropy(const io::OccupancyGrid& map, float occupied_threshold = 0.65f);
+
+}  // namespace lifelong::eval

@@ -1,0 +1,302 @@
+#include "eval/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "eval/metrics.hpp"
+#include "eval/resources.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+using nlohmann::json;
+
+double Mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+template <typename T>
+void Put(json& j, const char* key, const std::optional<T>& v) {
+  if (!v) return;
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(*v)) return;
+  }
+  j[key] = *v;
+}
+
+json TimeJson(const TimeStats& t) {
+  json j = {{"mean", t.mean},
+            {"p50", t.p50},
+            {"p95", t.p95},
+            {"max", t.max},
+            {"last10_mean", t.last10_mean}};
+  Put(j, "first_pass_mean", t.first_pass_mean);
+  return j;
+}
+
+json ModeJson(const ModeSummary& m) {
+  json j = json::object();
+  Put(j, "observations", m.observations);
+  Put(j, "wall_time_s", m.wall_time_s);
+  if (m.time_per_obs_ms) j["time_per_obs_ms"] = TimeJson(*m.time_per_obs_ms);
+  Put(j, "nodes_final", m.nodes_final);
+  Put(j, "edges_final", m.edges_final);
+  Put(j, "nodes_max", m.nodes_max);
+  Put(j, "edges_max", m.edges_max);
+  Put(j, "nodes_after_first_pass", m.nodes_after_first_pass);
+  Put(j, "gamma_final", m.gamma_final);
+  Put(j, "scans_kept_pct", m.scans_kept_pct);
+  Put(j, "peak_rss_mb", m.peak_rss_mb);
+  Put(j, "graph_bytes_final", m.graph_bytes_final);
+  if (m.blur) {
+    json b = {
+        {"mean_cm", m.blur->mean_cm}, {"p95_cm", m.blur->p95_cm}, {"thickness", m.blur->thickness}};
+    Put(b, "recall", m.blur->recall);
+    j["blur"] = b;
+  }
+  Put(j, "ate_rmse_m", m.ate_rmse_m);
+  Put(j, "loop_precision", m.loop_precision);
+  Put(j, "loop_recall", m.loop_recall);
+  if (m.relations) {
+    const RelationsSummary& r = *m.relations;
+    j["relations"] = {{"count", r.count},
+                      {"trans_mean_m", r.trans_mean_m},
+                      {"trans_std_m", r.trans_std_m},
+                      {"rot_mean_deg", r.rot_mean_deg},
+                      {"rot_std_deg", r.rot_std_deg}};
+  }
+  if (m.kld) j["kld"] = {{"count", m.kld->count}, {"mean", m.kld->mean}, {"max", m.kld->max}};
+  Put(j, "map_entropy_bits", m.map_entropy_bits);
+  Put(j, "occupied_share", m.occupied_share);
+  return j;
+}
+
+}  // namespace
+
+std::optional<TimeStats> ComputeTimeStats(const std::vector<TimelineRow>& rows,
+                                          std::optional<int> first_pass_end_obs) {
+  if (rows.empty()) return std::nullopt;
+  std::vector<double> ms, first;
+  for (const TimelineRow& r : rows) {
+    ms.push_back(r.time_ms);
+    if (first_pass_end_obs && r.obs < *first_pass_end_obs) first.push_back(r.time_ms);
+  }
+  TimeStats t;
+  t.mean = Mean(ms);
+  t.p50 = Percentile(ms, 0.5);
+  t.p95 = Percentile(ms, 0.95);
+  t.max = *std::max_element(ms.begin(), ms.end());
+  if (!first.empty()) t.first_pass_mean = Mean(first);
+  const std::size_t last = (ms.size() + 9) / 10;  // ceil(10%), at least one
+  t.last10_mean = Mean(std::vector<double>(ms.end() - static_cast<std::ptrdiff_t>(last), ms.end()));
+  return t;
+}
+
+ModeSummary SummarizeTimeline(const std::vector<TimelineRow>& rows,
+                              std::optional<int> first_pass_end_obs) {
+  ModeSummary m;
+  m.observations = static_cast<std::int64_t>(rows.size());
+  if (rows.empty()) return m;
+  m.time_per_obs_ms = ComputeTimeStats(rows, first_pass_end_obs);
+  std::int64_t nmax = 0, emax = 0;
+  double rss = 0.0;
+  for (const TimelineRow& r : rows) {
+    nmax = std::max<std::int64_t>(nmax, r.nodes);
+    emax = std::max<std::int64_t>(emax, r.edges);
+    rss = std::max(rss, r.rss_mb);
+    if (first_pass_end_obs && r.obs < *first_pass_end_obs) m.nodes_after_first_pass = r.nodes;
+  }
+  m.nodes_final = rows.back().nodes;
+  m.edges_final = rows.back().edges;
+  m.nodes_max = nmax;
+  m.edges_max = emax;
+  m.gamma_final = rows.back().gamma;
+  m.graph_bytes_final = static_cast<std::int64_t>(rows.back().graph_bytes);
+  m.peak_rss_mb = rss;
+  return m;
+}
+
+std::optional<KldSummary> SummarizeKld(const std::vector<double>& kl_values) {
+  if (kl_values.empty()) return std::nullopt;
+  KldSummary k;
+  k.count = static_cast<std::int64_t>(kl_values.size());
+  k.mean = Mean(kl_values);
+  k.max = *std::max_element(kl_values.begin(), kl_values.end());
+  return k;
+}
+
+std::string SummaryJsonText(const RunSummary& s) {
+  json j = {{"source", s.source}, {"wall_time_s", s.wall_time_s}};
+  Put(j, "seed", s.seed);
+  Put(j, "log_duration_s", s.log_duration_s);
+  json modes = json::object();
+  for (const auto& [name, mode] : s.modes) modes[name] = ModeJson(mode);
+  j["modes"] = modes;
+  return j.dump(2) + "\n";
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw std::runtime_error(tmp + ": cannot write");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot rename " + tmp + " onto it");
+  }
+}
+
+void WriteSummaryJson(const std::string& path, const RunSummary& summary) {
+  WriteFileAtomically(path, SummaryJsonText(summary));
+}
+
+void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& rows) {
+  std::string text = "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures\n";
+  char line[256];
+  for (const TimelineRow& r : rows) {
+    std::snprintf(line, sizeof(line), "%d,%.6f,%.6g,%d,%d,%.9g,%.6g,%zu,%d\n", r.obs, r.t_s,
+                  r.time_ms, r.nodes, r.edges, r.gamma, r.rss_mb, r.graph_bytes, r.loop_closures);
+    text += line;
+  }
+  WriteFileAtomically(path, text);
+}
+
+namespace {
+
+/// The flattened summary keys in contract order: the rows of the HTML table.
+const char* const kTableRows[] = {"/observations",
+                                  "/wall_time_s",
+                                  "/time_per_obs_ms/mean",
+                                  "/time_per_obs_ms/p50",
+                                  "/time_per_obs_ms/p95",
+                                  "/time_per_obs_ms/max",
+                                  "/time_per_obs_ms/first_pass_mean",
+                                  "/time_per_obs_ms/last10_mean",
+                                  "/nodes_final",
+                                  "/edges_final",
+                                  "/nodes_max",
+                                  "/edges_max",
+                                  "/nodes_after_first_pass",
+                                  "/gamma_final",
+                                  "/scans_kept_pct",
+                                  "/peak_rss_mb",
+                                  "/graph_bytes_final",
+                                  "/blur/mean_cm",
+                                  "/blur/p95_cm",
+                                  "/blur/thickness",
+                                  "/blur/recall",
+                                  "/ate_rmse_m",
+                                  "/loop_precision",
+                                  "/loop_recall",
+                                  "/relations/count",
+                                  "/relations/trans_mean_m",
+                                  "/relations/trans_std_m",
+                                  "/relations/rot_mean_deg",
+                                  "/relations/rot_std_deg",
+                                  "/kld/count",
+                                  "/kld/mean",
+                                  "/kld/max",
+                                  "/map_entropy_bits",
+                                  "/occupied_share"};
+
+std::string Escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string Cell(const json& flat, const char* key) {
+  if (!flat.contains(key)) return "&ndash;";
+  const json& v = flat[key];
+  if (v.is_number_float()) {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.4g", v.get<double>());
+    return buf;
+  }
+  return Escape(v.dump());
+}
+
+std::string SummaryTable(const RunSummary& s) {
+  std::vector<json> flats;
+  std::string html = "<table>\n<tr><th>figure</th>";
+  for (const auto& [name, mode] : s.modes) {
+    html += "<th>" + Escape(name) + "</th>";
+    flats.push_back(ModeJson(mode).flatten());
+  }
+  html += "</tr>\n";
+  for (const char* key : kTableRows) {
+    html += "<tr><td>" + std::string(key + 1) + "</td>";
+    for (const json& f : flats) html += "<td>" + Cell(f, key) + "</td>";
+    html += "</tr>\n";
+  }
+  return html + "</table>\n";
+}
+
+const char kCss[] =
+    "body{font-family:sans-serif;margin:1.5em;color:#222}"
+    "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #bbb;"
+    "padding:2px 8px;text-align:right}td:first-child{text-align:left;font-family:monospace}"
+    ".row{display:flex;flex-wrap:wrap;gap:1em}.row figure{margin:0}"
+    ".row img{max-width:600px;border:1px solid #ccc}code{background:#f3f3f3;padding:2px}";
+
+}  // namespace
+
+std::string ReportHtmlText(const ReportPage& page) {
+  const RunSummary& s = page.summary;
+  const std::string machine = page.machine.empty() ? CpuModelName() : page.machine;
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(page.title)
+    << "</title>\n<style>" << kCss << "</style></head><body>\n<h1>" << Escape(page.title)
+    << "</h1>\n<p>source: <code>" << Escape(s.source) << "</code>";
+  if (s.seed) h << ", seed " << *s.seed;
+  h << ", wall time " << s.wall_time_s << " s";
+  if (s.log_duration_s) h << ", log duration " << *s.log_duration_s << " s";
+  h << "</p>\n<p>command: <code>" << Escape(page.command_line)
+    << "</code></p>\n<p>machine: " << Escape(machine) << "</p>\n<h2>Summary</h2>\n"
+    << SummaryTable(s);
+  h << "<h2>Figures</h2>\n<div class=\"row\">\n";
+  for (const std::string& f : page.figures) {
+    h << "<figure><img src=\"" << Escape(f) << "\" alt=\"" << Escape(f) << "\"></figure>\n";
+  }
+  h << "</div>\n<h2>Maps</h2>\n<div class=\"row\">\n";
+  for (const auto& [mode, img] : page.maps) {
+    h << "<figure><img src=\"" << Escape(img) << "\" alt=\"" << Escape(mode) << "\"><figcaption>"
+      << Escape(mode) << "</figcaption></figure>\n";
+  }
+  h << "</div>\n</body></html>\n";
+  return h.str();
+}
+
+void WriteReportHtml(const std::string& path, const ReportPage& page) {
+  WriteFileAtomically(path, ReportHtmlText(page));
+}
+
+}  // namespace lifelong::eval

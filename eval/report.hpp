@@ -1,0 +1,107 @@
+// The output contract of DESIGN.md: summary.json, <mode>/timeline.csv and report.html.
+// Every writer goes through `path + ".tmp"` and a rename, so a file that exists is whole.
+// A figure that does not apply is an empty std::optional and is absent from the JSON.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/types.hpp"
+
+namespace lifelong::eval {
+
+/// Time per observation, ms. first_pass_mean: observations with obs < first_pass_end_obs;
+/// last10_mean: the last ceil(10%) of the observations.
+struct TimeStats {
+  double mean = 0.0, p50 = 0.0, p95 = 0.0, max = 0.0;
+  std::optional<double> first_pass_mean;
+  double last10_mean = 0.0;
+};
+
+struct BlurSummary {
+  double mean_cm = 0.0, p95_cm = 0.0, thickness = 0.0;
+  std::optional<double> recall;  ///< absent when no true wall was visible
+};
+struct RelationsSummary {
+  std::int64_t count = 0;
+  double trans_mean_m = 0.0, trans_std_m = 0.0, rot_mean_deg = 0.0, rot_std_deg = 0.0;
+};
+struct KldSummary {
+  std::int64_t count = 0;
+  double mean = 0.0, max = 0.0;
+};
+
+/// One entry of "modes" in summary.json; the names match the JSON keys.
+struct ModeSummary {
+  std::optional<std::int64_t> observations;
+  std::optional<double> wall_time_s;
+  std::optional<TimeStats> time_per_obs_ms;
+  std::optional<std::int64_t> nodes_final, edges_final, nodes_max, edges_max;
+  std::optional<std::int64_t> nodes_after_first_pass;
+  std::optional<double> gamma_final;
+  std::optional<double> scans_kept_pct;
+  std::optional<double> peak_rss_mb;
+  std::optional<std::int64_t> graph_bytes_final;
+  std::optional<BlurSummary> blur;            ///< ground truth only
+  std::optional<double> ate_rmse_m;           ///< ground truth only
+  std::optional<double> loop_precision;       ///< ground truth only, >= 1 closure accepted
+  std::optional<double> loop_recall;          ///< ground truth only, >= 1 revisit
+  std::optional<RelationsSummary> relations;  ///< with --relations
+  std::optional<KldSummary> kld;              ///< marginalizing modes
+  std::optional<double> map_entropy_bits;
+  std::optional<double> occupied_share;
+};
+
+struct RunSummary {
+  std::string source;                    ///< scenario or log path
+  std::optional<std::int64_t> seed;      ///< simulation only
+  double wall_time_s = 0.0;              ///< s, whole command
+  std::optional<double> log_duration_s;  ///< s, simulated or recorded time covered
+  std::map<std::string, ModeSummary> modes;
+};
+
+/// Time statistics of a timeline; empty optional for an empty timeline.
+/// first_pass_end_obs: observations with obs < this form the first pass (absent: none).
+std::optional<TimeStats> ComputeTimeStats(const std::vector<TimelineRow>& rows,
+                                          std::optional<int> first_pass_end_obs);
+
+/// Fills observations, time_per_obs_ms, nodes/edges final and max, nodes_after_first_pass
+/// (nodes at the last row with obs < first_pass_end_obs), gamma_final, graph_bytes_final,
+/// and peak_rss_mb (max rss_mb of the rows; overwrite it with PeakRssMb() if preferred).
+ModeSummary SummarizeTimeline(const std::vector<TimelineRow>& rows,
+                              std::optional<int> first_pass_end_obs);
+
+/// KL statistics over the divergences of a mode's marginalizations; absent when empty.
+std::optional<KldSummary> SummarizeKld(const std::vector<double>& kl_values);
+
+/// The summary as JSON text (2-space indent). Never writes NaN: non-finite becomes absent.
+std::string SummaryJsonText(const RunSummary& summary);
+
+/// Writes summary.json atomically. Throws std::runtime_error naming the path on failure.
+void WriteSummaryJson(const std::string& path, const RunSummary& summary);
+
+/// Writes the timeline CSV with header obs,t_s,time_ms,nodes,edges,gamma,rss_mb,
+/// graph_bytes,loop_closures. Throws std::runtime_error naming the path on failure.
+void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& rows);
+
+/// Writes `text` to path + ".tmp" and renames it onto path. Throws on failure.
+void WriteFileAtomically(const std::string& path, const std::string& text);
+
+struct ReportPage {
+  std::string title = "lifelong report";
+  RunSummary summary;
+  std::string command_line;                 ///< as typed
+  std::string machine;                      ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
+  std::vector<std::string> figures;         ///< image paths relative to the page
+  std::map<std::string, std::string> maps;  ///< mode -> map image path relative to the page
+};
+
+/// One self-contained offline HTML page (inline CSS, no scripts): the summary table per
+/// mode, the figures, the maps side by side, the command line and the machine.
+std::string ReportHtmlText(const ReportPage& page);
+void WriteReportHtml(const std::string& path, const ReportPage& page);
+
+}  // namespace lifelong::eval

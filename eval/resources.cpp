@@ -1,0 +1,46 @@
+#include "eval/resources.hpp"
+
+#include <fstream>
+#include <sstream>
+
+namespace lifelong::eval {
+namespace {
+
+/// Value in kB of a "Key:   1234 kB" line of /proc/self/status, in MB.
+std::optional<double> StatusMb(const std::string& key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.compare(0, key.size() + 1, key + ":") != 0) continue;
+    std::istringstream fields(line.substr(key.size() + 1));
+    double kb = 0.0;
+    if (fields >> kb) return kb / 1024.0;
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> CurrentRssMb() { return StatusMb("VmRSS"); }
+
+std::optional<double> PeakRssMb() { return StatusMb("VmHWM"); }
+
+std::string CpuModelName() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model;
+  int cpus = 0;
+  while (std::getline(in, line)) {
+    if (line.compare(0, 9, "processor") == 0) ++cpus;
+    if (model.empty() && line.compare(0, 10, "model name") == 0) {
+      const auto colon = line.find(':');
+      const auto start =
+          colon == std::string::npos ? colon : line.find_first_not_of(" \t", colon + 1);
+      if (start != std::string::npos) model = line.substr(start);
+    }
+  }
+  if (model.empty()) return "unknown";
+  return model + " (" + std::to_string(cpus) + " CPUs)";
+}
+
+}  // namespace lifelong::eval

@@ -1,0 +1,35 @@
+// Plain data exchanged between the experiment runner and the eval functions. Nothing
+// here knows the simulator or the mapper: callers copy their records into these.
+#pragma once
+
+#include <cstddef>
+
+#include "sensor/pose2.hpp"
+
+namespace lifelong::eval {
+
+/// A pose with its time, e.g. one line of a TUM trajectory.
+struct StampedPose {
+  double stamp_s = 0.0;  ///< s
+  Pose2 pose;            ///< T_world_robot
+};
+
+/// A true wall as a line segment, world frame, metres.
+struct Segment {
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+};
+
+/// One row of `<mode>/timeline.csv` (DESIGN.md output contract), one per observation.
+struct TimelineRow {
+  int obs = 0;                  ///< observation index, 0-based
+  double t_s = 0.0;             ///< s, stamp of the observation
+  double time_ms = 0.0;         ///< ms of mapper time spent on this observation
+  int nodes = 0;                ///< graph nodes after the observation
+  int edges = 0;                ///< graph edges (cliques as m(m-1)/2 pairs)
+  double gamma = 0.0;           ///< e / (v (v - 1) / 2)
+  double rss_mb = 0.0;          ///< MB, resident set size of the process
+  std::size_t graph_bytes = 0;  ///< bytes held by the graph
+  int loop_closures = 0;        ///< loop closures accepted so far (cumulative)
+};
+
+}  // namespace lifelong::eval

@@ -23,6 +23,7 @@ std::vector<RouteStep> ExpandBackAndForth(const RouteConfig& route) {
   for (int r = 0; r < route.repetitions; ++r) {
     for (std::size_t i = 1; i < w.size(); ++i) steps.push_back({RouteStep::Kind::kGoto, w[i], 0});
     AppendStop(route.stop_s, &steps);
+    if (route.one_way) continue;
     for (std::size_t i = w.size() - 1; i-- > 0;) {
       steps.push_back({RouteStep::Kind::kGoto, w[i], 0});
     }

@@ -144,14 +144,15 @@ RouteConfig ParseRoute(Fields f, const World& world, const RobotConfig& robot) {
   RouteConfig r;
   const std::string type = f.String("type");
   r.stop_s = f.Double("stop_s", 0.0);
-  if (type == "back_and_forth") {
+  if (type == "back_and_forth" || type == "path") {
     r.kind = RouteConfig::Kind::kBackAndForth;
+    r.one_way = type == "path";
     ParseBackAndForth(&f, world, robot, &r);
   } else if (type == "tour") {
     r.kind = RouteConfig::Kind::kTour;
     ParseTour(&f, world, robot, &r);
   } else {
-    Fail(f.file(), f.node()["type"], f.Name("type"), "expected back_and_forth or tour");
+    Fail(f.file(), f.node()["type"], f.Name("type"), "expected back_and_forth, path or tour");
   }
   f.Finish();
   return r;

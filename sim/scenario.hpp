@@ -51,6 +51,7 @@ struct RouteConfig {
   Kind kind = Kind::kBackAndForth;
   std::vector<Point> waypoints;  ///< back-and-forth: the path driven forth, then back
   int repetitions = 1;           ///< back-and-forth: number of forth-and-back cycles
+  bool one_way = false;          ///< drive the waypoints once, without coming back ("path")
   int start_place = -1;          ///< tour: index into World::places
   std::vector<int> tour_places;  ///< tour: candidate destinations (indices into places)
   double tour_duration_s = 0.0;  ///< tour: simulated time to keep touring

@@ -1,0 +1,110 @@
+// Tests for io/map_file: ROS map_server PGM + YAML on a 3x2 grid worked out by hand.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "io/map_file.hpp"
+#include "sensor/input_error.hpp"
+
+namespace lifelong::io {
+namespace {
+
+std::string TempPath(const std::string& name) { return ::testing::TempDir() + "io_map_" + name; }
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// Row 0 is the lowest y:  row 1: [0.5, 0.1, 1.0]   (0.5 is neither free nor occupied)
+//                         row 0: [0.0, 0.9, unknown]
+OccupancyGrid SmallGrid() {
+  OccupancyGrid g;
+  g.width = 3;
+  g.height = 2;
+  g.resolution_m = 0.1;
+  g.origin_x_m = -1.5;
+  g.origin_y_m = 2.25;
+  g.p_occ = {0.0f, 0.9f, OccupancyGrid::kUnknown, 0.5f, 0.1f, 1.0f};
+  return g;
+}
+
+TEST(MapFile, WritesFlippedTrinaryPgmAndYaml) {
+  const MapFilePaths paths = WritePgmMap(TempPath("small.pgm"), SmallGrid());
+  EXPECT_EQ(paths.pgm, TempPath("small.pgm"));
+  EXPECT_EQ(paths.yaml, TempPath("small.yaml"));
+  // Image row 0 = grid row 1 (top): unknown(0.5)=205, free=254, occupied=0; then grid row 0.
+  const std::string expected_pgm = std::string("P5\n3 2\n255\n") +
+                                   std::string{char(205), char(254), char(0)} +
+                                   std::string{char(254), char(0), char(205)};
+  EXPECT_EQ(ReadBytes(paths.pgm), expected_pgm);
+  EXPECT_EQ(ReadBytes(paths.yaml),
+            "image: io_map_small.pgm\nresolution: 0.1\norigin: [-1.5, 2.25, 0.0]\nnegate: 0\n"
+            "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n");
+}
+
+TEST(MapFile, RoundTripGivesTrinaryGrid) {
+  const MapFilePaths paths = WritePgmMap(TempPath("rt"), SmallGrid());
+  const OccupancyGrid g = ReadPgmMap(paths.yaml);
+  ASSERT_EQ(g.width, 3);
+  ASSERT_EQ(g.height, 2);
+  EXPECT_DOUBLE_EQ(g.resolution_m, 0.1);
+  EXPECT_DOUBLE_EQ(g.origin_x_m, -1.5);
+  EXPECT_DOUBLE_EQ(g.origin_y_m, 2.25);
+  const float u = OccupancyGrid::kUnknown;
+  const std::vector<float> expected = {0.0f, 1.0f, u, u, 0.0f, 1.0f};
+  EXPECT_EQ(g.p_occ, expected);
+}
+
+TEST(MapFile, ReadsHandWrittenMapServerFiles) {
+  // A GIMP-style header comment, negate: 1 (bright = occupied), quoted image name.
+  WriteBytes(TempPath("neg.pgm"),
+             std::string("P5\n# made by hand\n2 1\n255\n") + std::string{char(255), char(0)});
+  WriteBytes(TempPath("neg.yaml"),
+             "image: \"io_map_neg.pgm\"\nresolution: 0.05\norigin: [1.0, -2.0, 0.0]  # m\n"
+             "negate: 1\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const OccupancyGrid g = ReadPgmMap(TempPath("neg.yaml"));
+  ASSERT_EQ(g.p_occ.size(), 2u);
+  EXPECT_EQ(g.p_occ[0], 1.0f);
+  EXPECT_EQ(g.p_occ[1], 0.0f);
+  EXPECT_DOUBLE_EQ(g.origin_y_m, -2.0);
+}
+
+/// Expects ReadPgmMap to throw an InputError naming `field` (and `line` when > 0).
+void ExpectMapError(const std::string& yaml, const std::string& pgm, int line,
+                    const std::string& field) {
+  WriteBytes(TempPath("bad.pgm"), pgm);
+  WriteBytes(TempPath("bad.yaml"), yaml);
+  try {
+    ReadPgmMap(TempPath("bad.yaml"));
+    ADD_FAILURE() << "no InputError for:\n" << yaml;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_EQ(e.line(), line) << e.what();
+  }
+}
+
+TEST(MapFile, BadInputThrowsWithFieldAndLine) {
+  const std::string pgm = std::string("P5\n2 1\n255\n") + std::string{char(0), char(254)};
+  const std::string image = "image: io_map_bad.pgm\n";
+  ExpectMapError(image + "origin: [0, 0, 0]\n", pgm, 0, "resolution");
+  ExpectMapError(image + "resolution: 0.05\norigin: [0, 0]\n", pgm, 3, "origin");
+  ExpectMapError(image + "resolution: abc\norigin: [0, 0, 0]\n", pgm, 2, "resolution");
+  ExpectMapError(image + "resolution: 0.05\norigin: [0, 0, 0]\nmode: scale\n", pgm, 4, "mode");
+  const std::string ok = image + "resolution: 0.05\norigin: [0, 0, 0]\n";
+  ExpectMapError(ok, std::string("P5\n2 1\n255\n") + char(0), 0, "pixels");
+  ExpectMapError(ok, "P2\n2 1\n255\n0 254\n", 1, "magic");
+  EXPECT_THROW(ReadPgmMap(TempPath("missing.yaml")), InputError);
+  EXPECT_THROW(WritePgmMap(TempPath("no_dir/m"), SmallGrid()), InputError);
+}
+
+}  // namespace
+}  // namespace lifelong::io

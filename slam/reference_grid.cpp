@@ -49,12 +49,13 @@ std::vector<Eigen::Vector2d> PointsInReference(const std::vector<PosedScan>& sca
 
 ReferenceGrid::ReferenceGrid(const std::vector<Eigen::Vector2d>& points_in_ref,
                              const MatcherConfig& config)
-    : resolution_m_(config.resolution_m), coarse_factor_(std::max(1, config.coarse_factor)) {
+    : resolution_m_(config.resolution_m), coarse_factor_(1) {
   if (!(resolution_m_ > 0.0) || !(config.sigma_m > 0.0)) {
     throw std::invalid_argument("ReferenceGrid: resolution_m and sigma_m must be > 0");
   }
+  while (coarse_factor_ < config.coarse_factor) coarse_factor_ *= 2;
   Rasterize(points_in_ref, config.sigma_m);
-  BuildCoarse();
+  BuildLevels();
 }
 
 float ReferenceGrid::LogLikelihood(int x, int y) const {
@@ -68,6 +69,7 @@ Eigen::Vector2i ReferenceGrid::CellOf(const Eigen::Vector2d& p) const {
 
 // Step 1: v = exp(-d^2 / (2 sigma^2)) of the nearest point within 3 sigma, at cell centres.
 void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m) {
+  levels_.assign(1, {});
   if (points.empty()) return;
   Eigen::Vector2d lo = points.front(), hi = points.front();
   for (const Eigen::Vector2d& p : points) {
@@ -80,7 +82,10 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
   origin_m_ = (lo / r).array().floor().matrix() * r - Eigen::Vector2d::Constant(margin * r);
   width_ = static_cast<int>(std::ceil((hi.x() - origin_m_.x()) / r)) + margin + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - origin_m_.y()) / r)) + margin + 1;
-  fine_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
+  levels_.assign(
+      1, std::vector<float>(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_),
+                            0.0f));
+  std::vector<float>& fine = levels_[0];
   const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
   for (const Eigen::Vector2d& p : points) {
     const Eigen::Vector2i c = CellOf(p);
@@ -89,35 +94,33 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
         const Eigen::Vector2d centre = origin_m_ + Eigen::Vector2d(x + 0.5, y + 0.5) * r;
         const double d2 = (centre - p).squaredNorm();
         if (d2 > max_d2) continue;
-        float& v = fine_[Index(x, y)];
+        float& v = fine[Index(x, y)];
         v = std::max(v, static_cast<float>(std::exp(-d2 * inv_2s2)));
       }
     }
   }
-  log_fine_.resize(fine_.size());
-  for (std::size_t i = 0; i < fine_.size(); ++i) {
-    log_fine_[i] = fine_[i] > 0.0f ? std::max(std::log(fine_[i]), kLogFloor) : kLogFloor;
+  log_fine_.resize(fine.size());
+  for (std::size_t i = 0; i < fine.size(); ++i) {
+    log_fine_[i] = fine[i] > 0.0f ? std::max(std::log(fine[i]), kLogFloor) : kLogFloor;
   }
 }
 
-// Step 2: coarse(x, y) = max of fine over [x, x + f) x [y, y + f), separably.
-void ReferenceGrid::BuildCoarse() {
-  const int f = coarse_factor_;
-  std::vector<float> rows(fine_.size(), 0.0f);
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) {
-      float m = 0.0f;
-      for (int k = x; k < std::min(x + f, width_); ++k) m = std::max(m, fine_[Index(k, y)]);
-      rows[Index(x, y)] = m;
+// Step 2: level l holds the max of level 0 over [x, x + 2^l)^2, from level l - 1.
+void ReferenceGrid::BuildLevels() {
+  for (int half = 1; half < coarse_factor_; half *= 2) {
+    const std::vector<float>& prev = levels_.back();
+    std::vector<float> next(prev.size(), 0.0f);
+    for (int y = 0; y < height_; ++y) {
+      for (int x = 0; x < width_; ++x) {
+        float m = prev[Index(x, y)];
+        if (x + half < width_) m = std::max(m, prev[Index(x + half, y)]);
+        if (y + half < height_) m = std::max(m, prev[Index(x, y + half)]);
+        if (x + half < width_ && y + half < height_)
+          m = std::max(m, prev[Index(x + half, y + half)]);
+        next[Index(x, y)] = m;
+      }
     }
-  }
-  coarse_.assign(fine_.size(), 0.0f);
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) {
-      float m = 0.0f;
-      for (int k = y; k < std::min(y + f, height_); ++k) m = std::max(m, rows[Index(x, k)]);
-      coarse_[Index(x, y)] = m;
-    }
+    levels_.push_back(std::move(next));
   }
 }
 

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <unordered_map>
 
 #include <Eigen/Dense>
 
@@ -11,18 +13,15 @@ namespace lifelong::slam {
 
 namespace {
 
-// The search lattice: rotations k in [-K, K], translations (i, j) in [-W, W]^2 cells, cut in
-// blocks of f x f translations; block (a, b) starts at (-W + a f, -W + b f).
+// The search lattice: rotations k in [-K, K], translations (i, j) in [-W, W]^2 fine cells.
 struct Lattice {
-  int K = 0, W = 0, f = 1, blocks = 0;  // blocks per axis
+  int K = 0, W = 0, top_level = 0;
   double step_rad = 0.0, res_m = 0.0;
-  int BlockStart(int a) const { return -W + a * f; }
-  int BlockEnd(int a) const { return std::min(BlockStart(a) + f - 1, W); }
-  int Id(int k, int a, int b) const { return ((k + K) * blocks + a) * blocks + b; }
 };
 
-struct Candidate {
-  int k, a, b;
+// A block of 2^level x 2^level translations starting at (i, j), at rotation k.
+struct Node {
+  int k, i, j;
   float bound;
 };
 
@@ -54,64 +53,95 @@ std::vector<std::vector<Eigen::Vector2i>> RotatedCells(const ReferenceGrid& ref,
   return out;
 }
 
+// Branch and bound over the lattice. Search() finds the best pose accepted by a predicate;
+// every fine pose is scored at most once and kept for the covariance.
 class Searcher {
  public:
   Searcher(const ReferenceGrid& ref, std::vector<std::vector<Eigen::Vector2i>> cells,
            const Lattice& l)
-      : ref_(ref),
-        cells_(std::move(cells)),
-        l_(l),
-        expanded_(static_cast<std::size_t>((2 * l.K + 1) * l.blocks * l.blocks), false) {}
+      : ref_(ref), cells_(std::move(cells)), l_(l) {}
 
-  std::vector<Candidate> Candidates() const;
-  void Expand(const Candidate& c) {
-    expanded_[static_cast<std::size_t>(l_.Id(c.k, c.a, c.b))] = true;
-    for (int i = l_.BlockStart(c.a); i <= l_.BlockEnd(c.a); ++i) {
-      for (int j = l_.BlockStart(c.b); j <= l_.BlockEnd(c.b); ++j) Evaluate(c.k, i, j);
+  /// accept(e): a fine pose may win; reach(n, level): the block may hold such a pose.
+  template <typename Accept, typename Reach>
+  Eval Search(Accept accept, Reach reach, Eval best) {
+    std::vector<Node> top;
+    const int side = 1 << l_.top_level;
+    for (int k = -l_.K; k <= l_.K; ++k) {
+      for (int i = -l_.W; i <= l_.W; i += side) {
+        for (int j = -l_.W; j <= l_.W; j += side) {
+          if (reach(Node{k, i, j, 0.0f}, l_.top_level))
+            top.push_back(MakeNode(k, i, j, l_.top_level));
+        }
+      }
     }
+    SortByBound(&top);
+    for (const Node& n : top) {
+      if (n.bound <= best.score) break;
+      Descend(n, l_.top_level, accept, reach, &best);
+    }
+    return best;
   }
   const Eval& Evaluate(int k, int i, int j);
-  bool IsEvaluated(int k, int i, int j) const {
-    const int a = (i + l_.W) / l_.f, b = (j + l_.W) / l_.f;
-    return expanded_[static_cast<std::size_t>(l_.Id(k, a, b))];
-  }
   const std::vector<Eval>& evals() const { return evals_; }
+  int bound_evaluations() const { return bound_evaluations_; }
 
  private:
+  Node MakeNode(int k, int i, int j, int level) {
+    ++bound_evaluations_;
+    float sum = 0.0f;
+    for (const Eigen::Vector2i& c : Cells(k)) sum += ref_.Bound(level, c.x() + i, c.y() + j);
+    return {k, i, j, sum / static_cast<float>(Cells(k).size())};
+  }
+  static void SortByBound(std::vector<Node>* nodes) {
+    std::stable_sort(nodes->begin(), nodes->end(),
+                     [](const Node& a, const Node& b) { return a.bound > b.bound; });
+  }
+  template <typename Accept, typename Reach>
+  void Descend(const Node& n, int level, Accept& accept, Reach& reach, Eval* best) {
+    if (level == 0) {
+      const Eval& e = Evaluate(n.k, n.i, n.j);
+      if (e.score > best->score && accept(e)) *best = e;
+      return;
+    }
+    const int half = 1 << (level - 1);
+    std::vector<Node> children;
+    for (int di : {0, half}) {
+      for (int dj : {0, half}) {
+        if (n.i + di <= l_.W && n.j + dj <= l_.W &&
+            reach(Node{n.k, n.i + di, n.j + dj, 0.0f}, level - 1)) {
+          children.push_back(MakeNode(n.k, n.i + di, n.j + dj, level - 1));
+        }
+      }
+    }
+    SortByBound(&children);
+    for (const Node& c : children) {
+      if (c.bound > best->score) Descend(c, level - 1, accept, reach, best);
+    }
+  }
+  const std::vector<Eigen::Vector2i>& Cells(int k) const {
+    return cells_[static_cast<std::size_t>(k + l_.K)];
+  }
+
   const ReferenceGrid& ref_;
   std::vector<std::vector<Eigen::Vector2i>> cells_;
   Lattice l_;
-  std::vector<bool> expanded_;
+  std::unordered_map<std::int64_t, std::size_t> index_;  // (k, i, j) -> evals_
   std::vector<Eval> evals_;
+  int bound_evaluations_ = 0;
 };
 
-std::vector<Candidate> Searcher::Candidates() const {
-  std::vector<Candidate> out;
-  out.reserve(expanded_.size());
-  for (int k = -l_.K; k <= l_.K; ++k) {
-    const auto& cells = cells_[static_cast<std::size_t>(k + l_.K)];
-    for (int a = 0; a < l_.blocks; ++a) {
-      for (int b = 0; b < l_.blocks; ++b) {
-        const int di = l_.BlockStart(a), dj = l_.BlockStart(b);
-        float sum = 0.0f;
-        for (const Eigen::Vector2i& c : cells) sum += ref_.CoarseBound(c.x() + di, c.y() + dj);
-        out.push_back({k, a, b, sum / static_cast<float>(cells.size())});
-      }
-    }
-  }
-  std::stable_sort(out.begin(), out.end(),
-                   [](const Candidate& x, const Candidate& y) { return x.bound > y.bound; });
-  return out;
-}
-
 const Eval& Searcher::Evaluate(int k, int i, int j) {
-  const auto& cells = cells_[static_cast<std::size_t>(k + l_.K)];
+  const std::int64_t key =
+      (static_cast<std::int64_t>(k) * 65536 + (i + 32768)) * 65536 + (j + 32768);
+  const auto found = index_.find(key);
+  if (found != index_.end()) return evals_[found->second];
   double sum = 0.0, log_sum = 0.0;
-  for (const Eigen::Vector2i& c : cells) {
+  for (const Eigen::Vector2i& c : Cells(k)) {
     sum += ref_.Likelihood(c.x() + i, c.y() + j);
     log_sum += ref_.LogLikelihood(c.x() + i, c.y() + j);
   }
-  evals_.push_back({k, i, j, sum / static_cast<double>(cells.size()), log_sum});
+  index_.emplace(key, evals_.size());
+  evals_.push_back({k, i, j, sum / static_cast<double>(Cells(k).size()), log_sum});
   return evals_.back();
 }
 
@@ -122,6 +152,17 @@ Eigen::Vector3d Offset(const Eval& e, const Lattice& l) {
 bool Distinct(const Eval& e, const Eval& best, const Lattice& l, const MatcherConfig& c) {
   const Eigen::Vector3d d = Offset(e, l) - Offset(best, l);
   return d.head<2>().norm() >= c.ambiguity_radius_m || std::abs(d.z()) >= c.ambiguity_angle_rad;
+}
+
+// Whether a block of 2^level x 2^level translations holds a pose distinct from the best:
+// a distinct heading, or a corner at least ambiguity_radius_m away.
+bool MayBeDistinct(const Node& n, int level, const Eval& best, const Lattice& l,
+                   const MatcherConfig& c) {
+  if (std::abs(n.k - best.k) * l.step_rad >= c.ambiguity_angle_rad) return true;
+  const int last = (1 << level) - 1;
+  const double dx = std::max(std::abs(n.i - best.i), std::abs(n.i + last - best.i)) * l.res_m;
+  const double dy = std::max(std::abs(n.j - best.j), std::abs(n.j + last - best.j)) * l.res_m;
+  return std::hypot(dx, dy) >= c.ambiguity_radius_m;
 }
 
 // Olson §III-C: probability-weighted second moments of the evaluated poses around the best.
@@ -145,12 +186,12 @@ Eigen::Matrix3d Covariance(const std::vector<Eval>& evals, const Eval& best, con
   return m;
 }
 
-// Makes sure the 3 x 3 x 3 neighbourhood of the best pose is scored (for the covariance).
+// Scores the 3 x 3 x 3 neighbourhood of the best pose (for the covariance).
 void EvaluateNeighbourhood(const Eval& best, const Lattice& l, Searcher* s) {
   for (int k = std::max(best.k - 1, -l.K); k <= std::min(best.k + 1, l.K); ++k) {
     for (int i = std::max(best.i - 1, -l.W); i <= std::min(best.i + 1, l.W); ++i) {
       for (int j = std::max(best.j - 1, -l.W); j <= std::min(best.j + 1, l.W); ++j) {
-        if (!s->IsEvaluated(k, i, j)) s->Evaluate(k, i, j);
+        s->Evaluate(k, i, j);
       }
     }
   }
@@ -165,45 +206,30 @@ MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& 
   if (points_in_cur.empty()) return result;
   Lattice l;
   l.res_m = ref.resolution_m();
-  l.f = ref.coarse_factor();
   l.step_rad = AngularStep(points_in_cur, config);
   l.K = static_cast<int>(std::ceil(config.angular_window_rad / l.step_rad));
   l.W = static_cast<int>(std::ceil(config.linear_window_m / l.res_m));
-  l.blocks = (2 * l.W + l.f) / l.f;
+  l.top_level = ref.num_levels() - 1;
+  while (l.top_level > 0 && (1 << (l.top_level - 1)) > 2 * l.W) --l.top_level;
   Searcher s(ref, RotatedCells(ref, points_in_cur, T_ref_cur_guess, l), l);
-  const std::vector<Candidate> candidates = s.Candidates();
   // Branch and bound for the best pose, then for the best distinct competitor.
-  std::size_t n = 0;
-  Eval best{0, 0, 0, -1.0, 0.0};
-  for (; n < candidates.size() && candidates[n].bound > best.score; ++n) {
-    const std::size_t first = s.evals().size();
-    s.Expand(candidates[n]);
-    for (std::size_t e = first; e < s.evals().size(); ++e) {
-      if (s.evals()[e].score > best.score) best = s.evals()[e];
-    }
-  }
-  double rival = 0.0;
-  for (const Eval& e : s.evals()) {
-    if (Distinct(e, best, l, config)) rival = std::max(rival, e.score);
-  }
-  for (; n < candidates.size() && candidates[n].bound > rival; ++n) {
-    const std::size_t first = s.evals().size();
-    s.Expand(candidates[n]);
-    for (std::size_t e = first; e < s.evals().size(); ++e) {
-      if (Distinct(s.evals()[e], best, l, config)) rival = std::max(rival, s.evals()[e].score);
-    }
-  }
+  const Eval best = s.Search([](const Eval&) { return true; },
+                             [](const Node&, int) { return true; }, Eval{0, 0, 0, -1.0, 0.0});
+  const Eval rival =
+      s.Search([&](const Eval& e) { return Distinct(e, best, l, config); },
+               [&](const Node& n, int level) { return MayBeDistinct(n, level, best, l, config); },
+               Eval{0, 0, 0, 0.0, 0.0});
   EvaluateNeighbourhood(best, l, &s);
   result.T_ref_cur =
       Pose2(T_ref_cur_guess.x + best.i * l.res_m, T_ref_cur_guess.y + best.j * l.res_m,
             T_ref_cur_guess.theta + best.k * l.step_rad);
   result.score = best.score;
   result.ok = best.score >= config.min_score;
-  result.ambiguity = best.score > 0.0 ? rival / best.score : 0.0;
+  result.ambiguity = best.score > 0.0 ? rival.score / best.score : 0.0;
   result.covariance = Covariance(s.evals(), best, l, config);
   result.information = result.covariance.inverse();
   result.evaluations = static_cast<int>(s.evals().size());
-  result.coarse_evaluations = static_cast<int>(candidates.size());
+  result.bound_evaluations = s.bound_evaluations();
   return result;
 }
 

@@ -3,11 +3,13 @@
 //  1. The reference points are rasterized into a likelihood field (lookup table): each cell
 //     holds v = exp(-d^2 / (2 sigma^2)) of the distance d to the nearest reference point
 //     (0 beyond 3 sigma), and ln v (floored at -4.5) for the pose probability.
-//  2. A coarse table holds, at each fine cell c, the max of v over [c, c + f)^2 (f = coarse
-//     factor), so one coarse lookup bounds the score of f x f fine translations (§III-B).
-//  3. For every rotation in the angular window, each block of f x f translations gets a bound;
-//     blocks are expanded best bound first until no bound beats the best fine score
-//     (branch and bound). score = mean v over the query points, in [0, 1].
+//  2. Coarser tables (levels l = 1..log2 f, f = coarse factor) hold, at each fine cell c, the
+//     max of v over [c, c + 2^l)^2, so one lookup bounds the score of 2^l x 2^l fine
+//     translations (§III-B, with intermediate levels as in Cartographer's fast matcher).
+//  3. For every rotation in the angular window, f x f blocks of translations get a bound and
+//     are searched best bound first, each split into four children one level finer, a branch
+//     being cut when its bound does not beat the best score found (branch and bound).
+//     score = mean v over the query points, in [0, 1].
 //  4. Ambiguity: the search continues for the best pose farther than ambiguity_radius_m (or
 //     ambiguity_angle_rad) from the winner; ambiguity = its score / the best score.
 //  5. Covariance (§III-C): with p_i = exp(sum_points ln v) of every evaluated fine pose,
@@ -29,7 +31,7 @@ struct MatcherConfig {
   double angular_window_rad = 0.26;  ///< rad, half-width of the search in heading
   double resolution_m = 0.03;        ///< m, fine lookup-table cell = translation step
   double angular_step_rad = 0.0;     ///< rad; 0: resolution / (max point range, 1..10 m)
-  int coarse_factor = 8;             ///< fine cells per coarse block side
+  int coarse_factor = 16;            ///< fine cells per top-level block side, a power of 2
   double sigma_m = 0.05;             ///< m, Gaussian sigma of the likelihood field
   double min_score = 0.5;            ///< a match with a lower score is not ok
   double ambiguity_radius_m = 0.5;   ///< m, competitors are at least this far away...
@@ -52,11 +54,15 @@ class ReferenceGrid {
   Eigen::Vector2i CellOf(const Eigen::Vector2d& p) const;
   bool Contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
   /// Likelihood v in [0, 1]; 0 outside the table.
-  float Likelihood(int x, int y) const { return Contains(x, y) ? fine_[Index(x, y)] : 0.0f; }
+  float Likelihood(int x, int y) const { return Contains(x, y) ? levels_[0][Index(x, y)] : 0.0f; }
   /// ln v, floored; the floor outside the table.
   float LogLikelihood(int x, int y) const;
-  /// Max of Likelihood over [x, x + f) x [y, y + f).
-  float CoarseBound(int x, int y) const { return Contains(x, y) ? coarse_[Index(x, y)] : 0.0f; }
+  /// Number of tables: level 0 is Likelihood, level l the max over 2^l x 2^l cells.
+  int num_levels() const { return static_cast<int>(levels_.size()); }
+  /// Max of Likelihood over [x, x + 2^level) x [y, y + 2^level); 0 outside the table.
+  float Bound(int level, int x, int y) const {
+    return Contains(x, y) ? levels_[static_cast<std::size_t>(level)][Index(x, y)] : 0.0f;
+  }
 
   static constexpr float kLogFloor = -4.5f;
 
@@ -66,16 +72,15 @@ class ReferenceGrid {
            static_cast<std::size_t>(x);
   }
   void Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m);
-  void BuildCoarse();
+  void BuildLevels();
 
   double resolution_m_;
   int coarse_factor_;
   Eigen::Vector2d origin_m_ = Eigen::Vector2d::Zero();  ///< lower-left corner of cell (0, 0)
   int width_ = 0;
   int height_ = 0;
-  std::vector<float> fine_;
+  std::vector<std::vector<float>> levels_;  ///< levels_[0]: v per cell
   std::vector<float> log_fine_;
-  std::vector<float> coarse_;
 };
 
 struct MatchResult {
@@ -84,9 +89,9 @@ struct MatchResult {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();   ///< (x, y, theta)
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< covariance^-1
   bool ok = false;                                            ///< score >= min_score
-  double ambiguity = 0.0;  ///< best distinct competitor's score / score; 0 if none
-  int evaluations = 0;     ///< fine poses scored (coarse bounds not counted)
-  int coarse_evaluations = 0;
+  double ambiguity = 0.0;     ///< best distinct competitor's score / score; 0 if none
+  int evaluations = 0;        ///< fine poses scored
+  int bound_evaluations = 0;  ///< coarser bounds computed
 };
 
 /// Matches points (current robot frame) against the reference around the guess.

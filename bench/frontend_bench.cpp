@@ -1,0 +1,117 @@
+// Front-end benchmarks: counting grid map updates, information gain and correlative scan
+// matching (incremental and loop-closure windows) on the synthetic room of the tests.
+#include <benchmark/benchmark.h>
+
+#include "slam/grid_map.hpp"
+#include "slam/scan_matcher.hpp"
+#include "tests/slam/synthetic_scans.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+struct Scene {
+  testing::World room = testing::RoomWorld();
+  Pose2 truth{4.2, 2.6, 0.1};
+  LaserScan scan = testing::SimulateScan(room, truth);
+  std::vector<Pose2> local_poses{
+      {1.5, 2.0, 0.0}, {2.5, 2.3, 0.4}, {3.5, 2.0, -0.3}, {3.8, 3.0, 0.2}, {4.0, 2.2, 0.0}};
+  std::vector<LaserScan> local_scans;
+  Scene() {
+    for (const Pose2& p : local_poses) local_scans.push_back(testing::SimulateScan(room, p));
+  }
+  std::vector<PosedScan> Local() const {
+    std::vector<PosedScan> out;
+    for (std::size_t i = 0; i < local_poses.size(); ++i) {
+      out.push_back({&local_scans[i], local_poses[i]});
+    }
+    return out;
+  }
+};
+
+void BM_GridAddRemoveScan(benchmark::State& state) {
+  const Scene s;
+  GridMap map;
+  for (std::size_t i = 0; i < s.local_poses.size(); ++i)
+    map.AddScan(s.local_scans[i], s.local_poses[i]);
+  for (auto _ : state) {
+    map.AddScan(s.scan, s.truth);
+    map.RemoveScan(s.scan, s.truth);
+  }
+  state.counters["beams"] = static_cast<double>(s.scan.ranges_m.size());
+  state.counters["cells"] = static_cast<double>(map.TouchedCells(s.scan, s.truth).size());
+}
+BENCHMARK(BM_GridAddRemoveScan)->Unit(benchmark::kMicrosecond);
+
+void BM_GridTouchedCells(benchmark::State& state) {
+  const Scene s;
+  const GridMap map;
+  for (auto _ : state) benchmark::DoNotOptimize(map.TouchedCells(s.scan, s.truth));
+  state.counters["beams"] = static_cast<double>(s.scan.ranges_m.size());
+}
+BENCHMARK(BM_GridTouchedCells)->Unit(benchmark::kMicrosecond);
+
+void BM_InformationGain(benchmark::State& state) {
+  const Scene s;
+  GridMap map;
+  for (std::size_t i = 0; i < s.local_poses.size(); ++i)
+    map.AddScan(s.local_scans[i], s.local_poses[i]);
+  map.AddScan(s.scan, s.truth);
+  for (auto _ : state) benchmark::DoNotOptimize(map.InformationGain(s.scan, s.truth));
+  state.counters["beams"] = static_cast<double>(s.scan.ranges_m.size());
+  state.counters["cells"] = static_cast<double>(map.TouchedCells(s.scan, s.truth).size());
+}
+BENCHMARK(BM_InformationGain)->Unit(benchmark::kMicrosecond);
+
+void BM_BuildLocalReferenceGrid(benchmark::State& state) {
+  const Scene s;
+  const MatcherConfig config;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const std::vector<Eigen::Vector2d> pts = PointsInReference(s.Local(), 0.03);
+    points = pts.size();
+    const ReferenceGrid grid(pts, config);
+    benchmark::DoNotOptimize(grid.width());
+  }
+  state.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_BuildLocalReferenceGrid)->Unit(benchmark::kMicrosecond);
+
+void RunMatch(benchmark::State& state, const ReferenceGrid& ref, const Scene& s, const Pose2& guess,
+              const MatcherConfig& config) {
+  const std::vector<Eigen::Vector2d> pts = ScanToPoints(s.scan, 0.03);
+  MatchResult r;
+  for (auto _ : state) r = Match(ref, pts, guess, config);
+  state.counters["beams"] = static_cast<double>(s.scan.ranges_m.size());
+  state.counters["points"] = static_cast<double>(pts.size());
+  state.counters["evaluations"] = r.evaluations;
+  state.counters["bounds"] = r.bound_evaluations;
+  state.counters["error_cm"] =
+      100.0 * std::hypot(r.T_ref_cur.x - s.truth.x, r.T_ref_cur.y - s.truth.y);
+}
+
+// Incremental: +-0.3 m, +-15 deg against a local map of five recent scans.
+void BM_MatchIncremental(benchmark::State& state) {
+  const Scene s;
+  MatcherConfig config;
+  config.linear_window_m = 0.3;
+  config.angular_window_rad = 15.0 * kDeg;
+  const ReferenceGrid ref(PointsInReference(s.Local(), 0.03), config);
+  RunMatch(state, ref, s, s.truth * Pose2(0.12, -0.08, 5.0 * kDeg), config);
+}
+BENCHMARK(BM_MatchIncremental)->Unit(benchmark::kMillisecond);
+
+// Loop closure: +-2 m, +-30 deg against one older node's scan.
+void BM_MatchLoopClosure(benchmark::State& state) {
+  const Scene s;
+  MatcherConfig config;
+  config.linear_window_m = 2.0;
+  config.angular_window_rad = 30.0 * kDeg;
+  const ReferenceGrid ref(PointsInReference({s.Local()[1]}, 0.03), config);
+  RunMatch(state, ref, s, s.truth * Pose2(1.1, -0.7, 20.0 * kDeg), config);
+}
+BENCHMARK(BM_MatchLoopClosure)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace lifelong::slam

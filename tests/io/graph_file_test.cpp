@@ -1,0 +1,173 @@
+#include "io/graph_file.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sensor/input_error.hpp"
+
+namespace lifelong::io {
+namespace {
+
+GraphFile Parse(const std::string& text) {
+  std::istringstream in(text);
+  return ParseGraph(in, "test.g2o");
+}
+
+// Expects an InputError naming `line` and `field`.
+void ExpectInputError(const std::string& text, int line, const std::string& field) {
+  try {
+    Parse(text);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find("test.g2o:" + std::to_string(line)), std::string::npos);
+  }
+}
+
+const char* kG2o =
+    "# two poses\n"
+    "VERTEX_SE2 0 0 0 0\n"
+    "VERTEX_SE2 1 1.5 -2 0.25\n"
+    "VERTEX_SE2 5 3 4 -1\n"
+    "EDGE_SE2 0 1 1.5 -2 0.25 10 1 2 20 3 30\n"
+    "EDGE_SE2 1 5 0.1 0.2 0.3 1 0 0 1 0 1\n";
+
+TEST(GraphFile, ReadsG2oWithInformationOrder) {
+  const GraphFile f = Parse(kG2o);
+  EXPECT_EQ(f.format, GraphFormat::kG2o);
+  EXPECT_FALSE(f.values_from_edges);
+  EXPECT_EQ(f.graph.NumNodes(), 3u);
+  ASSERT_EQ(f.graph.edges().size(), 2u);
+  EXPECT_DOUBLE_EQ(f.values.at(1).y, -2.0);
+  EXPECT_DOUBLE_EQ(f.values.at(5).theta, -1.0);
+  const slam::PoseEdge& e = f.graph.edges()[0];
+  EXPECT_EQ(e.kind, slam::EdgeKind::kOdometry);
+  EXPECT_FALSE(e.robust);
+  EXPECT_DOUBLE_EQ(e.T_from_to.theta, 0.25);
+  Eigen::Matrix3d expected;  // I11 I12 I13 I22 I23 I33 = 10 1 2 20 3 30
+  expected << 10, 1, 2, 1, 20, 3, 2, 3, 30;
+  EXPECT_EQ(e.information, expected);
+  EXPECT_EQ(f.graph.edges()[1].kind, slam::EdgeKind::kLoop);
+  EXPECT_TRUE(f.graph.edges()[1].robust);
+}
+
+TEST(GraphFile, ReadsToroWithItsInformationOrder) {
+  const GraphFile f = Parse(
+      "VERTEX2 0 0 0 0\nVERTEX2 1 1 0 0\n"
+      "EDGE2 0 1 1 0 0 10 1 20 30 2 3\n");  // I11 I12 I22 I33 I13 I23
+  EXPECT_EQ(f.format, GraphFormat::kToro);
+  Eigen::Matrix3d expected;
+  expected << 10, 1, 2, 1, 20, 3, 2, 3, 30;
+  EXPECT_EQ(f.graph.edges().at(0).information, expected);
+}
+
+TEST(GraphFile, G2oRoundTripIsExact) {
+  GraphFile f = Parse(kG2o);
+  slam::CliqueFactor c;
+  c.nodes = {5, 0, 1};
+  c.T_root_node = {Pose2(0.1, 0.2, 0.3), Pose2(-1.0 / 3.0, 2.0, -3.0)};
+  c.information = Eigen::MatrixXd::Identity(6, 6);
+  c.information(0, 4) = c.information(4, 0) = 0.125;
+  f.graph.AddClique(c);
+  std::ostringstream out;
+  WriteG2o(out, f.graph, f.values);
+  const GraphFile g = Parse(out.str());
+  EXPECT_EQ(g.values.size(), f.values.size());
+  for (const auto& [id, p] : f.values) {
+    EXPECT_EQ(g.values.at(id).x, p.x);
+    EXPECT_DOUBLE_EQ(g.values.at(id).theta, p.theta);
+  }
+  ASSERT_EQ(g.graph.edges().size(), f.graph.edges().size());
+  for (std::size_t i = 0; i < f.graph.edges().size(); ++i) {
+    EXPECT_EQ(g.graph.edges()[i].information, f.graph.edges()[i].information);
+    EXPECT_EQ(g.graph.edges()[i].T_from_to.y, f.graph.edges()[i].T_from_to.y);
+  }
+  ASSERT_EQ(g.graph.cliques().size(), 1u);
+  EXPECT_EQ(g.graph.cliques()[0].nodes, c.nodes);
+  EXPECT_EQ(g.graph.cliques()[0].information, c.information);
+  EXPECT_EQ(g.graph.cliques()[0].T_root_node[1].x, -1.0 / 3.0);
+}
+
+TEST(GraphFile, ToroRoundTripKeepsInformation) {
+  const GraphFile f = Parse(kG2o);
+  std::ostringstream out;
+  WriteToro(out, f.graph, f.values);
+  const GraphFile g = Parse(out.str());
+  EXPECT_EQ(g.format, GraphFormat::kToro);
+  EXPECT_EQ(g.graph.edges()[0].information, f.graph.edges()[0].information);
+}
+
+// Edges only: 0 at the origin, 1 = 0 * Z01 = (1,0,pi/2), 2 = 1 * Z12 = (1,1,pi/2);
+// node 7 is reached only through the loop edge 2 -> 7: 7 = 2 * (1,0,0) = (1,2,pi/2).
+TEST(GraphFile, EdgesOnlyChainsOdometryForInitialGuess) {
+  const GraphFile f = Parse(
+      "EDGE_SE2 0 1 1 0 1.5707963267948966 1 0 0 1 0 1\n"
+      "EDGE_SE2 1 2 1 0 0 1 0 0 1 0 1\n"
+      "EDGE_SE2 2 7 1 0 0 1 0 0 1 0 1\n");
+  EXPECT_TRUE(f.values_from_edges);
+  ASSERT_EQ(f.values.size(), 4u);
+  EXPECT_NEAR(f.values.at(1).x, 1.0, 1e-12);
+  EXPECT_NEAR(f.values.at(2).x, 1.0, 1e-12);
+  EXPECT_NEAR(f.values.at(2).y, 1.0, 1e-12);
+  EXPECT_NEAR(f.values.at(7).y, 2.0, 1e-12);
+  EXPECT_NEAR(f.values.at(7).theta, 1.5707963267948966, 1e-12);
+}
+
+TEST(GraphFile, CorruptLinesNameLineAndField) {
+  ExpectInputError("VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 0 zero 0\n", 2, "y");
+  ExpectInputError("VERTEX_SE2 0 0 0\n", 1, "theta");                                 // truncated
+  ExpectInputError("VERTEX_SE2 0 0 0 0\nEDGE_SE2 0 0 1 0 0 1 0 0 1 0 1\n", 2, "to");  // self
+  ExpectInputError("VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 0 0 0\nEDGE_SE2 0 1 1 0 0 1 0 0 1 0\n", 3,
+                   "I33");
+  ExpectInputError("VERTEX_SE2 1.5 0 0 0\n", 1, "id");
+  ExpectInputError("VERTEX_SE2 0 0 0 0 7\n", 1, "");
+  ExpectInputError("VERTEX_SE2 0 0 0 0\nVERTEX_SE2 0 1 0 0\n", 2, "id");  // duplicate
+  ExpectInputError("VERTEX_XY 0 0 0\n", 1, "tag");
+  ExpectInputError("VERTEX_SE2 0 0 0 0\nVERTEX2 1 0 0 0\n", 2, "tag");  // mixed formats
+  ExpectInputError("VERTEX_SE2 0 0 0 0\n\nEDGE_SE2 0 4 1 0 0 1 0 0 1 0 1\n", 3, "id");
+  ExpectInputError("VERTEX_SE2 0 nan 0 0\n", 1, "x");
+}
+
+TEST(GraphFile, NonPositiveDefiniteInformationIsRejected) {
+  // Indefinite: I11 = 1, I12 = 2, I22 = 1 has eigenvalues 3 and -1.
+  ExpectInputError("VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\nEDGE_SE2 0 1 1 0 0 1 2 0 1 0 1\n", 3,
+                   "information");
+  ExpectInputError("EDGE_SE2 0 1 1 0 0 1 0 0 1 0 0\n", 1, "information");  // semidefinite
+}
+
+TEST(GraphFile, MissingFileThrowsInputError) {
+  EXPECT_THROW(ReadGraphFile("/nonexistent/graph.g2o"), InputError);
+}
+
+TEST(GraphFile, FileRoundTripThroughDisk) {
+  const GraphFile f = Parse(kG2o);
+  const std::string path = ::testing::TempDir() + "graph_file_test.g2o";
+  WriteG2o(path, f.graph, f.values);
+  const GraphFile g = ReadGraphFile(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(g.graph.NumNodes(), 3u);
+  EXPECT_EQ(g.values.at(5).x, 3.0);
+}
+
+TEST(GraphFile, RealDatasetsHaveTheDocumentedSizes) {
+  const std::string dir = std::string(LIFELONG_SHARED_DIR) + "/datasets/pose_graphs/";
+  if (!std::ifstream(dir + "intel.g2o")) GTEST_SKIP() << "datasets absent at " << dir;
+  const GraphFile intel = ReadGraphFile(dir + "intel.g2o");
+  EXPECT_EQ(intel.graph.NumNodes(), 1728u);
+  EXPECT_EQ(intel.graph.edges().size(), 2512u);
+  const GraphFile toro = ReadGraphFile(dir + "INTEL_P_toro.graph");
+  EXPECT_EQ(toro.format, GraphFormat::kToro);
+  EXPECT_EQ(toro.graph.NumNodes(), 1228u);
+  EXPECT_EQ(toro.graph.edges().size(), 1505u);
+  const GraphFile manhattan = ReadGraphFile(dir + "manhattan.g2o");
+  EXPECT_TRUE(manhattan.values_from_edges);
+  EXPECT_EQ(manhattan.graph.NumNodes(), 3500u);
+  EXPECT_EQ(manhattan.graph.edges().size(), 5453u);
+}
+
+}  // namespace
+}  // namespace lifelong::io

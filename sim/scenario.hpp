@@ -1,6 +1,13 @@
 // A simulation scenario: a world, a Pioneer 2-DX with a SICK LMS-200, odometry noise, a
 // route and a seed. Corridor experiment after the seed's section 6.1 (100 traversals forth
 // and back in a 20 m x 3 m corridor); office tour after section 6.2 (about an hour).
+//
+// YAML (see scenarios/*.yaml): name, world (relative to the scenario file), seed,
+// optional physics_rate_hz and sections robot / laser (mount: [x, y, yaw_deg]) / odometry
+// whose keys are the fields below, and route, one of
+//   {type: back_and_forth, waypoints: [place or [x, y], ...], repetitions: N, stop_s: 0}
+//   {type: path, waypoints: [...]}                      # driven once, no way back
+//   {type: tour, start: place, places: [...], duration_s: 3600, stop_s: 2}
 #pragma once
 
 #include <cstdint>

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <set>
 
 #include "sim/scenario.hpp"
 #include "tests/sim/test_worlds.hpp"
@@ -188,6 +189,20 @@ TEST(Simulator, Corridor3RunsToTheEndWithoutCollisions) {
   EXPECT_NEAR(sim.time_s(), s.duration_s, 0.15 * s.duration_s);
   EXPECT_EQ(scans, static_cast<int>(std::lround(sim.time_s() * 5.0)) + 1);
   EXPECT_NEAR(obs.T_world_robot_true->x, 1.0, 0.15);  // back at `west`
+}
+
+TEST(Simulator, Office5MinVisitsRoomsWithoutCollisions) {
+  const Scenario s = LoadScenario(kDir + "/scenarios/office_5min.yaml");
+  Simulator sim(s);
+  Observation obs;
+  std::set<int> rooms;  // rooms are 8 m wide, south of y = 8.5 m or north of y = 11 m
+  while (sim.Next(&obs, nullptr)) {
+    const Pose2& p = *obs.T_world_robot_true;
+    if (p.y < 8.0 || p.y > 11.5) rooms.insert(static_cast<int>(p.x / 8.0) + (p.y > 10 ? 10 : 0));
+  }
+  EXPECT_NEAR(sim.time_s(), 300.0, 0.5);
+  EXPECT_GE(rooms.size(), 2u);
+  EXPECT_TRUE(sim.collisions().empty());
 }
 
 }  // namespace

@@ -3,10 +3,11 @@
 // 2009, ch. 6). Message layouts: /work/shared/datasets/SOURCES.md.
 //
 // Reader: FLASER, ROBOTLASER1, ODOM, PARAM and `#` comments; every other message type is
-// counted and skipped. FLASER carries no field of view: 180 deg is assumed, beam 0 at
-// -90 deg, step 180/n deg for even n (180 -> 1 deg) and 180/(n-1) deg for odd n (181, 361).
-// ROBOTLASER1 gives start angle, resolution, max range, and the laser and robot poses, from
-// which T_robot_laser = Between(robot pose, laser pose).
+// counted and skipped, except a TRUEPOS right after a scan with the same stamp (as
+// CarmenWriter writes ground truth), which fills that scan's T_world_robot_true. FLASER carries no
+// field of view: 180 deg is assumed, beam 0 at -90 deg, step 180/n deg for even n (180 -> 1 deg)
+// and 180/(n-1) deg for odd n (181, 361). ROBOTLASER1 gives start angle, resolution, max range, and
+// the laser and robot poses, from which T_robot_laser = Between(robot pose, laser pose).
 //
 // GMapping-corrected logs (FLASER poses are corrected estimates) get their raw odometry
 // back: the ODOM line just before scan k equals corrected_{k-1} * raw step, so
@@ -45,7 +46,7 @@ struct CarmenLog {
   std::vector<Observation> observations;  ///< one per FLASER / ROBOTLASER1, file order
   std::vector<Odometry> odometry;         ///< ODOM messages, file order
   std::vector<CarmenParam> params;
-  std::map<std::string, int> skipped;  ///< message type -> count (NEFF, SYNC, TRUEPOS, ...)
+  std::map<std::string, int> skipped;  ///< message type -> count (NEFF, SYNC, RLASER, ...)
   int comment_lines = 0;
   int backward_scan_stamps = 0;     ///< scans stamped earlier than the scan before them
   int backward_odom_stamps = 0;     ///< ODOMs stamped earlier than the ODOM before them
@@ -58,11 +59,12 @@ struct CarmenLog {
 CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& options = {});
 
 /// Writes a CARMEN log: a header comment, then PARAM, ODOM and ROBOTLASER1 lines in call
-/// order. Scans are written as ROBOTLASER1 only (never also FLASER, which would duplicate
-/// each scan for a reader): it carries angles, max range and the laser mount exactly.
-/// Poses print with 6 decimals, ranges with 4, angles with 9; the same calls give
-/// byte-identical files. Output goes to `path + ".tmp"`, renamed to `path` on Close();
-/// an unclosed writer removes its temporary file. A path ending in ".gz" is gzipped.
+/// order, each scan with a known true pose followed by a TRUEPOS line. Scans are written as
+/// ROBOTLASER1 only (never also FLASER, which would duplicate each scan for a reader): it carries
+/// angles, max range and the laser mount exactly. Poses print with 6 decimals, ranges with 4,
+/// angles with 9; the same calls give byte-identical files. Output goes to `path + ".tmp"`, renamed
+/// to `path` on Close(); an unclosed writer removes its temporary file. A path ending in ".gz" is
+/// gzipped.
 class CarmenWriter {
  public:
   explicit CarmenWriter(const std::string& path);

@@ -259,6 +259,18 @@ TEST(CarmenWrite, UnclosedWriterLeavesNoFileAndBadPathThrows) {
   EXPECT_THROW(CarmenWriter(TempPath("no_such_dir/x.clf")), InputError);
 }
 
+TEST(CarmenRead, TruncatedGzipThrows) {
+  const std::string path = TempPath("trunc.clf.gz");
+  {
+    CarmenWriter writer(path);
+    for (const Observation& o : SampleScans()) writer.WriteScan(o);
+    writer.Close();
+  }
+  const std::string bytes = ReadBytes(path);
+  std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() - 12);  // no trailer
+  EXPECT_THROW(ReadCarmenLog(path), InputError);
+}
+
 TEST(Relations, SubtractsOffsetAndKeepsPlanarPart) {
   const auto rel = ReadRelations(kData + "tiny.relations", 1000.0);
   ASSERT_EQ(rel.size(), 2u);

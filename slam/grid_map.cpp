@@ -141,29 +141,42 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
   return Accumulate(origin, beams, lo, hi);
 }
 
-CellCounts* GridMap::Find(CellIndex c) const {
-  const auto it = chunks_.find(ChunkKey(ChunkOf(c.x), ChunkOf(c.y)));
-  if (it == chunks_.end()) return nullptr;
-  return &it->second->cells[static_cast<std::size_t>(Offset(c))];
+CellCounts* GridMap::Find(CellIndex c, Cursor* cursor) const {
+  const std::uint64_t key = ChunkKey(ChunkOf(c.x), ChunkOf(c.y));
+  if (!cursor->valid || key != cursor->key) {
+    const auto it = chunks_.find(key);
+    cursor->valid = true;
+    cursor->key = key;
+    cursor->chunk = it == chunks_.end() ? nullptr : it->second.get();
+  }
+  return cursor->chunk ? &cursor->chunk->cells[static_cast<std::size_t>(Offset(c))] : nullptr;
 }
 
-CellCounts* GridMap::FindOrCreate(CellIndex c) {
-  std::unique_ptr<Chunk>& chunk = chunks_[ChunkKey(ChunkOf(c.x), ChunkOf(c.y))];
-  if (!chunk) chunk = std::make_unique<Chunk>();
-  return &chunk->cells[static_cast<std::size_t>(Offset(c))];
+CellCounts* GridMap::FindOrCreate(CellIndex c, Cursor* cursor) {
+  const std::uint64_t key = ChunkKey(ChunkOf(c.x), ChunkOf(c.y));
+  if (!cursor->valid || key != cursor->key || cursor->chunk == nullptr) {
+    std::unique_ptr<Chunk>& chunk = chunks_[key];
+    if (!chunk) chunk = std::make_unique<Chunk>();
+    cursor->valid = true;
+    cursor->key = key;
+    cursor->chunk = chunk.get();
+  }
+  return &cursor->chunk->cells[static_cast<std::size_t>(Offset(c))];
 }
 
 void GridMap::Add(const std::vector<CellUpdate>& updates) {
+  Cursor cursor;
   for (const CellUpdate& u : updates) {
-    CellCounts* c = FindOrCreate(u.cell);
+    CellCounts* c = FindOrCreate(u.cell, &cursor);
     c->hits += u.delta.hits;
     c->misses += u.delta.misses;
   }
 }
 
 void GridMap::Remove(const std::vector<CellUpdate>& updates) {
+  Cursor cursor;
   for (const CellUpdate& u : updates) {
-    CellCounts* c = Find(u.cell);
+    CellCounts* c = Find(u.cell, &cursor);
     if (c == nullptr || c->hits < u.delta.hits || c->misses < u.delta.misses) {
       throw std::logic_error("GridMap::Remove: removing counts that were never added");
     }
@@ -186,7 +199,8 @@ void GridMap::MoveScan(const LaserScan& scan, const Pose2& T_world_old, const Po
 }
 
 CellCounts GridMap::Counts(CellIndex c) const {
-  const CellCounts* counts = Find(c);
+  Cursor cursor;
+  const CellCounts* counts = Find(c, &cursor);
   return counts ? *counts : CellCounts{};
 }
 
@@ -244,8 +258,10 @@ double GridMap::EntropyBits(const CellBounds& region) const {
 
 double GridMap::InformationGain(const std::vector<CellUpdate>& updates) const {
   double gain = 0.0;
+  Cursor cursor;
   for (const CellUpdate& u : updates) {
-    const CellCounts now = Counts(u.cell);
+    const CellCounts* found = Find(u.cell, &cursor);
+    const CellCounts now = found ? *found : CellCounts{};
     if (now.hits < u.delta.hits || now.misses < u.delta.misses) {
       throw std::logic_error("GridMap::InformationGain: the scan is not in the map");
     }

@@ -100,8 +100,14 @@ class GridMap {
 
  private:
   struct Chunk;
-  CellCounts* Find(CellIndex c) const;
-  CellCounts* FindOrCreate(CellIndex c);
+  /// The last chunk looked up: consecutive cells of an update list mostly share a chunk.
+  struct Cursor {
+    bool valid = false;
+    std::uint64_t key = 0;
+    Chunk* chunk = nullptr;
+  };
+  CellCounts* Find(CellIndex c, Cursor* cursor) const;
+  CellCounts* FindOrCreate(CellIndex c, Cursor* cursor);
 
   GridMapConfig config_;
   std::unordered_map<std::uint64_t, std::unique_ptr<Chunk>> chunks_;

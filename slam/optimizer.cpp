@@ -180,13 +180,15 @@ class Cholmod {
   std::size_t Nnz() const { return static_cast<int*>(A_->p)[A_->ncol]; }
   const int* ColPtr() const { return static_cast<const int*>(A_->p); }
 
-  /// Solves (H + lambda I) dx = rhs; false when H + lambda I is not positive definite.
-  bool Solve(const std::vector<double>& h, double lambda, const Eigen::VectorXd& rhs,
-             Eigen::VectorXd* dx) {
+  /// Solves (H + lambda D) dx = rhs, D = diag(d); false when not positive definite.
+  bool Solve(const std::vector<double>& h, double lambda, const Eigen::VectorXd& d,
+             const Eigen::VectorXd& rhs, Eigen::VectorXd* dx) {
     double* x = static_cast<double*>(A_->x);
     std::memcpy(x, h.data(), h.size() * sizeof(double));
     const int* p = ColPtr();
-    for (std::size_t j = 0; j < A_->ncol; ++j) x[p[j + 1] - 1] += lambda;
+    for (std::size_t j = 0; j < A_->ncol; ++j) {
+      x[p[j + 1] - 1] += lambda * d[static_cast<Eigen::Index>(j)];
+    }
     cholmod_factorize(A_, L_, &common_);
     if (common_.status != CHOLMOD_OK || L_->minor < L_->n) return false;
     std::memcpy(b_->x, rhs.data(), static_cast<std::size_t>(rhs.size()) * sizeof(double));
@@ -218,6 +220,17 @@ class System {
     for (int j = 0; j < g_.size(); ++j)
       m = std::max(m, h_[static_cast<std::size_t>(p_[j + 1] - 1)]);
     return m;
+  }
+
+  /// LM damping scale: diag(H) clamped away from zero (Marquardt), or all ones.
+  Eigen::VectorXd DampingScale(bool marquardt) const {
+    if (!marquardt) return Eigen::VectorXd::Ones(g_.size());
+    const double floor = 1e-9 * std::max(MaxDiagonal(), 1e-12);
+    Eigen::VectorXd d(g_.size());
+    for (Eigen::Index j = 0; j < d.size(); ++j) {
+      d[j] = std::max(h_[static_cast<std::size_t>(p_[j + 1] - 1)], floor);
+    }
+    return d;
   }
 
   /// Fills H and g at the current poses and returns chi2 there.
@@ -389,13 +402,16 @@ bool StepTiny(const Eigen::VectorXd& dx, const OptimizerParams& params, Optimize
 void RunLevenbergMarquardt(const Layout& layout, Cholmod* solver, System* system,
                            const OptimizerParams& params, OptimizerSummary* summary) {
   double chi2 = summary->initial_chi2;
-  double lambda = params.initial_lambda_factor * std::max(system->MaxDiagonal(), 1e-12);
+  const bool marquardt = params.scale_damping;
+  Eigen::VectorXd D = system->DampingScale(marquardt);
+  double lambda = params.initial_lambda_factor * (marquardt ? 1.0 : D.maxCoeff());
+  lambda = std::max(lambda, 1e-300);
   double nu = 2.0;
   Eigen::VectorXd dx;
   summary->message = "maximum iterations reached";
   while (summary->iterations < params.max_iterations) {
     ++summary->iterations;
-    if (!solver->Solve(system->H(), lambda, -system->g(), &dx)) {
+    if (!solver->Solve(system->H(), lambda, D, -system->g(), &dx)) {
       ++summary->factorization_failures;
       lambda *= nu;
       nu *= 2.0;
@@ -405,7 +421,7 @@ void RunLevenbergMarquardt(const Layout& layout, Cholmod* solver, System* system
     const std::vector<Pose2> saved = Snapshot(layout);
     ApplyStep(layout, dx);
     const double new_chi2 = Chi2(layout, params);
-    const double predicted = dx.dot(lambda * dx - system->g());
+    const double predicted = dx.dot(lambda * D.cwiseProduct(dx) - system->g());
     const double rho = (chi2 - new_chi2) / predicted;
     if (std::isfinite(new_chi2) && new_chi2 < chi2 && predicted > 0.0) {
       ++summary->accepted_steps;
@@ -415,6 +431,7 @@ void RunLevenbergMarquardt(const Layout& layout, Cholmod* solver, System* system
       nu = 2.0;
       if (Converged(old_chi2, chi2, params, summary)) break;
       system->Linearize(params);
+      D = system->DampingScale(marquardt);
     } else {
       Restore(layout, saved);
       ++summary->rejected_steps;
@@ -437,12 +454,13 @@ void RunGaussNewton(const Layout& layout, Cholmod* solver, System* system,
                     const OptimizerParams& params, OptimizerSummary* summary) {
   double chi2 = summary->initial_chi2;
   bool stale = false;  // values moved since the last chi2
+  const Eigen::VectorXd ones = system->DampingScale(false);
   Eigen::VectorXd dx;
   summary->message = "maximum iterations reached";
   while (summary->iterations < params.max_iterations) {
     ++summary->iterations;
     double lambda = 0.0;
-    while (!solver->Solve(system->H(), lambda, -system->g(), &dx)) {
+    while (!solver->Solve(system->H(), lambda, ones, -system->g(), &dx)) {
       ++summary->factorization_failures;
       lambda = lambda == 0.0 ? 1e-9 * std::max(system->MaxDiagonal(), 1e-12) : 10.0 * lambda;
       if (lambda > 1e40) break;

@@ -2,7 +2,7 @@
 // Gauss-Newton) over all nodes, one node anchored, the normal equations factorized with
 // CHOLMOD. Seed §2.3 (graph-based SLAM as least squares, F(x) = sum e_ij^T Omega_ij e_ij);
 // the damping follows Nielsen (1999) / Madsen et al. "Methods for non-linear least squares"
-// §3.2: solve (H + lambda I) dx = -g, accept when the gain ratio is positive.
+// §3.2: solve (H + lambda D) dx = -g, accept when the gain ratio is positive.
 //
 // Steps per call:
 //  1. map NodeId -> column block once (anchor and factor-less nodes get no columns);
@@ -46,7 +46,10 @@ struct OptimizerParams {
   RobustKernel robust_kernel = RobustKernel::kNone;
   /// Kernel width d, in units of Mahalanobis distance sqrt(e^T Omega e) (dimensionless).
   double robust_delta = 1.0;
-  /// Initial LM damping: lambda_0 = factor * max diag(H).
+  /// LM damping matrix: lambda * diag(H) (Marquardt's scaling, invariant to the units of
+  /// x, y and theta) when true; lambda * I (as g2o) when false.
+  bool scale_damping = true;
+  /// Initial LM damping: lambda_0 = factor (scaled damping) or factor * max diag(H).
   double initial_lambda_factor = 1e-5;
   /// Gauss-Newton only: spend one extra error pass at the end so that final_chi2 is the
   /// chi2 of the returned values. When false, final_chi2 is the chi2 at the last

@@ -102,16 +102,17 @@ void BM_MatchIncremental(benchmark::State& state) {
 }
 BENCHMARK(BM_MatchIncremental)->Unit(benchmark::kMillisecond);
 
-// Loop closure: +-2 m, +-30 deg against one older node's scan.
+// Loop closure: +-2 m, +-30 deg against one older node's scan; argument: coarse factor.
 void BM_MatchLoopClosure(benchmark::State& state) {
   const Scene s;
   MatcherConfig config;
+  config.coarse_factor = static_cast<int>(state.range(0));
   config.linear_window_m = 2.0;
   config.angular_window_rad = 30.0 * kDeg;
   const ReferenceGrid ref(PointsInReference({s.Local()[1]}, 0.03), config);
   RunMatch(state, ref, s, s.truth * Pose2(1.1, -0.7, 20.0 * kDeg), config);
 }
-BENCHMARK(BM_MatchLoopClosure)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MatchLoopClosure)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace lifelong::slam

@@ -1,0 +1,47 @@
+// Figures in the style of the seed's Figs. 6.1-6.5: every mode on one chart, per
+// observation. Drives the `gnuplot` binary with generated scripts and data files (kept in
+// <out_dir>/plot_data/ so a figure can be re-made or restyled by hand). PNG terminal:
+// pngcairo when gnuplot has it, else png. Figures are written to "<name>.png.tmp" and
+// renamed when gnuplot succeeded.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "eval/types.hpp"
+
+namespace lifelong::eval {
+
+struct PlotConfig {
+  std::string gnuplot = "gnuplot";  ///< binary, looked up in PATH
+  int moving_average = 25;          ///< observations in the trailing moving average
+  bool log_time = false;            ///< log-scale y axis for the time per observation
+  int width_px = 800;               ///< px
+  int height_px = 500;              ///< px
+};
+
+/// ok == false with a message (e.g. gnuplot missing) instead of an exception: figures are
+/// optional output. `files` lists the PNGs written, with their paths.
+struct PlotResult {
+  bool ok = false;
+  std::string error;
+  std::vector<std::string> files;
+};
+
+/// mode name -> its timeline.
+using ModeTimelines = std::map<std::string, std::vector<TimelineRow>>;
+
+/// Writes time_per_obs.png (raw as dots, moving average as lines), nodes.png, edges.png
+/// and gamma.png into out_dir (which must exist).
+PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
+                         const PlotConfig& config = {});
+
+/// Writes kld.png: the KL divergence of each marginalization, per mode, in order.
+PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode,
+                   const std::string& out_dir, const PlotConfig& config = {});
+
+/// True when `gnuplot` runs; fills *terminal with "pngcairo" or "png" when given.
+bool GnuplotAvailable(const std::string& gnuplot, std::string* terminal = nullptr);
+
+}  // namespace lifelong::eval

@@ -1,0 +1,128 @@
+// Map images (pixel colours at known cells, y up, cropping) and gnuplot figures.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "eval/draw.hpp"
+#include "eval/plots.hpp"
+#include "eval/resources.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// 10 x 10 cells of 0.1 m: bottom row free, cell (5, 5) occupied, the rest unknown.
+io::OccupancyGrid SmallGrid() {
+  io::OccupancyGrid g;
+  g.width = g.height = 10;
+  g.resolution_m = 0.1;
+  g.p_occ.assign(100, io::OccupancyGrid::kUnknown);
+  for (int c = 0; c < 10; ++c) g.At(c, 0) = 0.0f;
+  g.At(5, 5) = 1.0f;
+  return g;
+}
+
+cv::Vec3b Pixel(const Image& im, int col, int row) {
+  const std::size_t i = (static_cast<std::size_t>(row) * im.width + col) * 3;
+  return {im.bgr[i], im.bgr[i + 1], im.bgr[i + 2]};
+}
+
+DrawConfig Plain() {
+  DrawConfig c;
+  c.crop_to_known = false;
+  c.scale_bar = false;
+  return c;
+}
+
+TEST(DrawTest, FreeWhiteOccupiedBlackUnknownGreyWithYUp) {
+  const Image im = RenderMap(SmallGrid(), {}, {}, Plain());
+  ASSERT_EQ(im.width, 10);
+  ASSERT_EQ(im.height, 10);
+  EXPECT_EQ(Pixel(im, 3, 9), cv::Vec3b(255, 255, 255));  // grid row 0 is the bottom
+  EXPECT_EQ(Pixel(im, 5, 4), cv::Vec3b(0, 0, 0));        // grid row 5 -> image row 4
+  EXPECT_EQ(Pixel(im, 5, 5), cv::Vec3b(205, 205, 205));
+}
+
+TEST(DrawTest, CropsToKnownCellsWithMarginAndUpscales) {
+  io::OccupancyGrid g = SmallGrid();
+  std::fill(g.p_occ.begin(), g.p_occ.end(), io::OccupancyGrid::kUnknown);
+  g.At(3, 3) = g.At(4, 4) = 0.0f;  // known box 2 x 2 cells
+  DrawConfig c;
+  c.margin_m = 0.1;  // one cell
+  c.scale_bar = false;
+  c.pixels_per_cell = 3;
+  const Image im = RenderMap(g, {}, {}, c);
+  EXPECT_EQ(im.width, 4 * 3);
+  EXPECT_EQ(im.height, 4 * 3);
+  EXPECT_EQ(Pixel(im, 1 * 3 + 1, 2 * 3 + 1), cv::Vec3b(255, 255, 255));  // cell (3,3)
+}
+
+TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
+  TrajectoryOverlay est{TrajectoryKind::kEstimate, {{0.05, 0.75, 0}, {0.95, 0.75, 0}}};
+  const Image im = RenderMap(SmallGrid(), {}, {est}, Plain());
+  const cv::Vec3b p = Pixel(im, 2, 2);  // y = 0.75 m -> image row 10 - 7.5 = 2.5
+  EXPECT_GT(p[0], 150);                 // blue dominates
+  EXPECT_LT(p[2], 100);
+  EXPECT_EQ(Pixel(im, 2, 6), cv::Vec3b(205, 205, 205));  // untouched
+}
+
+TEST(DrawTest, WritesAReadablePngAndNoTemporary) {
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_draw";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<Segment> walls = {{0, 0, 4, 0}, {4, 0, 4, 3}};
+  WriteWorldPng((dir / "world.png").string(), walls,
+                {{TrajectoryKind::kTrue, {{0.5, 0.5, 0}, {3.5, 2.5, 0}}}});
+  WriteMapPng((dir / "map.png").string(), SmallGrid(), {}, {});
+  const cv::Mat world = cv::imread((dir / "world.png").string());
+  EXPECT_EQ(world.cols, static_cast<int>(std::lround((4 + 2.0) / 0.05)) + 1);
+  EXPECT_FALSE(cv::imread((dir / "map.png").string()).empty());
+  EXPECT_FALSE(fs::exists(dir / "map.tmp.png"));
+  EXPECT_THROW(WriteMapPng("/nonexistent_dir/map.png", SmallGrid(), {}, {}), std::runtime_error);
+}
+
+std::vector<TimelineRow> Timeline(int n, int growth) {
+  std::vector<TimelineRow> rows(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    rows[i].obs = i, rows[i].time_ms = 1.0 + 0.1 * i, rows[i].nodes = 1 + i * growth / 10;
+    rows[i].edges = rows[i].nodes * 2, rows[i].gamma = 0.5 / (1 + i);
+  }
+  return rows;
+}
+
+TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_plots";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  PlotConfig missing;
+  missing.gnuplot = "/nonexistent/gnuplot";
+  const PlotResult none = PlotTimelines({{"standard", Timeline(50, 10)}}, dir.string(), missing);
+  EXPECT_FALSE(none.ok);
+  EXPECT_NE(none.error.find("gnuplot"), std::string::npos);
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  const PlotResult r =
+      PlotTimelines({{"standard", Timeline(50, 10)}, {"chow_liu", Timeline(50, 3)}}, dir.string());
+  EXPECT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.files.size(), 4u);
+  for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png"}) {
+    EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
+  }
+  const PlotResult k = PlotKld({{"chow_liu", {0.1, 0.3, 0.2}}}, dir.string());
+  EXPECT_TRUE(k.ok) << k.error;
+  EXPECT_FALSE(cv::imread((dir / "kld.png").string()).empty());
+}
+
+TEST(ResourcesTest, RssIsPositiveAndPeakAtLeastCurrent) {
+  const auto now = CurrentRssMb();
+  const auto peak = PeakRssMb();
+  ASSERT_TRUE(now.has_value());
+  ASSERT_TRUE(peak.has_value());
+  EXPECT_GT(*now, 0.0);
+  EXPECT_GE(*peak, *now);
+  EXPECT_FALSE(CpuModelName().empty());
+}
+
+}  // namespace
+}  // namespace lifelong::eval

@@ -1,0 +1,186 @@
+// The output contract: exact JSON keys, CSV header, absent figures, atomic writes.
+#include "eval/report.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<TimelineRow> Rows(int n) {
+  std::vector<TimelineRow> rows;
+  for (int i = 0; i < n; ++i) {
+    TimelineRow r;
+    r.obs = i, r.t_s = 0.5 * i, r.time_ms = i + 1.0, r.nodes = 10 + i, r.edges = 20 - i;
+    r.gamma = 0.25, r.rss_mb = 100.0 + (i == 3 ? 50 : 0), r.graph_bytes = 1000u + i;
+    r.loop_closures = i / 4;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::string ReadAll(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path TempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("lifelong_eval_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::set<std::string> Keys(const nlohmann::json& j) {
+  std::set<std::string> k;
+  for (auto it = j.begin(); it != j.end(); ++it) k.insert(it.key());
+  return k;
+}
+
+TEST(TimeStatsTest, HandComputedOnOneToTwenty) {
+  const auto t = ComputeTimeStats(Rows(20), 5);  // time_ms = 1..20
+  ASSERT_TRUE(t.has_value());
+  EXPECT_DOUBLE_EQ(t->mean, 10.5);
+  EXPECT_DOUBLE_EQ(t->p50, 10.5);
+  EXPECT_DOUBLE_EQ(t->p95, 19.05);
+  EXPECT_DOUBLE_EQ(t->max, 20.0);
+  EXPECT_DOUBLE_EQ(*t->first_pass_mean, 3.0);  // obs 0..4
+  EXPECT_DOUBLE_EQ(t->last10_mean, 19.5);      // last 2 of 20
+  EXPECT_FALSE(ComputeTimeStats(Rows(20), std::nullopt)->first_pass_mean.has_value());
+  EXPECT_FALSE(ComputeTimeStats({}, 5).has_value());
+}
+
+TEST(SummarizeTimelineTest, FinalMaxAndFirstPass) {
+  const ModeSummary m = SummarizeTimeline(Rows(20), 5);
+  EXPECT_EQ(*m.observations, 20);
+  EXPECT_EQ(*m.nodes_final, 29);
+  EXPECT_EQ(*m.nodes_max, 29);
+  EXPECT_EQ(*m.edges_final, 1);
+  EXPECT_EQ(*m.edges_max, 20);
+  EXPECT_EQ(*m.nodes_after_first_pass, 14);  // row obs = 4
+  EXPECT_EQ(*m.graph_bytes_final, 1019);
+  EXPECT_DOUBLE_EQ(*m.peak_rss_mb, 150.0);
+  EXPECT_FALSE(m.blur.has_value());
+  EXPECT_FALSE(m.ate_rmse_m.has_value());
+}
+
+TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
+  RunSummary s;
+  s.source = "scenarios/corridor_100.yaml";
+  s.seed = 7;
+  s.wall_time_s = 12.5;
+  s.log_duration_s = 800.0;
+  ModeSummary full = SummarizeTimeline(Rows(20), 5);
+  full.wall_time_s = 3.0;
+  full.scans_kept_pct = 40.0;
+  full.blur = BlurSummary{2.0, 5.0, 21.0, 0.9};
+  full.ate_rmse_m = 0.1, full.loop_precision = 1.0, full.loop_recall = 0.5;
+  full.relations = RelationsSummary{10, 0.1, 0.01, 1.0, 0.1};
+  full.kld = SummarizeKld({0.5, 1.5});
+  full.map_entropy_bits = 1234.0, full.occupied_share = 0.1;
+  s.modes["chow_liu"] = full;
+  s.modes["standard"].observations = 20;
+  s.modes["standard"].ate_rmse_m = std::numeric_limits<double>::quiet_NaN();  // never written
+
+  const fs::path dir = TempDir("json");
+  WriteSummaryJson((dir / "summary.json").string(), s);
+  EXPECT_FALSE(fs::exists(dir / "summary.json.tmp"));
+  const auto j = nlohmann::json::parse(ReadAll(dir / "summary.json"));
+  EXPECT_EQ(Keys(j),
+            (std::set<std::string>{"source", "seed", "wall_time_s", "log_duration_s", "modes"}));
+  EXPECT_EQ(j["seed"], 7);
+  const auto& m = j["modes"]["chow_liu"];
+  EXPECT_EQ(Keys(m), (std::set<std::string>{"observations",
+                                            "wall_time_s",
+                                            "time_per_obs_ms",
+                                            "nodes_final",
+                                            "edges_final",
+                                            "nodes_max",
+                                            "edges_max",
+                                            "nodes_after_first_pass",
+                                            "gamma_final",
+                                            "scans_kept_pct",
+                                            "peak_rss_mb",
+                                            "graph_bytes_final",
+                                            "blur",
+                                            "ate_rmse_m",
+                                            "loop_precision",
+                                            "loop_recall",
+                                            "relations",
+                                            "kld",
+                                            "map_entropy_bits",
+                                            "occupied_share"}));
+  EXPECT_EQ(Keys(m["time_per_obs_ms"]),
+            (std::set<std::string>{"mean", "p50", "p95", "max", "first_pass_mean", "last10_mean"}));
+  EXPECT_EQ(Keys(m["blur"]), (std::set<std::string>{"mean_cm", "p95_cm", "thickness", "recall"}));
+  EXPECT_EQ(Keys(m["relations"]), (std::set<std::string>{"count", "trans_mean_m", "trans_std_m",
+                                                         "rot_mean_deg", "rot_std_deg"}));
+  EXPECT_EQ(Keys(m["kld"]), (std::set<std::string>{"count", "mean", "max"}));
+  EXPECT_EQ(m["kld"]["count"], 2);
+  EXPECT_DOUBLE_EQ(m["kld"]["mean"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(m["time_per_obs_ms"]["p95"].get<double>(), 19.05);
+  // figures that do not apply are absent, not zero
+  EXPECT_EQ(Keys(j["modes"]["standard"]), (std::set<std::string>{"observations"}));
+}
+
+TEST(SummaryJsonTest, SeedAndDurationAbsentWhenUnknown) {
+  RunSummary s;
+  s.source = "intel.clf";
+  const auto j = nlohmann::json::parse(SummaryJsonText(s));
+  EXPECT_FALSE(j.contains("seed"));
+  EXPECT_FALSE(j.contains("log_duration_s"));
+  EXPECT_TRUE(j["modes"].is_object());
+}
+
+TEST(TimelineCsvTest, HeaderAndRows) {
+  const fs::path p = TempDir("csv") / "timeline.csv";
+  WriteTimelineCsv(p.string(), Rows(3));
+  EXPECT_FALSE(fs::exists(p.string() + ".tmp"));
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures");
+  std::getline(in, line);
+  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0");
+  int more = 0;
+  while (std::getline(in, line)) ++more;
+  EXPECT_EQ(more, 2);
+}
+
+TEST(WriteFileTest, UnwritablePathThrows) {
+  EXPECT_THROW(WriteTimelineCsv("/nonexistent_dir/x/timeline.csv", Rows(1)), std::runtime_error);
+}
+
+TEST(ReportHtmlTest, SelfContainedWithTableFiguresAndMaps) {
+  ReportPage page;
+  page.summary.source = "a<b>.yaml";
+  page.summary.modes["standard"] = SummarizeTimeline(Rows(4), std::nullopt);
+  page.summary.modes["chow_liu"].observations = 4;
+  page.command_line = "lifelong run x.yaml";
+  page.machine = "Test CPU";
+  page.figures = {"time_per_obs.png"};
+  page.maps = {{"standard", "standard/map.png"}};
+  const std::string html = ReportHtmlText(page);
+  EXPECT_NE(html.find("a&lt;b&gt;.yaml"), std::string::npos);
+  EXPECT_NE(html.find("<th>chow_liu</th><th>standard</th>"), std::string::npos);
+  EXPECT_NE(html.find("src=\"time_per_obs.png\""), std::string::npos);
+  EXPECT_NE(html.find("src=\"standard/map.png\""), std::string::npos);
+  EXPECT_NE(html.find("lifelong run x.yaml"), std::string::npos);
+  EXPECT_NE(html.find("Test CPU"), std::string::npos);
+  EXPECT_NE(html.find("time_per_obs_ms/p95"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("http"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lifelong::eval

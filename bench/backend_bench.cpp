@@ -3,6 +3,8 @@
 // BM_Optimize/<graph>: slam::Optimize (LM, CHOLMOD) from the file's initial guess (or the
 //   chained odometry for edges-only files); counters: nodes, edges, initial/final chi2,
 //   iterations.
+// BM_OptimizeGaussNewton/<graph>: the same with params.method = kGaussNewton.
+// BM_OptimizeWarm/<graph>: LM warm-started at the optimum (per-call overhead).
 // BM_Reference/<graph>: an independent check of the optimum's chi2 that shares no code
 //   with the optimizer beyond Pose2: right-multiplicative increments X <- X * Exp(d),
 //   residuals whitened by the Cholesky factor of Omega, central-difference numerical
@@ -137,13 +139,16 @@ RefResult ReferenceSolve(const std::vector<RefEdge>& edges, std::vector<Pose2>* 
   return {cost, it};
 }
 
-void BM_Optimize(benchmark::State& state, const std::string& name) {
+void RunOptimize(benchmark::State& state, const std::string& name,
+                 const slam::OptimizerParams& params, bool warm) {
   const io::GraphFile* f = Load(name);
   if (f == nullptr) return state.SkipWithError(("dataset absent: " + name).c_str());
+  slam::Values start = f->values;
+  if (warm) slam::Optimize(f->graph, &start, params);  // the mapper's case: already optimal
   slam::OptimizerSummary s;
   for (auto _ : state) {
-    slam::Values values = f->values;
-    s = slam::Optimize(f->graph, &values);
+    slam::Values values = start;
+    s = slam::Optimize(f->graph, &values, params);
     benchmark::DoNotOptimize(values);
   }
   state.counters["nodes"] = static_cast<double>(f->graph.NumNodes());
@@ -152,6 +157,21 @@ void BM_Optimize(benchmark::State& state, const std::string& name) {
   state.counters["chi2_final"] = s.final_chi2;
   state.counters["iterations"] = s.iterations;
   state.counters["converged"] = s.converged ? 1 : 0;
+}
+
+void BM_Optimize(benchmark::State& state, const std::string& name) {
+  RunOptimize(state, name, slam::OptimizerParams{}, false);
+}
+
+void BM_OptimizeGaussNewton(benchmark::State& state, const std::string& name) {
+  slam::OptimizerParams params;
+  params.method = slam::OptimizerMethod::kGaussNewton;
+  RunOptimize(state, name, params, false);
+}
+
+// Warm start at the optimum: the per-call overhead the mapper pays after a loop closure.
+void BM_OptimizeWarm(benchmark::State& state, const std::string& name) {
+  RunOptimize(state, name, slam::OptimizerParams{}, true);
 }
 
 void BM_Reference(benchmark::State& state, const std::string& name) {
@@ -188,6 +208,25 @@ BENCHMARK_CAPTURE(BM_Optimize, input_M3500b, std::string("input_M3500b_g2o.g2o")
 BENCHMARK_CAPTURE(BM_Optimize, manhattan_chained, std::string("manhattan.g2o"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Optimize, city10000, std::string("city10000.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, intel, std::string("intel.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, MIT, std::string("MIT.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, input_INTEL, std::string("input_INTEL_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, input_M3500, std::string("input_M3500_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, input_M3500b, std::string("input_M3500b_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, manhattan_chained, std::string("manhattan.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, city10000, std::string("city10000.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeWarm, intel, std::string("intel.g2o"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeWarm, input_M3500, std::string("input_M3500_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeWarm, city10000, std::string("city10000.g2o"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Reference, intel, std::string("intel.g2o"))
     ->Unit(benchmark::kMillisecond)

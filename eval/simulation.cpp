@@ -1,0 +1,117 @@
+#include "eval/simulation.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <set>
+
+#include "eval/draw.hpp"
+#include "eval/map_quality.hpp"
+#include "io/carmen_log.hpp"
+#include "io/map_file.hpp"
+#include "io/tum.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+std::string Stem(const std::string& log_path) {
+  std::string s = log_path;
+  for (const char* ext : {".gz", ".clf", ".log"}) {
+    const std::string e(ext);
+    if (s.size() > e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0) {
+      s.resize(s.size() - e.size());
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress) {
+  sim::Simulator simulator(scenario);
+  SimulatedRun run;
+  Observation obs;
+  std::vector<Odometry> odometry;
+  int last_percent = -1;
+  while (simulator.Next(&obs, &odometry)) {
+    run.odometry.insert(run.odometry.end(), odometry.begin(), odometry.end());
+    run.observations.push_back(obs);
+    const int percent = static_cast<int>(100.0 * simulator.progress());
+    if (progress && percent != last_percent && percent % 5 == 0) {
+      *progress << "\r  simulate     " << std::setw(4) << percent << " %  t = " << std::fixed
+                << std::setprecision(0) << simulator.time_s() << " s  scans "
+                << run.observations.size() << "   " << std::flush;
+      last_percent = percent;
+    }
+  }
+  run.odometry.insert(run.odometry.end(), odometry.begin(), odometry.end());
+  if (progress) *progress << "\n";
+  run.collisions = simulator.collisions();
+  run.timed_out = simulator.timed_out();
+  run.duration_s = simulator.time_s();
+  return run;
+}
+
+std::vector<Segment> TrueWalls(const sim::World& world) {
+  std::vector<Segment> out;
+  for (const auto& s : sim::WallSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+  for (const auto& s : sim::DoorSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+  return out;
+}
+
+double FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run) {
+  const double end = run.observations.empty() ? 0.0 : run.observations.back().stamp_s;
+  if (scenario.route.kind == sim::RouteConfig::Kind::kBackAndForth) {
+    return end / std::max(1, scenario.route.repetitions);
+  }
+  std::set<int> pending(scenario.route.tour_places.begin(), scenario.route.tour_places.end());
+  for (const Observation& o : run.observations) {
+    for (auto it = pending.begin(); it != pending.end();) {
+      const auto& p = scenario.world.places[static_cast<std::size_t>(*it)].at;
+      const Pose2& T = *o.T_world_robot_true;
+      it = std::hypot(T.x - p.x, T.y - p.y) < 0.5 ? pending.erase(it) : std::next(it);
+    }
+    if (pending.empty()) return o.stamp_s;
+  }
+  return end / 6.0;
+}
+
+void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,
+                     const SimulatedRun& run, double resolution_m) {
+  const std::string stem = Stem(log_path);
+  {
+    io::CarmenWriter writer(log_path);
+    writer.WriteParam("lifelong_scenario", scenario.name);
+    writer.WriteParam("lifelong_seed", std::to_string(scenario.seed));
+    std::size_t k = 0;
+    for (const Observation& o : run.observations) {
+      while (k < run.odometry.size() && run.odometry[k].stamp_s <= o.stamp_s) {
+        writer.WriteOdometry(run.odometry[k++]);
+      }
+      writer.WriteScan(o);
+    }
+    while (k < run.odometry.size()) writer.WriteOdometry(run.odometry[k++]);
+    writer.Close();
+  }
+  std::vector<io::StampedPose> truth;
+  TrajectoryOverlay true_path{TrajectoryKind::kTrue, {}};
+  TrajectoryOverlay odom_path{TrajectoryKind::kOdometry, {}};
+  const Pose2 T_world_odom = run.observations.empty()
+                                 ? Pose2()
+                                 : *run.observations.front().T_world_robot_true *
+                                       run.observations.front().T_odom_robot.Inverse();
+  for (const Observation& o : run.observations) {
+    truth.push_back({o.stamp_s, *o.T_world_robot_true});
+    true_path.poses.push_back(*o.T_world_robot_true);
+    odom_path.poses.push_back(T_world_odom * o.T_odom_robot);
+  }
+  io::WriteTum(stem + ".truth.tum", truth);
+  const std::vector<Segment> walls = TrueWalls(scenario.world);
+  io::WritePgmMap(stem + ".truth.pgm", RasterizeWalls(walls, resolution_m));
+  DrawConfig draw;
+  draw.world_resolution_m = resolution_m;
+  WriteWorldPng(stem + ".png", walls, {true_path, odom_path}, draw);
+}
+
+}  // namespace lifelong::eval

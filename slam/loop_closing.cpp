@@ -1,0 +1,128 @@
+// Loop closing (seed §4.3): candidates are the nodes inside the current pose's uncertainty,
+// found by Dijkstra projection of covariances; the current scan is matched with a wide window
+// against a submap of the candidates' scans, and accepted only when the match is good,
+// unambiguous and consistent with the projected uncertainty.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <Eigen/LU>
+
+#include "slam/dijkstra.hpp"
+#include "slam/mapper_state.hpp"
+#include "slam/scan_matcher.hpp"
+#include "slam/se2.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+struct Candidate {
+  NodeId id;
+  double mahalanobis;
+  Eigen::Matrix3d covariance;
+};
+
+double Clamp3Sigma(double variance, double lo, double hi) {
+  return std::clamp(3.0 * std::sqrt(std::max(variance, 0.0)), lo, hi);
+}
+
+}  // namespace
+
+bool Mapper::State::TryCloseLoop(NodeId current) {
+  const LoopClosingConfig& lc = config.loops;
+  ProjectionConfig projection;
+  projection.max_position_sigma_m = lc.max_position_sigma_m;
+  const auto projected = ProjectCovariances(graph, values, current, projection);
+  const auto near = ExpandByPathLength(graph, values, current, lc.min_path_separation_m);
+  const Pose2& X_cur = values.at(current);
+
+  std::vector<Candidate> candidates;
+  for (const auto& [id, node] : projected) {
+    if (near.count(id)) continue;
+    const Pose2& X = values.at(id);
+    const Eigen::Vector2d d(X.x - X_cur.x, X.y - X_cur.y);
+    const Eigen::Matrix2d S = node.covariance.block<2, 2>(0, 0) + lc.overlap_radius_m *
+                                                                      lc.overlap_radius_m *
+                                                                      Eigen::Matrix2d::Identity();
+    const double m = d.dot(S.inverse() * d);
+    if (m <= lc.gate_chi2) candidates.push_back({id, m, node.covariance});
+  }
+  if (candidates.empty()) return false;
+
+  // The submap: every candidate plus its graph neighbours that are not near the current node.
+  std::set<NodeId> submap;
+  double var_x = 0.0, var_y = 0.0, var_th = 0.0;
+  for (const Candidate& c : candidates) {
+    submap.insert(c.id);
+    int added = 0;
+    for (NodeId n : graph.Neighbours(c.id)) {
+      if (added >= lc.neighbours_per_candidate) break;
+      if (!near.count(n)) {
+        submap.insert(n);
+        ++added;
+      }
+    }
+    var_x = std::max(var_x, c.covariance(0, 0));
+    var_y = std::max(var_y, c.covariance(1, 1));
+    var_th = std::max(var_th, c.covariance(2, 2));
+  }
+  std::vector<Eigen::Vector2d> reference;
+  for (NodeId id : submap) {
+    const Pose2& X = values.at(id);
+    for (const Eigen::Vector2d& p : nodes.at(id).points) {
+      double x = 0.0, y = 0.0;
+      X.Apply(p.x(), p.y(), &x, &y);
+      reference.emplace_back(x, y);
+    }
+  }
+  if (static_cast<int>(reference.size()) < lc.min_reference_points) return false;
+
+  MatcherConfig mc = lc.matcher;
+  mc.linear_window_m = std::max(Clamp3Sigma(var_x, lc.min_window_m, lc.max_window_m),
+                                Clamp3Sigma(var_y, lc.min_window_m, lc.max_window_m));
+  mc.angular_window_rad = Clamp3Sigma(var_th, lc.min_window_rad, lc.max_window_rad);
+  const ReferenceGrid grid(reference, mc);
+  const MatchResult match = Match(grid, nodes.at(current).points, X_cur, mc);
+  if (!match.ok || match.score < lc.min_score || match.ambiguity > lc.max_ambiguity) return false;
+
+  // The correction must be plausible under the projected uncertainty of the best candidate.
+  const auto best = std::min_element(
+      candidates.begin(), candidates.end(),
+      [](const Candidate& a, const Candidate& b) { return a.mahalanobis < b.mahalanobis; });
+  Eigen::Vector3d correction = T2V(match.T_ref_cur) - T2V(X_cur);
+  correction.z() = NormalizeAngle(correction.z());
+  const Eigen::Matrix3d S = best->covariance + match.covariance;
+  if (correction.dot(S.inverse() * correction) > lc.consistency_chi2) return false;
+
+  // Attach the closure to the candidate nearest to the matched pose.
+  NodeId old = candidates.front().id;
+  double best_d = 1e300;
+  for (const Candidate& c : candidates) {
+    const Pose2& X = values.at(c.id);
+    const double d = std::hypot(X.x - match.T_ref_cur.x, X.y - match.T_ref_cur.y);
+    if (d < best_d) {
+      best_d = d;
+      old = c.id;
+    }
+  }
+  PoseEdge edge;
+  edge.from = old;
+  edge.to = current;
+  edge.kind = EdgeKind::kLoop;
+  edge.robust = true;
+  edge.T_from_to = Between(values.at(old), match.T_ref_cur);
+  edge.information = RotateIntoFrame(match.information, match.T_ref_cur.theta);
+  graph.AddEdge(edge);
+  loops.push_back(
+      {current, old, scans[static_cast<std::size_t>(nodes.at(current).scan_index)].stamp_s,
+       scans[static_cast<std::size_t>(nodes.at(old).scan_index)].stamp_s, edge.T_from_to});
+  ++closures_since_optimize;
+  const Eigen::Vector3d e = RelativeError(values.at(old), X_cur, edge.T_from_to);
+  if (e.dot(edge.information * e) > lc.optimize_edge_chi2 ||
+      closures_since_optimize >= lc.optimize_every) {
+    OptimizeAndSyncMap();
+  }
+  return true;
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,242 @@
+#include "slam/mapper.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "slam/mapper_state.hpp"
+#include "slam/optimizer.hpp"
+#include "slam/scan_matcher.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
+
+std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size());
+  for (const Eigen::Vector2d& p : points) {
+    double x = 0.0, y = 0.0;
+    T.Apply(p.x(), p.y(), &x, &y);
+    out.emplace_back(x, y);
+  }
+  return out;
+}
+
+// Information of the odometry fallback edge, in the edge's error frame.
+Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
+  const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * Norm(delta);
+  const double sth = c.odom_sigma_rad + c.odom_sigma_rad_per_rad * std::abs(delta.theta);
+  return Eigen::Vector3d(1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (sth * sth)).asDiagonal();
+}
+
+}  // namespace
+
+bool ParsePruningMode(const std::string& name, PruningMode* mode) {
+  if (name == "standard")
+    *mode = PruningMode::kNone;
+  else if (name == "pruned")
+    *mode = PruningMode::kChowLiu;
+  else if (name == "pruned-exact")
+    *mode = PruningMode::kExact;
+  else if (name == "pruned-naive")
+    *mode = PruningMode::kNaive;
+  else
+    return false;
+  return true;
+}
+
+std::string PruningModeName(PruningMode mode) {
+  switch (mode) {
+    case PruningMode::kNone:
+      return "standard";
+    case PruningMode::kChowLiu:
+      return "pruned";
+    case PruningMode::kExact:
+      return "pruned-exact";
+    case PruningMode::kNaive:
+      return "pruned-naive";
+  }
+  return "unknown";
+}
+
+MapperConfig DefaultMapperConfig() {
+  MapperConfig c;
+  c.optimizer.max_iterations = 10;
+  c.optimizer.relative_tolerance = 1e-5;
+  c.optimizer.robust_kernel = RobustKernel::kCauchy;
+  c.optimizer.robust_delta = 3.0;
+  c.loops.matcher.resolution_m = 0.05;
+  c.loops.matcher.sigma_m = 0.08;
+  return c;
+}
+
+Eigen::Matrix3d RotateIntoFrame(const Eigen::Matrix3d& m, double theta_rad) {
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+  const double c = std::cos(theta_rad), s = std::sin(theta_rad);
+  T.block<2, 2>(0, 0) << c, s, -s, c;  // R^T
+  return T * m * T.transpose();
+}
+
+Mapper::Mapper(const MapperConfig& config) : state_(std::make_unique<State>(config)) {}
+Mapper::~Mapper() = default;
+
+StepStats Mapper::AddObservation(const Observation& obs) {
+  const auto start = std::chrono::steady_clock::now();
+  State& s = *state_;
+  StepStats stats;
+  stats.scan_index = static_cast<int>(s.scans.size());
+  stats.stamp_s = obs.stamp_s;
+  if (s.have_last) {
+    const Pose2 delta = Between(s.nodes.at(s.last_node).T_odom_robot, obs.T_odom_robot);
+    if (Norm(delta) < s.config.keyframes.min_translation_m &&
+        std::abs(delta.theta) < s.config.keyframes.min_rotation_rad) {
+      s.AnchorScan(obs);
+      return stats;
+    }
+  }
+  s.AddSequentialNode(obs, &stats);
+  const NodeId current = s.last_node;
+  if (s.config.loops.enabled && s.graph.NumNodes() > 1) stats.loop_closed = s.TryCloseLoop(current);
+  if (s.config.pruning.mode != PruningMode::kNone) s.Prune(current);
+
+  stats.observation_index = s.observations++;
+  stats.nodes = s.graph.NumNodes();
+  stats.edges = s.graph.NumEdgesForGamma();
+  stats.gamma = s.graph.Gamma();
+  stats.graph_bytes = s.graph.Bytes();
+  stats.loop_closures_total = static_cast<int>(s.loops.size());
+  stats.nodes_removed_total = static_cast<int>(s.marginalizations.size());
+  stats.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (on_observation) on_observation(stats);
+  return stats;
+}
+
+void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) {
+  const IncrementalConfig& inc = config.incremental;
+  NodeData data;
+  data.scan = obs.scan;
+  data.points = ScanToPoints(obs.scan, inc.point_spacing_m);
+  data.T_odom_robot = obs.T_odom_robot;
+  data.scan_index = static_cast<int>(scans.size());
+  const NodeId id = next_id++;
+  graph.AddNode(id);
+  if (!have_last) {
+    values[id] = Pose2();
+  } else {
+    const Pose2& X_last = values.at(last_node);
+    const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
+    const Pose2 guess = X_last * delta;
+    std::vector<Eigen::Vector2d> reference;
+    const std::size_t n = recent.size();
+    const std::size_t first = n > static_cast<std::size_t>(inc.local_map_nodes)
+                                  ? n - static_cast<std::size_t>(inc.local_map_nodes)
+                                  : 0;
+    for (std::size_t i = first; i < n; ++i) {
+      const auto world = ToWorld(nodes.at(recent[i]).points, values.at(recent[i]));
+      reference.insert(reference.end(), world.begin(), world.end());
+    }
+    PoseEdge edge;
+    edge.from = last_node;
+    edge.to = id;
+    edge.kind = EdgeKind::kOdometry;
+    Pose2 X_new = guess;
+    edge.information = OdometryInformation(inc, delta);
+    if (reference.size() >= 10 && data.points.size() >= 10) {
+      const ReferenceGrid grid(reference, inc.matcher);
+      const MatchResult match = Match(grid, data.points, guess, inc.matcher);
+      if (match.ok) {
+        X_new = match.T_ref_cur;
+        edge.information = RotateIntoFrame(match.information, X_new.theta);
+        stats->incremental_match_ok = true;
+      }
+    }
+    edge.T_from_to = Between(X_last, X_new);
+    values[id] = X_new;
+    graph.AddEdge(edge);
+  }
+  data.T_world_map = values.at(id);
+  map.AddScan(data.scan, data.T_world_map);
+  nodes.emplace(id, std::move(data));
+  recent.push_back(id);
+
+  // Pending scans go to whichever of the previous and the new node is nearer by odometry.
+  for (std::size_t idx : pending) {
+    ScanAnchor& a = scans[idx];
+    if (a.anchor != last_node) continue;
+    const Pose2 from_new = Between(obs.T_odom_robot, a.T_odom_robot);
+    if (Norm(from_new) < Norm(a.T_anchor_scan)) {
+      Reanchor(idx, id);
+      scans[idx].T_anchor_scan = from_new;
+    }
+  }
+  pending.clear();
+  scans.push_back(ScanAnchor{obs.stamp_s, id, Pose2(), obs.T_odom_robot});
+  scans_of_node[id].push_back(scans.size() - 1);
+  last_node = id;
+  have_last = true;
+}
+
+void Mapper::State::AnchorScan(const Observation& obs) {
+  const Pose2 rel = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
+  scans.push_back(ScanAnchor{obs.stamp_s, last_node, rel, obs.T_odom_robot});
+  scans_of_node[last_node].push_back(scans.size() - 1);
+  pending.push_back(scans.size() - 1);
+}
+
+void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
+  auto& old_list = scans_of_node[scans[scan].anchor];
+  for (std::size_t i = 0; i < old_list.size(); ++i) {
+    if (old_list[i] == scan) {
+      old_list.erase(old_list.begin() + static_cast<std::ptrdiff_t>(i));
+      break;
+    }
+  }
+  scans[scan].anchor = anchor;
+  scans_of_node[anchor].push_back(scan);
+}
+
+void Mapper::State::OptimizeAndSyncMap() {
+  Optimize(graph, &values, config.optimizer);
+  closures_since_optimize = 0;
+  SyncMap();
+}
+
+void Mapper::State::SyncMap() {
+  for (auto& [id, data] : nodes) {
+    const Pose2& X = values.at(id);
+    const Pose2 d = Between(data.T_world_map, X);
+    if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
+      map.MoveScan(data.scan, data.T_world_map, X);
+      data.T_world_map = X;
+    }
+  }
+}
+
+void Mapper::Finish() {
+  if (state_->graph.NumNodes() > 1) state_->OptimizeAndSyncMap();
+}
+
+const PoseGraph& Mapper::graph() const { return state_->graph; }
+const Values& Mapper::values() const { return state_->values; }
+const GridMap& Mapper::map() const { return state_->map; }
+double Mapper::NodeStamp(NodeId id) const {
+  return state_->scans.at(static_cast<std::size_t>(state_->nodes.at(id).scan_index)).stamp_s;
+}
+const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return state_->loops; }
+const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
+  return state_->marginalizations;
+}
+int Mapper::observations() const { return state_->observations; }
+
+std::vector<ScanPose> Mapper::Trajectory() const {
+  std::vector<ScanPose> out;
+  out.reserve(state_->scans.size());
+  for (const ScanAnchor& a : state_->scans) {
+    out.push_back({a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan});
+  }
+  return out;
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,98 @@
+// The mapper facade: consumes the observation stream (simulated or from a log), builds the
+// pose graph (incremental scan matching, loop closing), optimizes it, keeps the counting grid
+// map in step with the graph, and, in the pruned modes, removes the nodes whose scans carry no
+// information (seed §5.1) by marginalizing them (seed §5.3-5.5).
+//
+// Per observation (AddObservation):
+//  1. keyframe test on odometry; a scan that is not a keyframe is only anchored to a node;
+//  2. incremental match against the local map of recent node scans -> sequential edge;
+//  3. loop closing: Dijkstra projection, candidate gate, wide-window match, checks;
+//  4. optimization after loop closures, then the map follows the graph (MoveScan);
+//  5. pruning: information gains near the current node, remove while <= threshold.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "sensor/observation.hpp"
+#include "slam/grid_map.hpp"
+#include "slam/mapper_config.hpp"
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::slam {
+
+/// What one call of AddObservation did. Reported through the hook and the return value.
+struct StepStats {
+  int scan_index = 0;          ///< index of the scan in the stream, 0-based
+  int observation_index = -1;  ///< index of the observation (keyframe), -1 if not one
+  double stamp_s = 0.0;
+  double time_ms = 0.0;  ///< wall time spent in AddObservation
+  std::size_t nodes = 0;
+  std::size_t edges = 0;  ///< as for gamma (cliques count their pairs)
+  double gamma = 0.0;
+  std::size_t graph_bytes = 0;
+  int loop_closures_total = 0;
+  int nodes_removed_total = 0;
+  bool incremental_match_ok = false;
+  bool loop_closed = false;
+  bool optimized = false;
+};
+
+/// An accepted loop closure: current node, older node, and the measured T_old_cur.
+struct LoopClosureRecord {
+  NodeId current = 0;
+  NodeId old = 0;
+  double stamp_current_s = 0.0;
+  double stamp_old_s = 0.0;
+  Pose2 T_old_current;
+};
+
+/// One marginalization: which node, its clique size and the KL divergence (nats).
+struct MarginalizationRecord {
+  NodeId node = 0;
+  std::size_t clique_size = 0;
+  double kl_divergence = 0.0;
+  double information_gain_bits = 0.0;
+};
+
+/// A pose for one scan of the stream.
+struct ScanPose {
+  double stamp_s = 0.0;
+  Pose2 T_world_robot;
+};
+
+class Mapper {
+ public:
+  explicit Mapper(const MapperConfig& config);
+  ~Mapper();
+  Mapper(const Mapper&) = delete;
+  Mapper& operator=(const Mapper&) = delete;
+
+  StepStats AddObservation(const Observation& observation);
+
+  /// Final optimization and map refresh (call once at the end of the stream).
+  void Finish();
+
+  const PoseGraph& graph() const;
+  const Values& values() const;
+  const GridMap& map() const;
+  /// Stamp of the scan each node holds.
+  double NodeStamp(NodeId id) const;
+  /// A pose for every scan seen so far, in stream order (removed nodes' scans included,
+  /// held relative to a surviving node).
+  std::vector<ScanPose> Trajectory() const;
+  const std::vector<LoopClosureRecord>& loop_closures() const;
+  const std::vector<MarginalizationRecord>& marginalizations() const;
+  int observations() const;
+
+  /// Called after every AddObservation that took an observation (keyframe).
+  std::function<void(const StepStats&)> on_observation;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace lifelong::slam

@@ -1,0 +1,82 @@
+// Configuration of the mapper facade: one struct with defaults, handed down (KISS-ICP style).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "slam/grid_map.hpp"
+#include "slam/optimizer.hpp"
+#include "slam/scan_matcher.hpp"
+
+namespace lifelong::slam {
+
+/// How (and whether) the mapper removes nodes. kNone is the standard approach.
+enum class PruningMode : std::uint8_t {
+  kNone,     ///< `standard`: never removes a node
+  kChowLiu,  ///< `pruned`: information-gain removal + Chow-Liu tree marginalization
+  kExact,    ///< `pruned-exact`: the same removal, exact marginalization (dense cliques)
+  kNaive,    ///< `pruned-naive`: delete and reconnect by composing constraints
+};
+
+/// Parses "standard", "pruned", "pruned-exact", "pruned-naive"; false when unknown.
+bool ParsePruningMode(const std::string& name, PruningMode* mode);
+std::string PruningModeName(PruningMode mode);
+
+struct KeyframeConfig {
+  double min_translation_m = 0.5;  ///< an observation is taken after this much motion...
+  double min_rotation_rad = 0.35;  ///< ...or this much turning (odometry)
+};
+
+struct IncrementalConfig {
+  int local_map_nodes = 8;           ///< recent nodes whose scans form the local map
+  double point_spacing_m = 0.05;     ///< voxel thinning of matched points
+  MatcherConfig matcher;             ///< window around the odometry guess
+  double odom_sigma_xy_m = 0.05;     ///< fallback edge when matching fails: base sigma
+  double odom_sigma_xy_per_m = 0.1;  ///< ...plus this much per metre travelled
+  double odom_sigma_rad = 0.02;      ///< ...heading base sigma
+  double odom_sigma_rad_per_rad = 0.1;
+};
+
+struct LoopClosingConfig {
+  bool enabled = true;
+  double min_path_separation_m = 6.0;  ///< nodes closer along the graph are not candidates
+  double overlap_radius_m = 1.5;       ///< sensor overlap added to the position uncertainty
+  double gate_chi2 = 5.99;             ///< 95 % gate (2 dof) of the candidate test
+  double max_position_sigma_m = 5.0;   ///< Dijkstra projection stops beyond this
+  double min_window_m = 0.3;           ///< search window: 3 sigma, clamped to [min, max]
+  double max_window_m = 2.0;
+  double min_window_rad = 0.15;
+  double max_window_rad = 0.5;
+  int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
+  double min_score = 0.6;            ///< a good match...
+  double max_ambiguity = 0.85;       ///< ...and an unambiguous one
+  double consistency_chi2 = 16.27;   ///< 99.9 % gate (3 dof) of the correction
+  int min_reference_points = 60;
+  MatcherConfig matcher;            ///< windows are set per attempt
+  double optimize_edge_chi2 = 1.0;  ///< optimize at once when the new edge's chi2 exceeds
+  int optimize_every = 10;          ///< ...and at least every this many closures
+};
+
+struct PruningConfig {
+  PruningMode mode = PruningMode::kNone;
+  double gain_threshold_bits = 0.0;  ///< remove while the lowest gain is <= this (seed §5.1)
+  double radius_m = 6.0;             ///< neighbourhood (Dijkstra expansion) considered
+  int keep_recent_nodes = 3;         ///< the newest nodes are never removed
+  int node_budget = 0;               ///< > 0: remove the lowest gain past this many nodes
+};
+
+struct MapperConfig {
+  KeyframeConfig keyframes;
+  IncrementalConfig incremental;
+  LoopClosingConfig loops;
+  PruningConfig pruning;
+  GridMapConfig grid;
+  OptimizerParams optimizer;
+  double map_move_epsilon_m = 0.01;     ///< re-render a scan when its node moved this much...
+  double map_move_epsilon_rad = 0.005;  ///< ...or turned this much
+};
+
+/// Defaults for the mapper: robust Cauchy kernel on loop edges, a few LM iterations.
+MapperConfig DefaultMapperConfig();
+
+}  // namespace lifelong::slam

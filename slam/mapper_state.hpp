@@ -1,0 +1,66 @@
+// Internal state of the Mapper, shared by mapper.cpp, loop_closing.cpp and pruning.cpp.
+// Not part of the public API.
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slam/grid_map.hpp"
+#include "slam/mapper.hpp"
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::slam {
+
+struct NodeData {
+  LaserScan scan;
+  std::vector<Eigen::Vector2d> points;  ///< thinned return end points, robot frame
+  Pose2 T_world_map;                    ///< pose at which the scan is rendered in the map
+  Pose2 T_odom_robot;                   ///< odometry at the scan
+  int scan_index = 0;
+};
+
+/// Where a scan of the stream is held: relative to an anchor node.
+struct ScanAnchor {
+  double stamp_s = 0.0;
+  NodeId anchor = 0;
+  Pose2 T_anchor_scan;
+  Pose2 T_odom_robot;
+};
+
+struct Mapper::State {
+  explicit State(const MapperConfig& c) : config(c), map(c.grid) {}
+
+  MapperConfig config;
+  PoseGraph graph;
+  Values values;
+  GridMap map;
+  std::map<NodeId, NodeData> nodes;
+  std::vector<NodeId> recent;  ///< node ids in insertion order (surviving ones)
+  std::vector<ScanAnchor> scans;
+  std::map<NodeId, std::vector<std::size_t>> scans_of_node;
+  std::vector<std::size_t> pending;  ///< non-keyframe scans since the last node
+  std::vector<LoopClosureRecord> loops;
+  std::vector<MarginalizationRecord> marginalizations;
+  NodeId next_id = 0;
+  int observations = 0;
+  int closures_since_optimize = 0;
+  bool have_last = false;
+  NodeId last_node = 0;
+
+  void AddSequentialNode(const Observation& obs, StepStats* stats);
+  void AnchorScan(const Observation& obs);
+  void Reanchor(std::size_t scan, NodeId anchor);
+  bool TryCloseLoop(NodeId current);
+  void OptimizeAndSyncMap();
+  void SyncMap();
+  void Prune(NodeId current);
+  void RemoveNode(NodeId id, double gain_bits);
+};
+
+/// Rotates a world-frame (x, y, theta) covariance or information into the frame of a pose
+/// with heading theta_rad: R^T M R on the translation block.
+Eigen::Matrix3d RotateIntoFrame(const Eigen::Matrix3d& m, double theta_rad);
+
+}  // namespace lifelong::slam

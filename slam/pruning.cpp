@@ -1,0 +1,95 @@
+// Information-theoretic node removal (seed §5.1): among the nodes near the current one
+// (Dijkstra expansion), remove the one whose scan has the lowest information gain
+// I(z_i) = H(m without z_i) - H(m) while it is <= the threshold (or while the graph is over
+// its node budget), updating the gains after each removal. Removal marginalizes the node
+// (seed §5.3-5.5) with the configured method.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "slam/dijkstra.hpp"
+#include "slam/mapper_state.hpp"
+#include "slam/marginalization.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+MarginalizationMethod MethodOf(PruningMode mode) {
+  switch (mode) {
+    case PruningMode::kExact:
+      return MarginalizationMethod::kExact;
+    case PruningMode::kNaive:
+      return MarginalizationMethod::kNaive;
+    default:
+      return MarginalizationMethod::kChowLiu;
+  }
+}
+
+}  // namespace
+
+void Mapper::State::Prune(NodeId current) {
+  const PruningConfig& pc = config.pruning;
+  const NodeId anchor = graph.NodeIds().front();
+  std::set<NodeId> protected_ids{current, anchor};
+  for (int i = 0; i < pc.keep_recent_nodes && i < static_cast<int>(recent.size()); ++i) {
+    protected_ids.insert(recent[recent.size() - 1 - static_cast<std::size_t>(i)]);
+  }
+  const Pose2& X_cur = values.at(current);
+  std::map<NodeId, double> gains;
+  for (const auto& [id, length] : ExpandByPathLength(graph, values, current, 3.0 * pc.radius_m)) {
+    const Pose2& X = values.at(id);
+    if (protected_ids.count(id) || std::hypot(X.x - X_cur.x, X.y - X_cur.y) > pc.radius_m) {
+      continue;
+    }
+    gains[id] = 0.0;
+  }
+  for (auto& [id, gain] : gains)
+    gain = map.InformationGain(nodes.at(id).scan, nodes.at(id).T_world_map);
+
+  while (!gains.empty()) {
+    auto lowest = std::min_element(gains.begin(), gains.end(), [](const auto& a, const auto& b) {
+      return a.second < b.second || (a.second == b.second && a.first < b.first);
+    });
+    const bool over_budget =
+        pc.node_budget > 0 && static_cast<int>(graph.NumNodes()) > pc.node_budget;
+    if (lowest->second > pc.gain_threshold_bits && !over_budget) break;
+    const NodeId victim = lowest->first;
+    const double gain = lowest->second;
+    gains.erase(lowest);
+    RemoveNode(victim, gain);
+    for (auto& [id, g] : gains)
+      g = map.InformationGain(nodes.at(id).scan, nodes.at(id).T_world_map);
+  }
+}
+
+void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
+  const MarginalizationResult result =
+      Marginalize(graph, values, id, MethodOf(config.pruning.mode));
+  // The removed node's scans are held relative to its nearest surviving neighbour.
+  const Pose2& X = values.at(id);
+  NodeId keeper = id;
+  double best = std::numeric_limits<double>::infinity();
+  for (NodeId n : graph.Neighbours(id)) {
+    const double d = std::hypot(values.at(n).x - X.x, values.at(n).y - X.y);
+    if (d < best) {
+      best = d;
+      keeper = n;
+    }
+  }
+  const Pose2 T_keeper_node = Between(values.at(keeper), X);
+  const std::vector<std::size_t> held = scans_of_node[id];
+  for (std::size_t scan : held) {
+    scans[scan].T_anchor_scan = T_keeper_node * scans[scan].T_anchor_scan;
+    Reanchor(scan, keeper);
+  }
+  scans_of_node.erase(id);
+  map.RemoveScan(nodes.at(id).scan, nodes.at(id).T_world_map);
+  ApplyMarginalization(&graph, id, result);
+  marginalizations.push_back({id, result.clique_size, result.kl_divergence, gain_bits});
+  nodes.erase(id);
+  values.erase(id);
+  recent.erase(std::find(recent.begin(), recent.end(), id));
+  if (last_node == id) last_node = recent.back();
+}
+
+}  // namespace lifelong::slam

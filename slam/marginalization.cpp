@@ -217,20 +217,11 @@ double GaugeFixedKl(const MatrixXd& lambda_p, const MatrixXd& lambda_q) {
 
 namespace {
 
-/// Step 4: Chow-Liu tree edges over `nodes` (node 0 = root of the orientation).
-std::vector<PoseEdge> ChowLiuEdges(const std::vector<NodeId>& nodes, const Values& values,
-                                   const MatrixXd& lambda_N, bool* regularized) {
-  const MatrixXd sigma = AnchoredCovariance(lambda_N, regularized);
-  std::vector<WeightedPair> pairs;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    for (std::size_t j = i + 1; j < nodes.size(); ++j) {
-      const double w = PairWeight(RelativeCovariance(sigma, nodes, values, i, j));
-      pairs.push_back({static_cast<int>(i), static_cast<int>(j), w});
-    }
-  }
-  const int m = static_cast<int>(nodes.size());
+/// Step 4 for any tree: edges p->c with the exact conditionals of the anchored `sigma`.
+std::vector<PoseEdge> EdgesFromSigma(const std::vector<NodeId>& nodes, const Values& values,
+                                     const MatrixXd& sigma, const std::vector<WeightedPair>& tree) {
   std::vector<PoseEdge> edges;
-  for (const TreeEdge& t : OrientTree(m, MaximumSpanningTree(m, pairs), 0)) {
+  for (const TreeEdge& t : OrientTree(static_cast<int>(nodes.size()), tree, 0)) {
     const auto p = static_cast<std::size_t>(t.parent), c = static_cast<std::size_t>(t.child);
     const Pose2& Xp = At(values, nodes[p]);
     const Pose2& Xc = At(values, nodes[c]);
@@ -246,6 +237,32 @@ std::vector<PoseEdge> ChowLiuEdges(const std::vector<NodeId>& nodes, const Value
   }
   return edges;
 }
+
+/// Steps 3-4: Chow-Liu tree edges over `nodes` (oriented away from nodes[0]).
+std::vector<PoseEdge> ChowLiuEdges(const std::vector<NodeId>& nodes, const Values& values,
+                                   const MatrixXd& lambda_N, bool* regularized) {
+  const MatrixXd sigma = AnchoredCovariance(lambda_N, regularized);
+  std::vector<WeightedPair> pairs;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    for (std::size_t j = i + 1; j < nodes.size(); ++j) {
+      const double w = PairWeight(RelativeCovariance(sigma, nodes, values, i, j));
+      pairs.push_back({static_cast<int>(i), static_cast<int>(j), w});
+    }
+  }
+  const int m = static_cast<int>(nodes.size());
+  return EdgesFromSigma(nodes, values, sigma, MaximumSpanningTree(m, pairs));
+}
+
+}  // namespace
+
+std::vector<PoseEdge> ConditionalTreeEdges(const std::vector<NodeId>& nodes, const Values& values,
+                                           const MatrixXd& lambda_N,
+                                           const std::vector<WeightedPair>& tree) {
+  bool regularized = false;
+  return EdgesFromSigma(nodes, values, AnchoredCovariance(lambda_N, &regularized), tree);
+}
+
+namespace {
 
 /// A constraint k -> n as (Z_kn, Sigma_kn), Sigma in the right-perturbation error of Z.
 struct Spoke {

@@ -32,6 +32,7 @@
 
 #include <Eigen/Core>
 
+#include "slam/chow_liu.hpp"
 #include "slam/pose_graph.hpp"
 
 namespace lifelong::slam {
@@ -86,6 +87,12 @@ CliqueFactor ToCliqueFactor(const std::vector<NodeId>& nodes, const Values& valu
 /// Gauge-free pairwise weights w(i,j) (see the header comment), m x m, zero diagonal.
 Eigen::MatrixXd CliquePairWeights(const std::vector<NodeId>& nodes, const Values& values,
                                   const Eigen::MatrixXd& lambda_N);
+
+/// Step 4 for a given spanning tree (pairs index into `nodes`): one kMarginal edge per
+/// pair, oriented away from nodes[0], carrying the exact conditional p(x_c | x_p).
+std::vector<PoseEdge> ConditionalTreeEdges(const std::vector<NodeId>& nodes, const Values& values,
+                                           const Eigen::MatrixXd& lambda_N,
+                                           const std::vector<WeightedPair>& tree);
 
 /// Step 5: KL(p || q) of two information matrices over the same m nodes, each with the
 /// 3-dim gauge null space, in the gauge where block 0 is held fixed. +inf if q is singular.

@@ -244,6 +244,61 @@ TEST(Marginalize, KlIsPositiveForDenseCliquesAndChowLiuBeatsNaive) {
   }
 }
 
+TEST(Marginalize, RankDeficientSpokeGivesFiniteResults) {
+  // Node 3 is tied to k only in x: the marginal is singular in 3's (y, theta). The
+  // documented regularization kicks in; nothing may come out NaN.
+  std::mt19937 rng(2);
+  const Values v = RandomValues({0, 1, 2, 3}, &rng);
+  PoseGraph g = Star(v, {1, 2}, {}, &rng);
+  g.AddEdge(ConsistentEdge(0, 3, v, Eigen::Vector3d(1.0, 0.0, 0.0).asDiagonal()));
+  for (auto method : {MarginalizationMethod::kExact, MarginalizationMethod::kChowLiu,
+                      MarginalizationMethod::kNaive}) {
+    const MarginalizationResult r = Marginalize(g, v, 0, method);
+    EXPECT_FALSE(std::isnan(r.kl_divergence)) << static_cast<int>(method);
+    EXPECT_GE(r.kl_divergence, 0.0);
+    for (const PoseEdge& e : r.edges) EXPECT_TRUE(e.information.allFinite());
+    if (r.clique) {
+      EXPECT_TRUE(r.clique->information.allFinite());
+    }
+  }
+  EXPECT_TRUE(Marginalize(g, v, 0, MarginalizationMethod::kChowLiu).regularized);
+}
+
+TEST(Marginalize, ChowLiuTreeHasTheSmallestKlOfAllSpanningTrees) {
+  // Chow & Liu: with exact conditionals on every edge, the maximum-MI tree minimizes
+  // KL(p || q). Enumerate all 16 spanning trees of 4 neighbours (subsets of 3 of the 6
+  // pairs that join all nodes) and compare.
+  std::mt19937 rng(77);
+  const std::vector<NodeId> nodes{1, 2, 3, 4};
+  for (int trial = 0; trial < 5; ++trial) {
+    const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
+    const PoseGraph g = Star(v, nodes, {}, &rng);
+    const MatrixXd lambda = SchurComplementFirstBlock(LinearizeAround(g, v, 0).H);
+    std::vector<WeightedPair> all;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i + 1; j < 4; ++j) all.push_back({i, j, 0.0});
+    }
+    double best = 1e300;
+    int trees = 0;
+    for (int mask = 0; mask < 64; ++mask) {
+      std::vector<WeightedPair> tree;
+      for (int e = 0; e < 6; ++e) {
+        if (mask & (1 << e)) tree.push_back(all[static_cast<std::size_t>(e)]);
+      }
+      if (tree.size() != 3u) continue;
+      const std::vector<PoseEdge> edges = ConditionalTreeEdges(nodes, v, lambda, tree);
+      if (edges.size() != 3u) continue;  // not spanning (OrientTree missed a node)
+      ++trees;
+      MatrixXd q = MatrixXd::Zero(12, 12);
+      for (const PoseEdge& e : edges) AddEdgeHessian(e, v, nodes, &q);
+      best = std::min(best, GaugeFixedKl(lambda, q));
+    }
+    EXPECT_EQ(trees, 16);  // Cayley: 4^(4-2)
+    const MarginalizationResult r = Marginalize(g, v, 0, MarginalizationMethod::kChowLiu);
+    EXPECT_NEAR(r.kl_divergence, best, 1e-9) << "trial " << trial;
+  }
+}
+
 TEST(CliquePairWeights, EqualWeakPriorMutualInformationUpToOneConstant) {
   // Seed eq. (5.35) under a weak prior eps*I differs from the gauge-free weight by the
   // same constant for every pair (marginalization.hpp), so both give the same tree.

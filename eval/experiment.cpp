@@ -1,5 +1,6 @@
 #include "eval/experiment.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -81,6 +82,8 @@ ModeRun RunMode(const std::vector<Observation>& stream, const std::optional<Grou
     row.rss_mb = CurrentRssMb().value_or(0.0);
     row.graph_bytes = s.graph_bytes;
     row.loop_closures = s.loop_closures_total;
+    row.optimize_ms = s.optimize_ms;
+    row.nodes_removed = s.nodes_removed_total;
     run.timeline.push_back(row);
     if (config.first_pass_s && s.stamp_s < *config.first_pass_s) first_pass_end = row.obs + 1;
   };
@@ -180,8 +183,10 @@ ModeRun RunMode(const std::vector<Observation>& stream, const std::optional<Grou
   }
   WriteTimelineCsv((dir / "timeline.csv").string(), run.timeline);
   run.map_png = name + "/map.png";
+  DrawConfig draw;
+  draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
   WriteMapPng((dir / "map.png").string(), grid, MakeGraphOverlay(mapper.graph(), mapper.values()),
-              overlays);
+              overlays, draw);
   return run;
 }
 

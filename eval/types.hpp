@@ -30,6 +30,8 @@ struct TimelineRow {
   double rss_mb = 0.0;          ///< MB, resident set size of the process
   std::size_t graph_bytes = 0;  ///< bytes held by the graph
   int loop_closures = 0;        ///< loop closures accepted so far (cumulative)
+  double optimize_ms = 0.0;     ///< ms of time_ms spent optimizing and updating the map
+  int nodes_removed = 0;        ///< nodes removed so far (cumulative)
 };
 
 }  // namespace lifelong::eval

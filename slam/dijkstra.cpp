@@ -1,7 +1,9 @@
 #include "slam/dijkstra.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <queue>
 #include <utility>
 #include <vector>
@@ -12,7 +14,7 @@ namespace lifelong::slam {
 namespace {
 
 struct Link {
-  NodeId to;
+  int to;                      // dense index of the other node
   Eigen::Matrix3d covariance;  // of the relative pose, in its own error coordinates
 };
 
@@ -22,33 +24,51 @@ Eigen::Matrix3d SafeInverse(const Eigen::Matrix3d& information) {
   return sym.inverse();
 }
 
-// Adjacency with one covariance per directed link. A clique factor contributes a link from
-// its root to each member (the block of the inverse information) and between members (sum).
-std::map<NodeId, std::vector<Link>> BuildLinks(const PoseGraph& graph) {
-  std::map<NodeId, std::vector<Link>> links;
+// Dense node indexing (ascending ids, the order of Values) and one covariance per directed
+// link. A clique factor contributes a link from its root to each member (the block of the
+// inverse information) and between members (the sum of their blocks).
+struct DenseGraph {
+  std::vector<NodeId> ids;
+  std::vector<const Pose2*> poses;
+  std::vector<std::vector<Link>> links;
+  int IndexOf(NodeId id) const {
+    return static_cast<int>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
+  }
+};
+
+DenseGraph BuildDense(const PoseGraph& graph, const Values& values) {
+  DenseGraph g;
+  g.ids = graph.NodeIds();
+  g.poses.reserve(g.ids.size());
+  for (NodeId id : g.ids) g.poses.push_back(&values.at(id));
+  g.links.resize(g.ids.size());
   for (const PoseEdge& e : graph.edges()) {
     const Eigen::Matrix3d c = SafeInverse(e.information);
-    links[e.from].push_back({e.to, c});
-    links[e.to].push_back({e.from, c});
+    const int a = g.IndexOf(e.from), b = g.IndexOf(e.to);
+    g.links[static_cast<std::size_t>(a)].push_back({b, c});
+    g.links[static_cast<std::size_t>(b)].push_back({a, c});
   }
   for (const CliqueFactor& f : graph.cliques()) {
+    const Eigen::Index n = f.information.rows();
     const Eigen::MatrixXd sigma =
-        (f.information +
-         1e-9 * Eigen::MatrixXd::Identity(f.information.rows(), f.information.cols()))
-            .inverse();
+        (f.information + 1e-9 * Eigen::MatrixXd::Identity(n, n)).inverse();
     const std::size_t k = f.nodes.size() - 1;
+    std::vector<int> idx;
+    for (NodeId id : f.nodes) idx.push_back(g.IndexOf(id));
     for (std::size_t j = 0; j < k; ++j) {
-      const Eigen::Matrix3d c = sigma.block<3, 3>(3 * j, 3 * j);  // block j at row 3j
-      links[f.nodes[0]].push_back({f.nodes[j + 1], c});
-      links[f.nodes[j + 1]].push_back({f.nodes[0], c});
+      const Eigen::Index r = static_cast<Eigen::Index>(3 * j);  // block j at row 3j
+      const Eigen::Matrix3d c = sigma.block<3, 3>(r, r);
+      g.links[static_cast<std::size_t>(idx[0])].push_back({idx[j + 1], c});
+      g.links[static_cast<std::size_t>(idx[j + 1])].push_back({idx[0], c});
       for (std::size_t i = 0; i < j; ++i) {
-        const Eigen::Matrix3d cij = c + sigma.block<3, 3>(3 * i, 3 * i);
-        links[f.nodes[i + 1]].push_back({f.nodes[j + 1], cij});
-        links[f.nodes[j + 1]].push_back({f.nodes[i + 1], cij});
+        const Eigen::Index q = static_cast<Eigen::Index>(3 * i);
+        const Eigen::Matrix3d cij = c + sigma.block<3, 3>(q, q);
+        g.links[static_cast<std::size_t>(idx[i + 1])].push_back({idx[j + 1], cij});
+        g.links[static_cast<std::size_t>(idx[j + 1])].push_back({idx[i + 1], cij});
       }
     }
   }
-  return links;
+  return g;
 }
 
 double Distance(const Pose2& a, const Pose2& b) { return std::hypot(b.x - a.x, b.y - a.y); }
@@ -57,49 +77,53 @@ double Distance(const Pose2& a, const Pose2& b) { return std::hypot(b.x - a.x, b
 
 std::map<NodeId, ProjectedNode> ProjectCovariances(const PoseGraph& graph, const Values& values,
                                                    NodeId source, const ProjectionConfig& config) {
-  const auto links = BuildLinks(graph);
-  std::map<NodeId, ProjectedNode> done;
-  using Entry = std::pair<double, NodeId>;
+  const DenseGraph g = BuildDense(graph, values);
+  const std::size_t n = g.ids.size();
+  std::vector<ProjectedNode> best(n);
+  std::vector<double> cost(n, std::numeric_limits<double>::infinity());
+  std::vector<char> done(n, 0);
+  using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  std::map<NodeId, ProjectedNode> best;
-  best[source] = ProjectedNode{Eigen::Matrix3d::Zero(), 0.0, 0};
-  queue.push({0.0, source});
+  const int s = g.IndexOf(source);
+  best[static_cast<std::size_t>(s)] = ProjectedNode{Eigen::Matrix3d::Zero(), 0.0, 0};
+  cost[static_cast<std::size_t>(s)] = 0.0;
+  queue.push({0.0, s});
   const double max_trace = 2.0 * config.max_position_sigma_m * config.max_position_sigma_m;
+  std::map<NodeId, ProjectedNode> out;
   while (!queue.empty()) {
-    const auto [cost, u] = queue.top();
+    const auto [c, u] = queue.top();
     queue.pop();
-    if (done.count(u)) continue;
-    const ProjectedNode node_u = best.at(u);
-    done[u] = node_u;
-    auto it = links.find(u);
-    if (it == links.end()) continue;
-    const Pose2& Xu = values.at(u);
-    for (const Link& link : it->second) {
-      if (done.count(link.to)) continue;
-      const Pose2& Xv = values.at(link.to);
+    const auto uu = static_cast<std::size_t>(u);
+    if (done[uu]) continue;
+    done[uu] = 1;
+    const ProjectedNode& node_u = best[uu];
+    out.emplace(g.ids[uu], node_u);
+    const Pose2& Xu = *g.poses[uu];
+    const double cu = std::cos(Xu.theta), su = std::sin(Xu.theta);
+    for (const Link& link : g.links[uu]) {
+      const auto v = static_cast<std::size_t>(link.to);
+      if (done[v]) continue;
+      const Pose2& Xv = *g.poses[v];
       const Pose2 Z = Between(Xu, Xv);
-      const double cu = std::cos(Xu.theta), su = std::sin(Xu.theta);
       Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
       A(0, 2) = -su * Z.x - cu * Z.y;
       A(1, 2) = cu * Z.x - su * Z.y;
-      const double cw = std::cos(Xu.theta + Z.theta), sw = std::sin(Xu.theta + Z.theta);
+      const double cw = std::cos(Xv.theta), sw = std::sin(Xv.theta);
       Eigen::Matrix3d B = Eigen::Matrix3d::Identity();  // error frame = relative frame
       B.block<2, 2>(0, 0) << cw, -sw, sw, cw;
-      ProjectedNode next;
-      next.covariance = A * node_u.covariance * A.transpose() + B * link.covariance * B.transpose();
-      next.path_length_m = node_u.path_length_m + Distance(Xu, Xv);
-      next.hops = node_u.hops + 1;
-      const double next_cost = next.covariance(0, 0) + next.covariance(1, 1);
-      if (next_cost > max_trace || next.path_length_m > config.max_path_length_m) continue;
-      auto found = best.find(link.to);
-      if (found == best.end() ||
-          next_cost < found->second.covariance(0, 0) + found->second.covariance(1, 1)) {
-        best[link.to] = next;
+      const Eigen::Matrix3d cov =
+          A * node_u.covariance * A.transpose() + B * link.covariance * B.transpose();
+      const double next_cost = cov(0, 0) + cov(1, 1);
+      const double length = node_u.path_length_m + Distance(Xu, Xv);
+      if (next_cost > max_trace || length > config.max_path_length_m) continue;
+      if (next_cost < cost[v]) {
+        cost[v] = next_cost;
+        best[v] = ProjectedNode{cov, length, node_u.hops + 1};
         queue.push({next_cost, link.to});
       }
     }
   }
-  return done;
+  return out;
 }
 
 std::map<NodeId, double> ExpandByPathLength(const PoseGraph& graph, const Values& values,

@@ -95,11 +95,13 @@ StepStats Mapper::AddObservation(const Observation& obs) {
       return stats;
     }
   }
+  s.step = &stats;
   s.AddSequentialNode(obs, &stats);
   const NodeId current = s.last_node;
   if (s.config.loops.enabled && s.graph.NumNodes() > 1) stats.loop_closed = s.TryCloseLoop(current);
   if (s.config.pruning.mode != PruningMode::kNone) s.Prune(current);
 
+  s.step = nullptr;
   stats.observation_index = s.observations++;
   stats.nodes = s.graph.NumNodes();
   stats.edges = s.graph.NumEdgesForGamma();
@@ -198,9 +200,16 @@ void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
 }
 
 void Mapper::State::OptimizeAndSyncMap() {
-  Optimize(graph, &values, config.optimizer);
+  const auto start = std::chrono::steady_clock::now();
+  const OptimizerSummary summary = Optimize(graph, &values, config.optimizer);
   closures_since_optimize = 0;
   SyncMap();
+  if (step) {
+    step->optimized = true;
+    step->optimizer_iterations += summary.iterations;
+    step->optimize_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
 }
 
 void Mapper::State::SyncMap() {
@@ -208,10 +217,22 @@ void Mapper::State::SyncMap() {
     const Pose2& X = values.at(id);
     const Pose2 d = Between(data.T_world_map, X);
     if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
-      map.MoveScan(data.scan, data.T_world_map, X);
+      if (data.touched.empty()) {
+        map.MoveScan(data.scan, data.T_world_map, X);
+      } else {
+        map.Remove(data.touched);
+        data.touched = map.TouchedCells(data.scan, X);
+        map.Add(data.touched);
+      }
       data.T_world_map = X;
     }
   }
+}
+
+const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
+  NodeData& data = nodes.at(id);
+  if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
+  return data.touched;
 }
 
 void Mapper::Finish() {

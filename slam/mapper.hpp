@@ -38,6 +38,8 @@ struct StepStats {
   bool incremental_match_ok = false;
   bool loop_closed = false;
   bool optimized = false;
+  double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update
+  int optimizer_iterations = 0;
 };
 
 /// An accepted loop closure: current node, older node, and the measured T_old_cur.

@@ -19,6 +19,7 @@ struct NodeData {
   Pose2 T_world_map;                    ///< pose at which the scan is rendered in the map
   Pose2 T_odom_robot;                   ///< odometry at the scan
   int scan_index = 0;
+  std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
 };
 
 /// Where a scan of the stream is held: relative to an anchor node.
@@ -46,6 +47,7 @@ struct Mapper::State {
   NodeId next_id = 0;
   int observations = 0;
   int closures_since_optimize = 0;
+  StepStats* step = nullptr;  ///< stats of the observation being processed
   bool have_last = false;
   NodeId last_node = 0;
 
@@ -55,6 +57,9 @@ struct Mapper::State {
   bool TryCloseLoop(NodeId current);
   void OptimizeAndSyncMap();
   void SyncMap();
+  /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.
+  const std::vector<CellUpdate>& Touched(NodeId id);
+  double Gain(NodeId id) { return map.InformationGain(Touched(id)); }
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
 };

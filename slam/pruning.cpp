@@ -43,8 +43,7 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  for (auto& [id, gain] : gains)
-    gain = map.InformationGain(nodes.at(id).scan, nodes.at(id).T_world_map);
+  for (auto& [id, gain] : gains) gain = Gain(id);
 
   while (!gains.empty()) {
     auto lowest = std::min_element(gains.begin(), gains.end(), [](const auto& a, const auto& b) {
@@ -57,8 +56,7 @@ void Mapper::State::Prune(NodeId current) {
     const double gain = lowest->second;
     gains.erase(lowest);
     RemoveNode(victim, gain);
-    for (auto& [id, g] : gains)
-      g = map.InformationGain(nodes.at(id).scan, nodes.at(id).T_world_map);
+    for (auto& [id, g] : gains) g = Gain(id);
   }
 }
 
@@ -83,7 +81,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
     Reanchor(scan, keeper);
   }
   scans_of_node.erase(id);
-  map.RemoveScan(nodes.at(id).scan, nodes.at(id).T_world_map);
+  map.Remove(Touched(id));
   ApplyMarginalization(&graph, id, result);
   marginalizations.push_back({id, result.clique_size, result.kl_divergence, gain_bits});
   nodes.erase(id);

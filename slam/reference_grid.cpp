@@ -87,15 +87,28 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
                             0.0f));
   std::vector<float>& fine = levels_[0];
   const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
+  // The Gaussian is separable: exp(-(dx^2 + dy^2) / 2s^2) = gx(dx) * gy(dy), so each point
+  // costs 2 (2k + 1) exponentials instead of (2k + 1)^2.
+  const std::size_t span = static_cast<std::size_t>(2 * kernel + 1);
+  std::vector<double> gx(span), gy(span), dx2(span), dy2(span);
   for (const Eigen::Vector2d& p : points) {
     const Eigen::Vector2i c = CellOf(p);
-    for (int y = c.y() - kernel; y <= c.y() + kernel; ++y) {
-      for (int x = c.x() - kernel; x <= c.x() + kernel; ++x) {
-        const Eigen::Vector2d centre = origin_m_ + Eigen::Vector2d(x + 0.5, y + 0.5) * r;
-        const double d2 = (centre - p).squaredNorm();
-        if (d2 > max_d2) continue;
-        float& v = fine[Index(x, y)];
-        v = std::max(v, static_cast<float>(std::exp(-d2 * inv_2s2)));
+    for (int i = -kernel; i <= kernel; ++i) {
+      const auto k = static_cast<std::size_t>(i + kernel);
+      const double cx = origin_m_.x() + (c.x() + i + 0.5) * r - p.x();
+      const double cy = origin_m_.y() + (c.y() + i + 0.5) * r - p.y();
+      dx2[k] = cx * cx;
+      dy2[k] = cy * cy;
+      gx[k] = std::exp(-dx2[k] * inv_2s2);
+      gy[k] = std::exp(-dy2[k] * inv_2s2);
+    }
+    for (int j = -kernel; j <= kernel; ++j) {
+      const auto kj = static_cast<std::size_t>(j + kernel);
+      for (int i = -kernel; i <= kernel; ++i) {
+        const auto ki = static_cast<std::size_t>(i + kernel);
+        if (dx2[ki] + dy2[kj] > max_d2) continue;
+        float& v = fine[Index(c.x() + i, c.y() + j)];
+        v = std::max(v, static_cast<float>(gx[ki] * gy[kj]));
       }
     }
   }

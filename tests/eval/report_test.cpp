@@ -149,9 +149,11 @@ TEST(TimelineCsvTest, HeaderAndRows) {
   std::ifstream in(p);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures");
+  EXPECT_EQ(line,
+            "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures,optimize_ms,"
+            "nodes_removed");
   std::getline(in, line);
-  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0");
+  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0,0,0");
   int more = 0;
   while (std::getline(in, line)) ++more;
   EXPECT_EQ(more, 2);

@@ -11,6 +11,7 @@
 #include <cholmod.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 
 #include "slam/se2.hpp"
 
@@ -398,13 +399,114 @@ bool StepTiny(const Eigen::VectorXd& dx, const OptimizerParams& params, Optimize
 }
 
 // ---------------------------------------------------------------------------------------
+// Linear initialization (Carlone et al. 2014, "A fast and accurate approximation for
+// planar pose graph optimization", LAGO): the orientation residuals
+//   e_theta = wrap(th_j - th_i - th_z)
+// are linear in the headings once each wrap is fixed (here: at the current estimate), so
+// one weighted linear least-squares solve, with weight the marginal heading information
+//   w = Omega_thth - Omega_tht Omega_tt^-1 Omega_ttheta,
+// gives all headings; with the headings fixed, e_t = R_z^T (R_i^T (t_j - t_i) - t_z) is
+// linear in the positions, and a second solve gives those (weight Omega_tt). Edges only:
+// clique factors and robust kernels are ignored here; the result is kept only when it
+// lowers the objective (Optimize checks).
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+// Adds w * (x_b - x_a - c)^T M (x_b - x_a - c) for k-dimensional blocks a, b (kNoBlock: fixed,
+// its value folded into c by the caller) to the normal equations H x = rhs.
+template <int K>
+void AddDifference(int a, int b, const Eigen::Matrix<double, K, K>& M,
+                   const Eigen::Matrix<double, K, 1>& c, Triplets* H, Eigen::VectorXd* rhs) {
+  for (int r = 0; r < K; ++r) {
+    for (int q = 0; q < K; ++q) {
+      if (a != kNoBlock) H->emplace_back(K * a + r, K * a + q, M(r, q));
+      if (b != kNoBlock) H->emplace_back(K * b + r, K * b + q, M(r, q));
+      if (a != kNoBlock && b != kNoBlock) {
+        H->emplace_back(K * a + r, K * b + q, -M(r, q));
+        H->emplace_back(K * b + r, K * a + q, -M(r, q));
+      }
+    }
+  }
+  const Eigen::Matrix<double, K, 1> Mc = M * c;
+  if (a != kNoBlock) rhs->template segment<K>(K * a) -= Mc;
+  if (b != kNoBlock) rhs->template segment<K>(K * b) += Mc;
+}
+
+bool SolveSparse(int n, const Triplets& triplets, const Eigen::VectorXd& rhs, Eigen::VectorXd* x) {
+  SparseMatrix H(n, n);
+  H.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(H);
+  if (ldlt.info() != Eigen::Success) return false;
+  *x = ldlt.solve(rhs);
+  return ldlt.info() == Eigen::Success && x->allFinite();
+}
+
+double MarginalHeadingInformation(const Eigen::Matrix3d& omega) {
+  const Eigen::LDLT<Eigen::Matrix2d> tt(omega.topLeftCorner<2, 2>());
+  if (tt.info() != Eigen::Success || !(tt.vectorD().minCoeff() > 0.0)) return omega(2, 2);
+  const Eigen::Vector2d c = omega.block<2, 1>(0, 2);
+  return std::max(omega(2, 2) - c.dot(tt.solve(c)), 0.0);
+}
+
+bool InitializeHeadings(const Layout& layout) {
+  Triplets H;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(layout.num_blocks), delta;
+  for (const EdgeSlot& s : layout.edges) {
+    const Pose2& Xi = *layout.poses[static_cast<std::size_t>(s.i)];
+    const Pose2& Xj = *layout.poses[static_cast<std::size_t>(s.j)];
+    // Unknowns are heading increments d: residual e + d_j - d_i, i.e. c = -e.
+    const double e = NormalizeAngle(Xj.theta - Xi.theta - s.edge->T_from_to.theta);
+    const Eigen::Matrix<double, 1, 1> w(MarginalHeadingInformation(s.edge->information));
+    AddDifference<1>(layout.block[static_cast<std::size_t>(s.i)],
+                     layout.block[static_cast<std::size_t>(s.j)], w,
+                     Eigen::Matrix<double, 1, 1>(-e), &H, &rhs);
+  }
+  if (!SolveSparse(layout.num_blocks, H, rhs, &delta)) return false;
+  for (std::size_t k = 0; k < layout.poses.size(); ++k) {
+    const int a = layout.block[k];
+    if (a == kNoBlock) continue;
+    Pose2& x = *layout.poses[k];
+    x = Pose2(x.x, x.y, x.theta + delta[a]);
+  }
+  return true;
+}
+
+bool InitializePositions(const Layout& layout) {
+  Triplets H;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * layout.num_blocks), t;
+  for (const EdgeSlot& s : layout.edges) {
+    const Pose2& Xi = *layout.poses[static_cast<std::size_t>(s.i)];
+    const Pose2& Xj = *layout.poses[static_cast<std::size_t>(s.j)];
+    const Pose2& Z = s.edge->T_from_to;
+    const Eigen::Matrix2d Ri = Eigen::Rotation2Dd(Xi.theta).toRotationMatrix();
+    const Eigen::Matrix2d Riz = Eigen::Rotation2Dd(Xi.theta + Z.theta).toRotationMatrix();
+    const Eigen::Matrix2d W = Riz * s.edge->information.topLeftCorner<2, 2>() * Riz.transpose();
+    // t_j - t_i = R_i t_z; a fixed end's position moves into the constant.
+    Eigen::Vector2d c = Ri * Eigen::Vector2d(Z.x, Z.y);
+    const int a = layout.block[static_cast<std::size_t>(s.i)];
+    const int b = layout.block[static_cast<std::size_t>(s.j)];
+    if (a == kNoBlock) c += Eigen::Vector2d(Xi.x, Xi.y);
+    if (b == kNoBlock) c -= Eigen::Vector2d(Xj.x, Xj.y);
+    AddDifference<2>(a, b, W, c, &H, &rhs);
+  }
+  if (!SolveSparse(2 * layout.num_blocks, H, rhs, &t)) return false;
+  for (std::size_t k = 0; k < layout.poses.size(); ++k) {
+    const int a = layout.block[k];
+    if (a == kNoBlock) continue;
+    Pose2& x = *layout.poses[k];
+    x = Pose2(t[2 * a], t[2 * a + 1], x.theta);
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------
 // Levenberg-Marquardt with Nielsen's damping update.
 void RunLevenbergMarquardt(const Layout& layout, Cholmod* solver, System* system,
-                           const OptimizerParams& params, OptimizerSummary* summary) {
-  double chi2 = summary->initial_chi2;
+                           const OptimizerParams& params, double chi2, OptimizerSummary* summary) {
   const bool marquardt = params.scale_damping;
   Eigen::VectorXd D = system->DampingScale(marquardt);
-  double lambda = params.initial_lambda_factor * (marquardt ? 1.0 : D.maxCoeff());
+  // lambda_0 = tau (Marquardt) or tau * max diag(H) (Nielsen / g2o; D is all ones there).
+  double lambda = params.initial_lambda_factor * (marquardt ? 1.0 : system->MaxDiagonal());
   lambda = std::max(lambda, 1e-300);
   double nu = 2.0;
   Eigen::VectorXd dx;
@@ -451,8 +553,7 @@ void RunLevenbergMarquardt(const Layout& layout, Cholmod* solver, System* system
 // Gauss-Newton: no trial evaluations; chi2 comes with each linearization. A non-SPD system
 // gets a small damping that grows until the factorization succeeds.
 void RunGaussNewton(const Layout& layout, Cholmod* solver, System* system,
-                    const OptimizerParams& params, OptimizerSummary* summary) {
-  double chi2 = summary->initial_chi2;
+                    const OptimizerParams& params, double chi2, OptimizerSummary* summary) {
   bool stale = false;  // values moved since the last chi2
   const Eigen::VectorXd ones = system->DampingScale(false);
   Eigen::VectorXd dx;
@@ -488,6 +589,23 @@ void RunGaussNewton(const Layout& layout, Cholmod* solver, System* system,
   summary->final_chi2 = chi2;
 }
 
+bool AnyRobustEdge(const Layout& layout, const OptimizerParams& params) {
+  if (params.robust_kernel == RobustKernel::kNone) return false;
+  return std::any_of(layout.edges.begin(), layout.edges.end(),
+                     [](const EdgeSlot& s) { return s.edge->robust; });
+}
+
+// Runs the linear initialization and keeps it only if it lowers the objective.
+void MaybeInitialize(const Layout& layout, const OptimizerParams& params,
+                     OptimizerSummary* summary) {
+  const std::vector<Pose2> saved = Snapshot(layout);
+  const bool solved = InitializeHeadings(layout) && InitializePositions(layout);
+  const double chi2 = solved ? Chi2(layout, params) : std::numeric_limits<double>::infinity();
+  summary->initialization_chi2 = chi2;
+  summary->initialization_used = std::isfinite(chi2) && chi2 < summary->initial_chi2;
+  if (!summary->initialization_used) Restore(layout, saved);
+}
+
 NodeId ChooseAnchor(const PoseGraph& graph, const OptimizerParams& params) {
   if (params.anchor) {
     if (!graph.HasNode(*params.anchor)) {
@@ -511,20 +629,36 @@ OptimizerSummary Optimize(const PoseGraph& graph, Values* values, const Optimize
   const Layout layout = BuildLayout(graph, values, ChooseAnchor(graph, params));
   Cholmod solver(layout);
   System system(layout, solver.ColPtr(), solver.Nnz());
-  summary.initial_chi2 = system.Linearize(params);
-  summary.final_chi2 = summary.initial_chi2;
-  if (layout.num_blocks == 0 || summary.initial_chi2 < params.absolute_tolerance) {
+  summary.initial_chi2 = Chi2(layout, params);
+  if (params.linear_initialization && layout.num_blocks > 0 && layout.cliques.empty() &&
+      !AnyRobustEdge(layout, params)) {
+    MaybeInitialize(layout, params, &summary);
+  }
+  const double start_chi2 = system.Linearize(params);
+  summary.final_chi2 = start_chi2;
+  if (layout.num_blocks == 0 || start_chi2 < params.absolute_tolerance) {
     summary.converged = true;
     summary.message =
         layout.num_blocks == 0 ? "nothing to optimize" : "chi2 below absolute tolerance";
   } else if (params.method == OptimizerMethod::kGaussNewton) {
-    RunGaussNewton(layout, &solver, &system, params, &summary);
+    RunGaussNewton(layout, &solver, &system, params, start_chi2, &summary);
   } else {
-    RunLevenbergMarquardt(layout, &solver, &system, params, &summary);
+    RunLevenbergMarquardt(layout, &solver, &system, params, start_chi2, &summary);
   }
   summary.solve_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
+}
+
+bool ParseOptimizerMethod(const std::string& name, OptimizerMethod* method) {
+  if (name == "lm") {
+    *method = OptimizerMethod::kLevenbergMarquardt;
+  } else if (name == "gn") {
+    *method = OptimizerMethod::kGaussNewton;
+  } else {
+    return false;
+  }
+  return true;
 }
 
 double ComputeChi2(const PoseGraph& graph, const Values& values, const OptimizerParams& params) {

@@ -55,6 +55,11 @@ struct OptimizerParams {
   /// chi2 of the returned values. When false, final_chi2 is the chi2 at the last
   /// linearization point (before the last step), and no extra pass is made.
   bool evaluate_final_chi2 = true;
+  /// Before iterating, re-estimate all headings and then all positions by two linear
+  /// least-squares solves (LAGO-style, see optimizer.cpp) and keep the result only if it
+  /// lowers the objective. Skipped when the graph has clique factors or robust edges with
+  /// an active kernel (a least-squares guess would let outliers pull the start).
+  bool linear_initialization = true;
 };
 
 struct OptimizerSummary {
@@ -68,12 +73,19 @@ struct OptimizerSummary {
   int rejected_steps = 0;          ///< LM steps that raised chi2
   int factorization_failures = 0;  ///< non-SPD systems met (damping was raised)
   double final_lambda = 0.0;       ///< LM damping at exit
+  /// Objective after the linear initialization (infinity if its solve failed; 0 if not run).
+  double initialization_chi2 = 0.0;
+  bool initialization_used = false;  ///< it lowered chi2 and the iterations started there
 };
 
 /// Optimizes `values` in place, warm-started from them. Every node of `graph` must have a
 /// value (std::invalid_argument otherwise); extra entries in `values` are left untouched.
 OptimizerSummary Optimize(const PoseGraph& graph, Values* values,
                           const OptimizerParams& params = {});
+
+/// "lm" -> kLevenbergMarquardt, "gn" -> kGaussNewton; false (and *method untouched) for
+/// any other name.
+bool ParseOptimizerMethod(const std::string& name, OptimizerMethod* method);
 
 /// The objective at `values`: sum of e^T Omega e over edges and clique factors, robust
 /// edges through params' kernel.

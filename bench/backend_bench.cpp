@@ -4,6 +4,8 @@
 //   chained odometry for edges-only files); counters: nodes, edges, initial/final chi2,
 //   iterations.
 // BM_OptimizeGaussNewton/<graph>: the same with params.method = kGaussNewton.
+// BM_OptimizeNoInit/<graph>: LM with params.linear_initialization = false (the LM before
+//   the initialization was added; shows what the initialization buys).
 // BM_OptimizeWarm/<graph>: LM warm-started at the optimum (per-call overhead).
 // BM_Reference/<graph>: an independent check of the optimum's chi2 that shares no code
 //   with the optimizer beyond Pose2: right-multiplicative increments X <- X * Exp(d),
@@ -157,6 +159,7 @@ void RunOptimize(benchmark::State& state, const std::string& name,
   state.counters["chi2_final"] = s.final_chi2;
   state.counters["iterations"] = s.iterations;
   state.counters["converged"] = s.converged ? 1 : 0;
+  state.counters["init_used"] = s.initialization_used ? 1 : 0;
 }
 
 void BM_Optimize(benchmark::State& state, const std::string& name) {
@@ -166,6 +169,12 @@ void BM_Optimize(benchmark::State& state, const std::string& name) {
 void BM_OptimizeGaussNewton(benchmark::State& state, const std::string& name) {
   slam::OptimizerParams params;
   params.method = slam::OptimizerMethod::kGaussNewton;
+  RunOptimize(state, name, params, false);
+}
+
+void BM_OptimizeNoInit(benchmark::State& state, const std::string& name) {
+  slam::OptimizerParams params;
+  params.linear_initialization = false;
   RunOptimize(state, name, params, false);
 }
 
@@ -222,6 +231,19 @@ BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, input_M3500b, std::string("input_M3500
 BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, manhattan_chained, std::string("manhattan.g2o"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_OptimizeGaussNewton, city10000, std::string("city10000.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, intel, std::string("intel.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, MIT, std::string("MIT.g2o"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, input_INTEL, std::string("input_INTEL_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, input_M3500, std::string("input_M3500_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, input_M3500b, std::string("input_M3500b_g2o.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, manhattan_chained, std::string("manhattan.g2o"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OptimizeNoInit, city10000, std::string("city10000.g2o"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_OptimizeWarm, intel, std::string("intel.g2o"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_OptimizeWarm, input_M3500, std::string("input_M3500_g2o.g2o"))

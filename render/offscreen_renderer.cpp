@@ -156,14 +156,18 @@ Image OffscreenRenderer::Impl::ReadBack() const {
 }
 
 Image OffscreenRenderer::Render(const Scene& scene) {
+  Bounds world = scene.view ? *scene.view : SceneBounds(scene);
+  if (world.Empty()) world = {-1.0, -1.0, 1.0, 1.0};
+  return Render(scene, world);
+}
+
+Image OffscreenRenderer::Render(const Scene& scene, const Bounds& world) {
   Impl& m = *impl_;
   if (!m.context->MakeCurrent()) throw RenderError("render: cannot make the context current");
   m.gl.Disable(GL_SCISSOR_TEST);
   m.gl.Viewport(0, 0, m.width, m.height);
   m.gl.ClearColor(kFrame.r / 255.0f, kFrame.g / 255.0f, kFrame.b / 255.0f, 1.0f);
   m.gl.Clear(GL_COLOR_BUFFER_BIT);
-  Bounds world = scene.view ? *scene.view : SceneBounds(scene);
-  if (world.Empty()) world = {-1.0, -1.0, 1.0, 1.0};
   const LayoutConfig layout{m.width, m.height, m.options.title_px, m.options.margin_px};
   const std::vector<Cell> cells = ComputeLayout(1 + scene.panels.size(), world, layout);
   m.DrawWorld(scene, cells[0]);

@@ -81,6 +81,8 @@ class OffscreenRenderer {
 
   /// Draws the scene; the context is current only during the call.
   Image Render(const Scene& scene);
+  /// Draws the scene showing `view` (non-empty), e.g. a region kept steady over a video.
+  Image Render(const Scene& scene, const Bounds& view);
 
  private:
   struct Impl;

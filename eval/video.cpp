@@ -1,0 +1,180 @@
+#include "eval/video.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "eval/draw.hpp"
+#include "render/offscreen_renderer.hpp"
+#include "sensor/input_error.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The rendered RGB image as BGR with its labels drawn (Hershey simplex, anti-aliased).
+cv::Mat ToBgr(const render::Image& image) {
+  cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.rgb.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  for (const render::TextLabel& label : image.labels) {
+    const double scale = label.height_px / 22.0;  // simplex capitals are ~22 px at scale 1
+    cv::putText(bgr, label.text, {label.x_px, label.baseline_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
+                cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
+  }
+  return bgr;
+}
+
+void CreateDirectories(const fs::path& dir, const std::string& what) {
+  if (dir.empty()) return;
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir))
+    throw std::runtime_error("cannot create " + what + " '" + dir.string() +
+                             "': " + (error ? error.message() : "not a directory"));
+}
+
+void WritePngFile(const std::string& path, const cv::Mat& bgr) {
+  bool ok = false;
+  try {
+    ok = cv::imwrite(path, bgr);
+  } catch (const cv::Exception&) {
+    ok = false;
+  }
+  if (!ok) throw std::runtime_error("cannot write PNG '" + path + "'");
+}
+
+void Check(const VideoOptions& o) {
+  const auto bad = [](const std::string& field, const std::string& what) {
+    return InputError("video options", 0, field, what);
+  };
+  if (o.video_path.empty() && o.frames_dir.empty())
+    throw bad("video_path", "neither a video file nor a frames directory given");
+  if (o.stride < 1) throw bad("stride", "must be >= 1, got " + std::to_string(o.stride));
+  if (o.width < 16 || o.width > 8192 || o.height < 16 || o.height > 8192)
+    throw bad("width", "frame size must be 16..8192 pixels");
+  if (!(o.fps > 0.0 && o.fps <= 1000.0)) throw bad("fps", "must be in (0, 1000]");
+}
+
+render::RendererOptions RendererFor(render::BackendChoice backend) {
+  render::RendererOptions options;
+  options.backend = backend;
+  return options;
+}
+
+}  // namespace
+
+struct VideoSink::Impl {
+  VideoOptions options;
+  render::OffscreenRenderer renderer;
+  cv::VideoWriter writer;
+  render::Bounds view;  // grows over the run, so the picture does not jump
+  int frames = 0;
+  bool closed = false;
+};
+
+VideoSink::VideoSink(const VideoOptions& options) {
+  Check(options);
+  auto renderer = render::OffscreenRenderer::Create(options.width, options.height,
+                                                    RendererFor(options.backend));
+  impl_ = std::make_unique<Impl>(Impl{options, std::move(renderer), {}, {}, 0, false});
+  CreateDirectories(options.frames_dir, "frames directory");
+  if (!options.video_path.empty()) {
+    CreateDirectories(fs::path(options.video_path).parent_path(), "video directory");
+    impl_->writer.open(options.video_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options.fps,
+                       cv::Size(options.width, options.height), true);
+    if (!impl_->writer.isOpened())
+      throw std::runtime_error("cannot open video '" + options.video_path +
+                               "' for writing (OpenCV has no mp4v writer, or the path is bad)");
+  }
+}
+
+VideoSink::~VideoSink() {
+  try {
+    Close();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor must not throw
+  }
+}
+
+bool VideoSink::Wants(int observation_index) const {
+  return observation_index >= 0 && observation_index % impl_->options.stride == 0;
+}
+
+void VideoSink::AddFrame(const render::Scene& scene) {
+  Impl& m = *impl_;
+  if (m.closed) throw std::logic_error("VideoSink::AddFrame after Close");
+  m.view.Extend(scene.view ? *scene.view : render::SceneBounds(scene));
+  const render::Bounds view = m.view.Empty() ? render::Bounds{-1, -1, 1, 1} : m.view;
+  const cv::Mat bgr = ToBgr(m.renderer.Render(scene, view));
+  if (m.writer.isOpened()) m.writer.write(bgr);
+  if (!m.options.frames_dir.empty()) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%06d.png", m.frames);
+    WritePngFile((fs::path(m.options.frames_dir) / name).string(), bgr);
+  }
+  ++m.frames;
+}
+
+void VideoSink::Close() {
+  if (impl_->closed) return;
+  impl_->closed = true;
+  impl_->writer.release();
+}
+
+int VideoSink::frames() const { return impl_->frames; }
+std::string VideoSink::backend_name() const { return impl_->renderer.backend_name(); }
+
+render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
+                        const slam::PoseGraph& graph, const slam::Values& values,
+                        const Pose2& robot_estimate, int observation) {
+  render::Panel panel;
+  panel.title = title;
+  panel.map = map;
+  GraphOverlay overlay = MakeGraphOverlay(graph, values);
+  panel.nodes = std::move(overlay.nodes);
+  panel.edges.reserve(overlay.edges.size());
+  for (const GraphOverlay::Edge& e : overlay.edges)
+    panel.edges.push_back({{e.x0, e.y0, e.x1, e.y1}, e.kind});
+  panel.robot_estimate = robot_estimate;
+  panel.observation = observation;
+  panel.node_count = graph.NumNodes();
+  panel.edge_count = graph.NumEdgesForGamma();
+  return panel;
+}
+
+render::Scene MakeScene(const std::vector<Segment>& walls, const Pose2& T_world_robot,
+                        const LaserScan& scan, std::vector<render::Panel> panels) {
+  render::Scene scene;
+  scene.walls.reserve(walls.size());
+  for (const Segment& w : walls) scene.walls.push_back({w.x0, w.y0, w.x1, w.y1});
+  scene.robot_true = T_world_robot;
+  const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (!scan.IsReturn(i)) continue;
+    const double r = scan.ranges_m[i], a = scan.Bearing(i);
+    double x = 0.0, y = 0.0;
+    T_world_laser.Apply(r * std::cos(a), r * std::sin(a), &x, &y);
+    scene.rays.push_back({T_world_laser.x, T_world_laser.y, x, y});
+  }
+  char caption[48];
+  std::snprintf(caption, sizeof(caption), "t %.1f s", scan.stamp_s);
+  scene.world_caption = caption;
+  scene.panels = std::move(panels);
+  return scene;
+}
+
+std::string WriteScenePng(const std::string& path, const render::Scene& scene, int width,
+                          int height) {
+  auto renderer = render::OffscreenRenderer::Create(width, height);
+  CreateDirectories(fs::path(path).parent_path(), "directory");
+  WritePngFile(path, ToBgr(renderer.Render(scene)));
+  return renderer.backend_name();
+}
+
+}  // namespace lifelong::eval

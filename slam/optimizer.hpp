@@ -8,6 +8,8 @@
 //  1. map NodeId -> column block once (anchor and factor-less nodes get no columns);
 //  2. build the upper-triangular block pattern of H in CSC form once, analyze it once
 //     (fill-reducing ordering, symbolic factorization) and reuse it every iteration;
+//  2b. optionally (default) a linear initialization: headings, then positions, by two
+//     linear least-squares solves (Carlone et al. 2014, LAGO), kept if chi2 drops;
 //  3. per iteration: linearize every factor (se2.hpp's analytic Jacobians), scatter the
 //     3x3 blocks straight into the CSC value array, factorize numerically, solve, update
 //     x <- x + dx additively with the angle normalized, evaluate chi2, accept or reject.

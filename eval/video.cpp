@@ -74,7 +74,7 @@ struct VideoSink::Impl {
   VideoOptions options;
   render::OffscreenRenderer renderer;
   cv::VideoWriter writer;
-  render::Bounds view;  // grows over the run, so the picture does not jump
+  std::vector<render::Bounds> views;  // grow over the run, so the picture does not jump
   int frames = 0;
   bool closed = false;
 };
@@ -109,9 +109,11 @@ bool VideoSink::Wants(int observation_index) const {
 void VideoSink::AddFrame(const render::Scene& scene) {
   Impl& m = *impl_;
   if (m.closed) throw std::logic_error("VideoSink::AddFrame after Close");
-  m.view.Extend(scene.view ? *scene.view : render::SceneBounds(scene));
-  const render::Bounds view = m.view.Empty() ? render::Bounds{-1, -1, 1, 1} : m.view;
-  const cv::Mat bgr = ToBgr(m.renderer.Render(scene, view));
+  const std::vector<render::Bounds> now = render::ViewBounds(scene);
+  if (m.views.size() != now.size()) m.views.assign(now.size(), render::Bounds{});
+  for (std::size_t i = 0; i < now.size(); ++i) m.views[i].Extend(now[i]);
+  const cv::Mat bgr =
+      ToBgr(scene.view ? m.renderer.Render(scene) : m.renderer.Render(scene, m.views));
   if (m.writer.isOpened()) m.writer.write(bgr);
   if (!m.options.frames_dir.empty()) {
     char name[32];

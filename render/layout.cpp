@@ -56,4 +56,20 @@ std::vector<Cell> ComputeLayout(std::size_t cells, const Bounds& world,
   return out;
 }
 
+std::vector<Cell> ComputeLayout(const std::vector<Bounds>& views, const LayoutConfig& config) {
+  double w = 0.0, h = 0.0;
+  for (const Bounds& v : views) {
+    w = std::max(w, v.max_x - v.min_x);
+    h = std::max(h, v.max_y - v.min_y);
+  }
+  std::vector<Cell> cells = ComputeLayout(views.size(), {0.0, 0.0, w, h}, config);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    Bounds& s = cells[i].shown;
+    const double dx = 0.5 * (views[i].min_x + views[i].max_x) - 0.5 * (s.min_x + s.max_x);
+    const double dy = 0.5 * (views[i].min_y + views[i].max_y) - 0.5 * (s.min_y + s.max_y);
+    s = {s.min_x + dx, s.min_y + dy, s.max_x + dx, s.max_y + dy};
+  }
+  return cells;
+}
+
 }  // namespace lifelong::render

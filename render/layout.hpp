@@ -32,4 +32,8 @@ struct LayoutConfig {
 /// Lays out `cells` cells showing `world` (non-empty). Cells fill rows left to right.
 std::vector<Cell> ComputeLayout(std::size_t cells, const Bounds& world, const LayoutConfig& config);
 
+/// One cell per entry of `views`, at one scale: the grid is laid out for a region as wide
+/// and as tall as the largest view, and each cell is centred on its own view.
+std::vector<Cell> ComputeLayout(const std::vector<Bounds>& views, const LayoutConfig& config);
+
 }  // namespace lifelong::render

@@ -156,12 +156,14 @@ Image OffscreenRenderer::Impl::ReadBack() const {
 }
 
 Image OffscreenRenderer::Render(const Scene& scene) {
-  Bounds world = scene.view ? *scene.view : SceneBounds(scene);
-  if (world.Empty()) world = {-1.0, -1.0, 1.0, 1.0};
-  return Render(scene, world);
+  if (scene.view && !scene.view->Empty())
+    return Render(scene, std::vector<Bounds>(1 + scene.panels.size(), *scene.view));
+  return Render(scene, ViewBounds(scene));
 }
 
-Image OffscreenRenderer::Render(const Scene& scene, const Bounds& world) {
+Image OffscreenRenderer::Render(const Scene& scene, const std::vector<Bounds>& views) {
+  if (views.size() != 1 + scene.panels.size())
+    throw std::invalid_argument("render: need one view bounds per view");
   Impl& m = *impl_;
   if (!m.context->MakeCurrent()) throw RenderError("render: cannot make the context current");
   m.gl.Disable(GL_SCISSOR_TEST);
@@ -169,7 +171,7 @@ Image OffscreenRenderer::Render(const Scene& scene, const Bounds& world) {
   m.gl.ClearColor(kFrame.r / 255.0f, kFrame.g / 255.0f, kFrame.b / 255.0f, 1.0f);
   m.gl.Clear(GL_COLOR_BUFFER_BIT);
   const LayoutConfig layout{m.width, m.height, m.options.title_px, m.options.margin_px};
-  const std::vector<Cell> cells = ComputeLayout(1 + scene.panels.size(), world, layout);
+  const std::vector<Cell> cells = ComputeLayout(views, layout);
   m.DrawWorld(scene, cells[0]);
   std::vector<TextLabel> labels;
   AddLabels(cells[0], scene.world_title, scene.world_caption, &labels);

@@ -81,8 +81,9 @@ class OffscreenRenderer {
 
   /// Draws the scene; the context is current only during the call.
   Image Render(const Scene& scene);
-  /// Draws the scene showing `view` (non-empty), e.g. a region kept steady over a video.
-  Image Render(const Scene& scene, const Bounds& view);
+  /// Draws the scene with views[i] as the content of view i (see ViewBounds), e.g. regions
+  /// kept steady over a video. Needs one non-empty entry per view.
+  Image Render(const Scene& scene, const std::vector<Bounds>& views);
 
  private:
   struct Impl;

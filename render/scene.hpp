@@ -53,11 +53,13 @@ struct Scene {
   std::string world_title = "world (ground truth)";
   std::string world_caption;  ///< second line of the world view, e.g. "t 12.3 s"
   std::vector<Panel> panels;  ///< one per mode, drawn side by side after the world view
-  /// Region shown in every view, the same scale for all; unset: the bounds of everything.
+  /// Region shown in every view; unset: each view is centred on its own content (the
+  /// world and each mode's map frame may differ), all at one common scale.
   std::optional<Bounds> view;
 };
 
-/// The bounds of everything in the scene: walls, robot, rays, maps, nodes, estimates.
-Bounds SceneBounds(const Scene& scene);
+/// Content of each view: [0] the world (walls, rays, true robot), [1 + i] panel i (map,
+/// nodes, estimate). Empty views get a 2 m square around the origin.
+std::vector<Bounds> ViewBounds(const Scene& scene);
 
 }  // namespace lifelong::render

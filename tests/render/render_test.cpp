@@ -33,6 +33,18 @@ TEST(LayoutTest, WidensTheShortAxisAroundTheCentre) {
   EXPECT_DOUBLE_EQ(cells[0].shown.min_y, 0.0);
 }
 
+TEST(LayoutTest, EachViewCentredOnItsOwnContentAtOneScale) {
+  // The world spans x 0..10 m, the map x 100..104 m: both are shown 10 m wide (the
+  // larger), at 10 px/m, the second centred on x = 102.
+  const std::vector<Cell> cells =
+      ComputeLayout({{0, 0, 10, 10}, {100, 3, 104, 7}}, {200, 100, 0, 0});
+  ASSERT_EQ(cells.size(), 2u);
+  EXPECT_DOUBLE_EQ(cells[0].shown.min_x, 0.0);
+  EXPECT_DOUBLE_EQ(cells[1].shown.min_x, 97.0);
+  EXPECT_DOUBLE_EQ(cells[1].shown.max_x, 107.0);
+  EXPECT_DOUBLE_EQ(cells[1].shown.min_y, 0.0);
+}
+
 // World view: x 0..100 px, panel: x 100..200 px, both 10 px/m, row 0 at y = 10 m.
 Scene TinyScene() {
   Scene scene;

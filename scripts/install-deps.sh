@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libyaml-cpp-dev
   libcli11-dev nlohmann-json3-dev libsuitesparse-dev zlib1g-dev libopencv-dev gnuplot-nox
-  libgtest-dev libgmock-dev libbenchmark-dev)
+  libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0)
 # An optimized serial BLAS for CHOLMOD's supernodal factorization (the reference BLAS is
 # several times slower on large pose graphs).
 packages+=(libopenblas0-serial)

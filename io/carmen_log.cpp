@@ -7,6 +7,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <string_view>
 
 #include "sensor/input_error.hpp"
@@ -30,9 +31,16 @@ class GzLines {
   bool Next(std::string* line) {
     line->clear();
     char buf[1 << 16];
-    while (gzgets(file_, buf, sizeof buf) != nullptr) {
-      line->append(buf);
-      if (line->back() == '\n') break;
+    for (z_off_t before = gztell(file_); gzgets(file_, buf, sizeof buf) != nullptr;) {
+      // gzgets copies NUL bytes too; strlen would silently cut the line there.
+      const std::size_t n = std::strlen(buf);
+      const z_off_t after = gztell(file_);
+      if (after - before != static_cast<z_off_t>(n)) {
+        throw InputError(path_, line_number_ + 1, "", "NUL byte in a text log (binary file?)");
+      }
+      before = after;
+      line->append(buf, n);
+      if (!line->empty() && line->back() == '\n') break;
     }
     int err = Z_OK;
     const char* msg = gzerror(file_, &err);

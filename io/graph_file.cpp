@@ -17,6 +17,8 @@
 namespace lifelong::io {
 namespace {
 
+constexpr long long kMaxId = 1LL << 62;
+
 // Tokens of one line, each parsed with the field name that goes into InputError.
 class LineReader {
  public:
@@ -44,6 +46,8 @@ class LineReader {
     errno = 0;
     const long long v = std::strtoll(token.c_str(), &end, 10);
     if (*end != '\0' || errno == ERANGE) Fail(field, "not an integer id: '" + token + "'");
+    // Leaves room for id + 1 and id - 1 (odometry edges, chaining) without overflow.
+    if (v > kMaxId || v < -kMaxId) Fail(field, "id out of range [-2^62, 2^62]: '" + token + "'");
     return v;
   }
   void ExpectEnd() {

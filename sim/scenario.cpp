@@ -12,9 +12,23 @@ namespace lifelong::sim {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+// Bounds that keep a typo (or a fuzzer) from asking for more memory or time than any
+// experiment needs: 1e6 route legs, 1e7 s (about 4 months) of simulated time, 1e4 Hz physics,
+// 1e5 laser beams.
+constexpr double kMaxRouteLegs = 1e6;
+constexpr double kMaxDurationS = 1e7;
+constexpr double kMaxPhysicsRateHz = 1e4;
+constexpr int kMaxBeams = 100000;
 
 void Positive(Fields* f, const std::string& key, double value) {
-  if (!(value > 0.0)) Fail(f->file(), f->node()[key], f->Name(key), "must be positive");
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    Fail(f->file(), f->node()[key], f->Name(key), "must be positive and finite");
+  }
+}
+
+void AtMost(Fields* f, const std::string& key, double value, double limit, const char* text) {
+  if (value > limit)
+    Fail(f->file(), f->node()[key], f->Name(key), std::string("must be <= ") + text);
 }
 
 RobotConfig ParseRobot(Fields f) {
@@ -39,14 +53,16 @@ LaserConfig ParseLaser(Fields f) {
   l.rate_hz = f.Double("rate_hz", l.rate_hz);
   Positive(&f, "rate_hz", l.rate_hz);
   l.beams = f.Int("beams", l.beams);
-  if (l.beams < 2) Fail(f.file(), f.node()["beams"], f.Name("beams"), "needs at least 2 beams");
+  if (l.beams < 2 || l.beams > kMaxBeams)
+    Fail(f.file(), f.node()["beams"], f.Name("beams"), "needs 2 to 100000 beams");
   l.fov_deg = f.Double("fov_deg", l.fov_deg);
   Positive(&f, "fov_deg", l.fov_deg);
   l.range_max_m = f.Double("range_max_m", l.range_max_m);
   Positive(&f, "range_max_m", l.range_max_m);
   l.range_noise_m = f.Double("range_noise_m", l.range_noise_m);
   l.dropout_prob = f.Double("dropout_prob", l.dropout_prob);
-  if (l.range_noise_m < 0.0 || l.dropout_prob < 0.0 || l.dropout_prob > 1.0) {
+  if (!(l.range_noise_m >= 0.0) || !std::isfinite(l.range_noise_m) || !(l.dropout_prob >= 0.0) ||
+      l.dropout_prob > 1.0) {
     Fail(f.file(), f.node(), f.Name("range_noise_m"), "noise must be >= 0, dropout in [0, 1]");
   }
   if (f.Has("mount")) {
@@ -56,6 +72,10 @@ LaserConfig ParseLaser(Fields f) {
     l.T_robot_laser =
         Pose2(AsDouble(f.file(), m[0], f.Name("mount")), AsDouble(f.file(), m[1], f.Name("mount")),
               AsDouble(f.file(), m[2], f.Name("mount")) * kDegToRad);
+    if (!std::isfinite(l.T_robot_laser.x) || !std::isfinite(l.T_robot_laser.y) ||
+        !std::isfinite(l.T_robot_laser.theta)) {
+      Fail(f.file(), m, f.Name("mount"), "must be finite");
+    }
   }
   f.Finish();
   return l;
@@ -66,7 +86,7 @@ OdometryConfig ParseOdometry(Fields f) {
   o.rate_hz = f.Double("rate_hz", o.rate_hz);
   Positive(&f, "rate_hz", o.rate_hz);
   o.slip_variance_m2_per_m = f.Double("slip_variance_m2_per_m", o.slip_variance_m2_per_m);
-  if (o.slip_variance_m2_per_m < 0.0) {
+  if (!(o.slip_variance_m2_per_m >= 0.0) || !std::isfinite(o.slip_variance_m2_per_m)) {
     Fail(f.file(), f.node(), f.Name("slip_variance_m2_per_m"), "must be >= 0");
   }
   for (auto [key, v] : {std::pair{"left_scale", &o.left_scale},
@@ -118,12 +138,17 @@ void ParseBackAndForth(Fields* f, const World& world, const RobotConfig& robot, 
   r->repetitions = f->Int("repetitions", 1);
   if (r->repetitions < 1)
     Fail(f->file(), f->node()["repetitions"], f->Name("repetitions"), "must be >= 1");
+  if (static_cast<double>(r->repetitions) * static_cast<double>(wps.size()) > kMaxRouteLegs) {
+    Fail(f->file(), f->node()["repetitions"], f->Name("repetitions"),
+         "repetitions x waypoints must be at most 1e6 route legs");
+  }
 }
 
 void ParseTour(Fields* f, const World& world, const RobotConfig& robot, RouteConfig* r) {
   r->start_place = ParsePlace(f->file(), f->Required("start"), f->Name("start"), world);
   r->tour_duration_s = f->Double("duration_s");
   Positive(f, "duration_s", r->tour_duration_s);
+  AtMost(f, "duration_s", r->tour_duration_s, kMaxDurationS, "1e7 s");
   const YAML::Node list = f->Optional("places");
   if (list && !list.IsSequence()) Fail(f->file(), list, f->Name("places"), "expected a list");
   const std::size_t n = list ? list.size() : world.places.size();
@@ -144,6 +169,8 @@ RouteConfig ParseRoute(Fields f, const World& world, const RobotConfig& robot) {
   RouteConfig r;
   const std::string type = f.String("type");
   r.stop_s = f.Double("stop_s", 0.0);
+  if (!(r.stop_s >= 0.0) || r.stop_s > kMaxDurationS)
+    Fail(f.file(), f.node()["stop_s"], f.Name("stop_s"), "must be in [0, 1e7] s");
   if (type == "back_and_forth" || type == "path") {
     r.kind = RouteConfig::Kind::kBackAndForth;
     r.one_way = type == "path";
@@ -166,7 +193,8 @@ Scenario ParseScenario(const YAML::Node& root, const std::string& file,
   s.name = f.String("name");
   const std::string world_rel = f.String("world");
   s.world_path = (std::filesystem::path(base_dir) / world_rel).lexically_normal().string();
-  if (!std::filesystem::exists(s.world_path)) {
+  std::error_code error;  // a too-long or unreadable path is "not found", not an exception
+  if (!std::filesystem::is_regular_file(s.world_path, error)) {  // no device, FIFO, folder
     Fail(file, root["world"], "world", "world file not found: " + s.world_path);
   }
   s.world = LoadWorld(s.world_path);
@@ -178,6 +206,7 @@ Scenario ParseScenario(const YAML::Node& root, const std::string& file,
   }
   s.physics_rate_hz = f.Double("physics_rate_hz", s.physics_rate_hz);
   Positive(&f, "physics_rate_hz", s.physics_rate_hz);
+  AtMost(&f, "physics_rate_hz", s.physics_rate_hz, kMaxPhysicsRateHz, "1e4 Hz");
   const YAML::Node empty(YAML::NodeType::Map);
   auto section = [&](const char* key) {
     const YAML::Node n = f.Optional(key);

@@ -1,6 +1,7 @@
 #include "sim/world_loader.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
@@ -9,6 +10,14 @@ namespace lifelong::sim {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+/// YAML reads .inf and .nan as numbers; no coordinate, size, angle or time may be one.
+void RequireFinite(const std::string& file, const YAML::Node& n, const std::string& field,
+                   std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) Fail(file, n, field, "must be a finite number");
+  }
+}
 
 template <typename F>
 void ForEachItem(Fields* f, const std::string& key, F&& fn) {
@@ -28,6 +37,7 @@ Wall ParseWall(const std::string& file, const YAML::Node& n, const std::string& 
   const std::string key = w.closed ? "polygon" : "polyline";
   const YAML::Node pts = f.Required(key);
   w.points = AsPoints(file, pts, f.Name(key));
+  for (const Point& p : w.points) RequireFinite(file, pts, f.Name(key), {p.x, p.y});
   f.Finish();
   if (w.points.size() < (w.closed ? 3u : 2u)) Fail(file, pts, f.Name(key), "too few points");
   for (const Segment& s : ToSegments(w.points, w.closed)) {
@@ -47,12 +57,14 @@ Door ParseDoor(const std::string& file, const YAML::Node& n, const std::string& 
   d.name = f.String("name");
   const Point a = f.GetPoint("from"), b = f.GetPoint("to");
   d.segment = {a.x, a.y, b.x, b.y};
+  RequireFinite(file, n, field, {a.x, a.y, b.x, b.y});
   if (std::hypot(b.x - a.x, b.y - a.y) < 1e-6) Fail(file, n, field, "door has zero width");
   const YAML::Node iv = f.Optional("closed_s");
   if (iv) {
     if (!iv.IsSequence()) Fail(file, iv, f.Name("closed_s"), "expected [[t0, t1], ...]");
     for (const YAML::Node& p : iv) {
       const Point t = AsPoint(file, p, f.Name("closed_s"));
+      RequireFinite(file, p, f.Name("closed_s"), {t.x, t.y});
       if (t.y < t.x) Fail(file, p, f.Name("closed_s"), "interval ends before it begins");
       d.closed_intervals_s.emplace_back(t.x, t.y);
     }
@@ -71,10 +83,12 @@ Box ParseBox(const std::string& file, const YAML::Node& n, const std::string& fi
   b.width_m = size.x;
   b.height_m = size.y;
   b.yaw_rad = f.Double("yaw_deg", 0.0) * kDegToRad;
+  RequireFinite(file, n, field, {b.center.x, b.center.y, size.x, size.y, b.yaw_rad});
   ForEachItem(&f, "moves", [&](const YAML::Node& m, const std::string& name) {
     Fields mf(file, m, name);
     BoxMove mv{mf.Double("t_s"), mf.GetPoint("center"), mf.Double("yaw_deg", 0.0) * kDegToRad};
     mf.Finish();
+    RequireFinite(file, m, name, {mv.t_s, mv.center.x, mv.center.y, mv.yaw_rad});
     if (!b.moves.empty() && mv.t_s < b.moves.back().t_s) Fail(file, m, name, "moves not sorted");
     b.moves.push_back(mv);
   });
@@ -91,6 +105,7 @@ void ParsePlaces(Fields* f, World* w) {
     Fields pf(f->file(), n, name);
     Place p{pf.String("name"), pf.GetPoint("at")};
     pf.Finish();
+    RequireFinite(pf.file(), n, name, {p.at.x, p.at.y});
     if (w->FindPlace(p.name) >= 0) Fail(f->file(), n, name, "duplicate place '" + p.name + "'");
     const std::string why = CheckFree(*w, p.at, w->clearance_m);
     if (!why.empty()) Fail(f->file(), n, name, "place '" + p.name + "' " + why);
@@ -119,6 +134,8 @@ World ParseWorld(const YAML::Node& root, const std::string& file) {
   World w;
   w.source = file;
   w.clearance_m = f.Double("clearance_m", w.clearance_m);
+  if (!(w.clearance_m >= 0.0) || !std::isfinite(w.clearance_m))
+    Fail(file, root["clearance_m"], "clearance_m", "must be finite and >= 0");
   const YAML::Node walls = f.Required("walls");
   if (!walls.IsSequence() || walls.size() == 0)
     Fail(file, walls, "walls", "expected a non-empty list");

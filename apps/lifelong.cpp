@@ -121,9 +121,15 @@ int Replay(const std::string& log, const std::string& out, const std::string& mo
   return 0;
 }
 
-int OptimizeGraph(const std::string& in, const std::string& out) {
-  lifelong::io::GraphFile file = lifelong::io::ReadGraphFile(in);
+int OptimizeGraph(const std::string& in, const std::string& out, const std::string& method,
+                  bool supernodal, bool no_init) {
   lifelong::slam::OptimizerParams params;
+  if (!lifelong::slam::ParseOptimizerMethod(method, &params.method)) {
+    throw InputError("--method", 0, method, "unknown method (known: lm, gn)");
+  }
+  params.supernodal = supernodal;
+  params.linear_initialization = !no_init;
+  lifelong::io::GraphFile file = lifelong::io::ReadGraphFile(in);
   const auto summary = lifelong::slam::Optimize(file.graph, &file.values, params);
   std::cout << std::setprecision(10) << "vertices " << file.graph.NumNodes() << "\nedges "
             << file.graph.edges().size() << "\ninitial_chi2 " << summary.initial_chi2
@@ -166,6 +172,11 @@ int main(int argc, char** argv) {
   auto* optimize = app.add_subcommand("optimize", "optimize a g2o or TORO pose graph");
   optimize->add_option("graph", graph_in, "g2o or TORO file")->required();
   optimize->add_option("-o,--out", graph_out, "write the optimized graph (g2o)");
+  std::string method = "lm";
+  bool supernodal = false, no_init = false;
+  optimize->add_option("--method", method, "lm (Levenberg-Marquardt) or gn (Gauss-Newton)");
+  optimize->add_flag("--supernodal", supernodal, "CHOLMOD supernodal instead of simplicial");
+  optimize->add_flag("--no-init", no_init, "skip the linear (LAGO-style) initialization");
 
   try {
     app.parse(argc, argv);
@@ -176,7 +187,7 @@ int main(int argc, char** argv) {
     if (*run) return Run(scenario, out, modes, command_line);
     if (*simulate) return Simulate(sim_scenario, sim_out);
     if (*replay) return Replay(log, replay_out, replay_modes, relations, offset, command_line);
-    if (*optimize) return OptimizeGraph(graph_in, graph_out);
+    if (*optimize) return OptimizeGraph(graph_in, graph_out, method, supernodal, no_init);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

@@ -66,6 +66,7 @@ MapperConfig DefaultMapperConfig() {
   c.optimizer.relative_tolerance = 1e-5;
   c.optimizer.robust_kernel = RobustKernel::kCauchy;
   c.optimizer.robust_delta = 3.0;
+  c.optimizer.linear_initialization = false;  // warm-started from the previous optimum
   c.loops.matcher.resolution_m = 0.05;
   c.loops.matcher.sigma_m = 0.08;
   return c;

@@ -40,7 +40,7 @@ struct IncrementalConfig {
 struct LoopClosingConfig {
   bool enabled = true;
   double min_path_separation_m = 6.0;  ///< nodes closer along the graph are not candidates
-  double overlap_radius_m = 1.5;       ///< sensor overlap added to the position uncertainty
+  double overlap_radius_m = 1.0;       ///< sensor overlap added to the position uncertainty
   double gate_chi2 = 5.99;             ///< 95 % gate (2 dof) of the candidate test
   double max_position_sigma_m = 5.0;   ///< Dijkstra projection stops beyond this
   double min_window_m = 0.3;           ///< search window: 3 sigma, clamped to [min, max]
@@ -53,7 +53,7 @@ struct LoopClosingConfig {
   double consistency_chi2 = 16.27;   ///< 99.9 % gate (3 dof) of the correction
   int min_reference_points = 60;
   MatcherConfig matcher;            ///< windows are set per attempt
-  double optimize_edge_chi2 = 1.0;  ///< optimize at once when the new edge's chi2 exceeds
+  double optimize_edge_chi2 = 9.0;  ///< optimize at once when the new edge's chi2 exceeds
   int optimize_every = 10;          ///< ...and at least every this many closures
 };
 

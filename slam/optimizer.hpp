@@ -62,6 +62,9 @@ struct OptimizerParams {
   /// lowers the objective. Skipped when the graph has clique factors or robust edges with
   /// an active kernel (a least-squares guess would let outliers pull the start).
   bool linear_initialization = true;
+  /// CHOLMOD supernodal factorization (BLAS-bound) instead of simplicial; AMD ordering
+  /// either way.
+  bool supernodal = false;
 };
 
 struct OptimizerSummary {

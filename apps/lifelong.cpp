@@ -75,9 +75,17 @@ int Simulate(const std::string& scenario_path, const std::string& out) {
   return run.collisions.empty() && !run.timed_out ? 0 : 1;
 }
 
+struct VideoArgs {
+  std::string video, frames;
+  int stride = 20;
+};
+
 int Run(const std::string& scenario_path, const std::string& out, const std::string& modes,
-        const std::string& command_line) {
+        const VideoArgs& video, const std::string& command_line) {
   lifelong::eval::ExperimentConfig config;
+  config.video_path = video.video;
+  config.frames_dir = video.frames;
+  config.video_stride = video.stride;
   config.modes = ParseModes(modes);
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
   CheckWritableDir(out);
@@ -152,6 +160,11 @@ int main(int argc, char** argv) {
   run->add_option("scenario", scenario, "scenario YAML (default: corridor_100)");
   run->add_option("-o,--out", out, "output directory");
   run->add_option("--modes", modes, "comma-separated: standard,pruned,pruned-exact,pruned-naive");
+  VideoArgs video;
+  run->add_option("--video", video.video, "write a video of the run (mp4)");
+  run->add_option("--frames", video.frames, "write PNG frames of the run into this directory");
+  run->add_option("--stride", video.stride, "render every this many scans")
+      ->check(CLI::PositiveNumber);
 
   std::string sim_scenario, sim_out;
   auto* simulate = app.add_subcommand("simulate", "simulate a scenario into a CARMEN log");
@@ -184,7 +197,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    if (*run) return Run(scenario, out, modes, command_line);
+    if (*run) return Run(scenario, out, modes, video, command_line);
     if (*simulate) return Simulate(sim_scenario, sim_out);
     if (*replay) return Replay(log, replay_out, replay_modes, relations, offset, command_line);
     if (*optimize) return OptimizeGraph(graph_in, graph_out, method, supernodal, no_init);

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <memory>
 #include <ostream>
+#include <sstream>
 
 #include "eval/draw.hpp"
 #include "eval/map_quality.hpp"
@@ -13,6 +15,7 @@
 #include "eval/plots.hpp"
 #include "eval/report.hpp"
 #include "eval/resources.hpp"
+#include "eval/video.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
 #include "io/relations.hpp"
@@ -28,6 +31,204 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
+
+void Progress(const ExperimentConfig& c, const std::string& line) {
+  if (c.progress) *c.progress << line << std::flush;
+}
+
+// One mode: its mapper, its timeline and, at the end, its outputs and metrics.
+class ModeRunner {
+ public:
+  ModeRunner(slam::PruningMode mode, const ExperimentConfig& config)
+      : mode_(mode), name_(slam::PruningModeName(mode)), config_(config) {
+    slam::MapperConfig mc = config.mapper;
+    mc.pruning.mode = mode;
+    mapper_ = std::make_unique<slam::Mapper>(mc);
+    mapper_->on_observation = [this](const slam::StepStats& s) { Record(s); };
+  }
+
+  const std::string& name() const { return name_; }
+  const slam::Mapper& mapper() const { return *mapper_; }
+
+  void Step(const Observation& obs) {
+    const auto start = Clock::now();
+    mapper_->AddObservation(obs);
+    seconds_ += Seconds(start);
+  }
+
+  std::string ProgressLine(std::size_t done, std::size_t total) const {
+    std::ostringstream line;
+    line << "\r  " << std::setw(13) << std::left << name_ << std::right << std::setw(4)
+         << (100 * done / total) << " %  scans " << done << "/" << total << "  nodes "
+         << mapper_->graph().NumNodes() << "  edges " << mapper_->graph().NumEdgesForGamma()
+         << "  loops " << mapper_->loop_closures().size() << "  " << std::fixed
+         << std::setprecision(1) << seconds_ << " s   ";
+    return line.str();
+  }
+
+  // Finishes the mapper, writes DIR/<mode>/... and returns the mode's summary.
+  ModeSummary Finish(const std::vector<Observation>& stream,
+                     const std::optional<GroundTruth>& truth,
+                     const std::vector<io::Relation>& relations, std::vector<double>* kld,
+                     std::string* map_png);
+
+ private:
+  void Record(const slam::StepStats& s) {
+    TimelineRow row;
+    row.obs = s.observation_index;
+    row.t_s = s.stamp_s;
+    row.time_ms = s.time_ms;
+    row.nodes = static_cast<int>(s.nodes);
+    row.edges = static_cast<int>(s.edges);
+    row.gamma = s.gamma;
+    row.rss_mb = CurrentRssMb().value_or(0.0);
+    row.graph_bytes = s.graph_bytes;
+    row.loop_closures = s.loop_closures_total;
+    row.optimize_ms = s.optimize_ms;
+    row.nodes_removed = s.nodes_removed_total;
+    timeline_.push_back(row);
+    if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
+  }
+
+  void TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                    const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                    ModeSummary* summary, std::vector<TrajectoryOverlay>* overlays) const;
+
+  slam::PruningMode mode_;
+  std::string name_;
+  const ExperimentConfig& config_;
+  std::unique_ptr<slam::Mapper> mapper_;
+  std::vector<TimelineRow> timeline_;
+  std::optional<int> first_pass_end_;
+  double seconds_ = 0.0;
+
+ public:
+  const std::vector<TimelineRow>& timeline() const { return timeline_; }
+};
+
+void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                              const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                              ModeSummary* summary,
+                              std::vector<TrajectoryOverlay>* overlays) const {
+  std::vector<Pose2> true_poses;
+  std::map<double, Pose2> true_at;
+  for (const Observation& o : stream) {
+    true_poses.push_back(*o.T_world_robot_true);
+    true_at[o.stamp_s] = *o.T_world_robot_true;
+  }
+  const AteResult ate = ComputeAte(estimate, true_poses);
+  summary->ate_rmse_m = ate.rmse_m;
+  const Pose2 T_truth_est = AlignSE2(estimate, true_poses);
+  const BlurResult blur = ComputeBlur(grid, truth.walls, T_truth_est, true_poses);
+  BlurSummary bs;
+  bs.mean_cm = blur.mean_cm;
+  bs.p95_cm = blur.p95_cm;
+  bs.thickness = blur.thickness;
+  if (blur.wall_cells > 0) bs.recall = blur.recall;
+  summary->blur = bs;
+  // Loop closures against the true poses of the two nodes' scans.
+  std::map<double, int> index_of_stamp;
+  std::vector<Pose2> true_nodes;
+  auto node_index = [&](double stamp) {
+    auto [it, inserted] = index_of_stamp.emplace(stamp, static_cast<int>(true_nodes.size()));
+    if (inserted) true_nodes.push_back(true_at.at(stamp));
+    return it->second;
+  };
+  std::vector<LoopClosure> closures;
+  for (const auto& lc : mapper_->loop_closures()) {
+    closures.push_back(
+        {node_index(lc.stamp_old_s), node_index(lc.stamp_current_s), lc.T_old_current});
+  }
+  if (!closures.empty()) {
+    summary->loop_precision = ComputeLoopClosureStats(closures, true_nodes).precision;
+  }
+  overlays->push_back({TrajectoryKind::kTrue, {}});
+  for (const Pose2& p : true_poses) overlays->back().poses.push_back(T_truth_est.Inverse() * p);
+}
+
+ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
+                               const std::optional<GroundTruth>& truth,
+                               const std::vector<io::Relation>& relations, std::vector<double>* kld,
+                               std::string* map_png) {
+  const auto start = Clock::now();
+  mapper_->Finish();
+  seconds_ += Seconds(start);
+  const fs::path dir = fs::path(config_.out_dir) / name_;
+  fs::create_directories(dir);
+  const slam::Mapper& m = *mapper_;
+
+  ModeSummary summary = SummarizeTimeline(timeline_, first_pass_end_);
+  summary.wall_time_s = seconds_;
+  summary.peak_rss_mb = PeakRssMb();
+  if (m.observations() > 0) {
+    summary.scans_kept_pct =
+        100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
+  }
+  for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
+  if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
+
+  std::vector<io::StampedPose> trajectory;
+  std::vector<Pose2> estimate;
+  std::vector<StampedPose> stamped;
+  for (const slam::ScanPose& p : m.Trajectory()) {
+    trajectory.push_back({p.stamp_s, p.T_world_robot});
+    estimate.push_back(p.T_world_robot);
+    stamped.push_back({p.stamp_s, p.T_world_robot});
+  }
+  io::WriteTum((dir / "trajectory.tum").string(), trajectory);
+  io::WriteG2o((dir / "graph.g2o").string(), m.graph(), m.values());
+  const io::OccupancyGrid grid = ToOccupancyGrid(m.map());
+  io::WritePgmMap((dir / "map.pgm").string(), grid);
+  const EntropyResult entropy = ComputeMapEntropy(grid);
+  summary.map_entropy_bits = entropy.entropy_bits;
+  summary.occupied_share = entropy.occupied_share;
+
+  std::vector<TrajectoryOverlay> overlays;
+  if (truth) TruthMetrics(stream, *truth, estimate, grid, &summary, &overlays);
+  if (!relations.empty()) {
+    std::vector<Relation> rel;
+    for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});
+    const RelationsResult rr = ComputeRelationsError(stamped, rel);
+    summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
+                                         rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
+  }
+  WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
+  DrawConfig draw;
+  draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
+  WriteMapPng((dir / "map.png").string(), grid, MakeGraphOverlay(m.graph(), m.values()), overlays,
+              draw);
+  *map_png = name_ + "/map.png";
+  return summary;
+}
+
+// Renders one frame with every mode side by side.
+void AddVideoFrame(VideoSink* sink, const Observation& obs, const std::optional<GroundTruth>& truth,
+                   const std::vector<std::unique_ptr<ModeRunner>>& runners) {
+  std::vector<render::Panel> panels;
+  for (const auto& r : runners) {
+    const slam::Mapper& m = r->mapper();
+    const auto trajectory = m.Trajectory();
+    const Pose2 estimate = trajectory.empty() ? Pose2() : trajectory.back().T_world_robot;
+    panels.push_back(MakePanel(r->name(), ToOccupancyGrid(m.map()), m.graph(), m.values(), estimate,
+                               m.observations()));
+  }
+  const std::vector<Segment> walls = truth ? truth->walls : std::vector<Segment>{};
+  const Pose2 pose = obs.T_world_robot_true.value_or(Pose2());
+  sink->AddFrame(MakeScene(walls, pose, obs.scan, std::move(panels)));
+}
+
+void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth,
+                const ExperimentConfig& config) {
+  const fs::path dir = fs::path(config.out_dir) / "truth";
+  fs::create_directories(dir);
+  io::WritePgmMap((dir / "map.pgm").string(),
+                  RasterizeWalls(truth.walls, config.mapper.grid.resolution_m));
+  std::vector<io::StampedPose> poses;
+  for (const Observation& o : stream) poses.push_back({o.stamp_s, *o.T_world_robot_true});
+  io::WriteTum((dir / "trajectory.tum").string(), poses);
+}
+
+}  // namespace
 
 io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   io::OccupancyGrid grid;
@@ -49,157 +250,51 @@ io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   return grid;
 }
 
-struct ModeRun {
-  std::vector<TimelineRow> timeline;
-  std::vector<double> kld;
-  ModeSummary summary;
-  std::string map_png;
-};
-
-void Progress(const ExperimentConfig& c, const std::string& line) {
-  if (c.progress) *c.progress << line << std::flush;
-}
-
-ModeRun RunMode(const std::vector<Observation>& stream, const std::optional<GroundTruth>& truth,
-                const std::vector<io::Relation>& relations, slam::PruningMode mode,
-                const ExperimentConfig& config) {
-  const std::string name = slam::PruningModeName(mode);
-  const fs::path dir = fs::path(config.out_dir) / name;
-  fs::create_directories(dir);
-  slam::MapperConfig mc = config.mapper;
-  mc.pruning.mode = mode;
-  slam::Mapper mapper(mc);
-  ModeRun run;
-  std::optional<int> first_pass_end;
-  mapper.on_observation = [&](const slam::StepStats& s) {
-    TimelineRow row;
-    row.obs = s.observation_index;
-    row.t_s = s.stamp_s;
-    row.time_ms = s.time_ms;
-    row.nodes = static_cast<int>(s.nodes);
-    row.edges = static_cast<int>(s.edges);
-    row.gamma = s.gamma;
-    row.rss_mb = CurrentRssMb().value_or(0.0);
-    row.graph_bytes = s.graph_bytes;
-    row.loop_closures = s.loop_closures_total;
-    row.optimize_ms = s.optimize_ms;
-    row.nodes_removed = s.nodes_removed_total;
-    run.timeline.push_back(row);
-    if (config.first_pass_s && s.stamp_s < *config.first_pass_s) first_pass_end = row.obs + 1;
-  };
-  const auto start = Clock::now();
-  const std::size_t step = std::max<std::size_t>(1, stream.size() / 20);
-  for (std::size_t i = 0; i < stream.size(); ++i) {
-    mapper.AddObservation(stream[i]);
-    if ((i + 1) % step == 0 || i + 1 == stream.size()) {
-      std::ostringstream line;
-      line << "\r  " << std::setw(13) << std::left << name << std::right << std::setw(4)
-           << (100 * (i + 1) / stream.size()) << " %  scans " << (i + 1) << "/" << stream.size()
-           << "  nodes " << mapper.graph().NumNodes() << "  edges "
-           << mapper.graph().NumEdgesForGamma() << "  loops " << mapper.loop_closures().size()
-           << "  " << std::fixed << std::setprecision(1) << Seconds(start) << " s   ";
-      Progress(config, line.str());
-    }
-  }
-  mapper.Finish();
-  const double wall = Seconds(start);
-  Progress(config, "\n");
-
-  run.summary = SummarizeTimeline(run.timeline, first_pass_end);
-  run.summary.wall_time_s = wall;
-  run.summary.peak_rss_mb = PeakRssMb();
-  if (!stream.empty()) {
-    run.summary.scans_kept_pct = 100.0 * static_cast<double>(mapper.graph().NumNodes()) /
-                                 static_cast<double>(mapper.observations());
-  }
-  for (const auto& m : mapper.marginalizations()) run.kld.push_back(m.kl_divergence);
-  if (mode != slam::PruningMode::kNone) run.summary.kld = SummarizeKld(run.kld);
-
-  // Trajectory of every scan, the graph, the map.
-  std::vector<io::StampedPose> traj;
-  std::vector<Pose2> est_poses;
-  for (const slam::ScanPose& p : mapper.Trajectory()) {
-    traj.push_back({p.stamp_s, p.T_world_robot});
-    est_poses.push_back(p.T_world_robot);
-  }
-  io::WriteTum((dir / "trajectory.tum").string(), traj);
-  io::WriteG2o((dir / "graph.g2o").string(), mapper.graph(), mapper.values());
-  const io::OccupancyGrid grid = ToOccupancyGrid(mapper.map());
-  io::WritePgmMap((dir / "map.pgm").string(), grid);
-  const EntropyResult entropy = ComputeMapEntropy(grid);
-  run.summary.map_entropy_bits = entropy.entropy_bits;
-  run.summary.occupied_share = entropy.occupied_share;
-
-  std::vector<TrajectoryOverlay> overlays;
-  if (truth) {
-    std::vector<Pose2> true_poses;
-    for (const Observation& o : stream) true_poses.push_back(*o.T_world_robot_true);
-    const AteResult ate = ComputeAte(est_poses, true_poses);
-    run.summary.ate_rmse_m = ate.rmse_m;
-    const Pose2 T_truth_est = AlignSE2(est_poses, true_poses);
-    const BlurResult blur = ComputeBlur(grid, truth->walls, T_truth_est, true_poses);
-    BlurSummary bs;
-    bs.mean_cm = blur.mean_cm;
-    bs.p95_cm = blur.p95_cm;
-    bs.thickness = blur.thickness;
-    if (blur.wall_cells > 0) bs.recall = blur.recall;
-    run.summary.blur = bs;
-    // Loop closures against the true poses of the nodes' scans.
-    std::map<double, int> index_of_stamp;
-    std::vector<Pose2> true_nodes;
-    std::vector<LoopClosure> closures;
-    auto node_index = [&](double stamp) {
-      auto it = index_of_stamp.find(stamp);
-      if (it != index_of_stamp.end()) return it->second;
-      for (const Observation& o : stream) {
-        if (o.stamp_s == stamp) {
-          true_nodes.push_back(*o.T_world_robot_true);
-          break;
-        }
-      }
-      const int idx = static_cast<int>(true_nodes.size()) - 1;
-      index_of_stamp[stamp] = idx;
-      return idx;
-    };
-    for (const auto& lc : mapper.loop_closures()) {
-      closures.push_back(
-          {node_index(lc.stamp_old_s), node_index(lc.stamp_current_s), lc.T_old_current});
-    }
-    if (!closures.empty()) {
-      const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
-      run.summary.loop_precision = lcr.precision;
-    }
-    overlays.push_back({TrajectoryKind::kTrue, {}});
-    for (const Pose2& p : true_poses) overlays.back().poses.push_back(T_truth_est.Inverse() * p);
-  }
-  if (!relations.empty()) {
-    std::vector<StampedPose> est;
-    for (const auto& p : traj) est.push_back({p.stamp_s, p.T_world_robot});
-    std::vector<Relation> rel;
-    for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});
-    const RelationsResult rr = ComputeRelationsError(est, rel);
-    run.summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
-                                             rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
-  }
-  WriteTimelineCsv((dir / "timeline.csv").string(), run.timeline);
-  run.map_png = name + "/map.png";
-  DrawConfig draw;
-  draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
-  WriteMapPng((dir / "map.png").string(), grid, MakeGraphOverlay(mapper.graph(), mapper.values()),
-              overlays, draw);
-  return run;
-}
-
-}  // namespace
-
 std::string RunExperiment(const std::vector<Observation>& stream,
                           const std::optional<GroundTruth>& truth, const ExperimentConfig& config) {
   const auto start = Clock::now();
   fs::create_directories(config.out_dir);
+  // A summary from an earlier run must not make a failed run look complete.
+  fs::remove(fs::path(config.out_dir) / "summary.json");
   std::vector<io::Relation> relations;
   if (config.relations_path) {
     relations = io::ReadRelations(*config.relations_path, config.relations_offset_s);
   }
+  std::unique_ptr<VideoSink> sink;
+  if (!config.video_path.empty() || !config.frames_dir.empty()) {
+    VideoOptions options;
+    options.video_path = config.video_path;
+    options.frames_dir = config.frames_dir;
+    options.stride = config.video_stride;
+    sink = std::make_unique<VideoSink>(options);
+    Progress(config, "rendering with " + sink->backend_name() + "\n");
+  }
+  std::vector<std::unique_ptr<ModeRunner>> runners;
+  for (slam::PruningMode mode : config.modes) {
+    runners.push_back(std::make_unique<ModeRunner>(mode, config));
+  }
+  const std::size_t n = stream.size();
+  const std::size_t report_every = std::max<std::size_t>(1, n / 20);
+  if (sink) {  // lockstep: every mode sees scan i before any sees scan i + 1
+    for (std::size_t i = 0; i < n; ++i) {
+      for (auto& r : runners) r->Step(stream[i]);
+      if (sink->Wants(static_cast<int>(i))) AddVideoFrame(sink.get(), stream[i], truth, runners);
+      if ((i + 1) % report_every == 0 || i + 1 == n) {
+        Progress(config, runners.front()->ProgressLine(i + 1, n));
+      }
+    }
+    sink->Close();
+    Progress(config, "\n");
+  } else {  // one mode after the other
+    for (auto& r : runners) {
+      for (std::size_t i = 0; i < n; ++i) {
+        r->Step(stream[i]);
+        if ((i + 1) % report_every == 0 || i + 1 == n) Progress(config, r->ProgressLine(i + 1, n));
+      }
+      Progress(config, "\n");
+    }
+  }
+
   RunSummary summary;
   summary.source = config.source;
   summary.seed = config.seed;
@@ -207,22 +302,15 @@ std::string RunExperiment(const std::vector<Observation>& stream,
   ModeTimelines timelines;
   std::map<std::string, std::vector<double>> kld;
   ReportPage page;
-  for (slam::PruningMode mode : config.modes) {
-    const std::string name = slam::PruningModeName(mode);
-    ModeRun run = RunMode(stream, truth, relations, mode, config);
-    summary.modes[name] = run.summary;
-    timelines[name] = std::move(run.timeline);
-    if (mode != slam::PruningMode::kNone) kld[name] = std::move(run.kld);
-    page.maps[name] = run.map_png;
+  for (auto& r : runners) {
+    std::vector<double> kl;
+    std::string map_png;
+    summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
+    timelines[r->name()] = r->timeline();
+    if (!kl.empty()) kld[r->name()] = std::move(kl);
+    page.maps[r->name()] = map_png;
   }
-  if (truth) {
-    const io::OccupancyGrid walls = RasterizeWalls(truth->walls, config.mapper.grid.resolution_m);
-    fs::create_directories(fs::path(config.out_dir) / "truth");
-    io::WritePgmMap((fs::path(config.out_dir) / "truth" / "map.pgm").string(), walls);
-    std::vector<io::StampedPose> true_traj;
-    for (const Observation& o : stream) true_traj.push_back({o.stamp_s, *o.T_world_robot_true});
-    io::WriteTum((fs::path(config.out_dir) / "truth" / "trajectory.tum").string(), true_traj);
-  }
+  if (truth) WriteTruth(stream, *truth, config);
   const PlotResult plots = PlotTimelines(timelines, config.out_dir);
   for (const std::string& f : plots.files) page.figures.push_back(fs::path(f).filename().string());
   if (!kld.empty()) {

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "eval/types.hpp"
+#include "io/occupancy_grid.hpp"
 #include "sensor/observation.hpp"
+#include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
 
 namespace lifelong::eval {
@@ -29,7 +31,15 @@ struct ExperimentConfig {
   std::optional<double> first_pass_s;  ///< observations before this time form the first pass
   std::string command_line;
   std::ostream* progress = nullptr;  ///< progress lines; nullptr: quiet
+  /// Video (--video FILE.mp4) and/or PNG frames (--frames DIR): the modes then run in
+  /// lockstep, scan by scan, so that each frame shows every mode side by side.
+  std::string video_path;
+  std::string frames_dir;
+  int video_stride = 20;  ///< render every this many scans
 };
+
+/// The mapper's counting grid as an io::OccupancyGrid (p = hits / (hits + misses)).
+io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
 
 /// Runs every mode over `stream` and writes DIR/summary.json, DIR/<mode>/..., figures and
 /// report.html. `truth` enables the ground-truth metrics. Returns the summary's JSON text.

@@ -130,12 +130,18 @@ int Replay(const std::string& log, const std::string& out, const std::string& mo
 }
 
 int OptimizeGraph(const std::string& in, const std::string& out, const std::string& method,
-                  bool supernodal, bool no_init) {
+                  const std::string& solver, bool no_init) {
   lifelong::slam::OptimizerParams params;
   if (!lifelong::slam::ParseOptimizerMethod(method, &params.method)) {
     throw InputError("--method", 0, method, "unknown method (known: lm, gn)");
   }
-  params.supernodal = supernodal;
+  if (solver == "simplicial") {
+    params.linear_solver = lifelong::slam::LinearSolver::kSimplicial;
+  } else if (solver == "supernodal") {
+    params.linear_solver = lifelong::slam::LinearSolver::kSupernodal;
+  } else if (solver != "auto") {
+    throw InputError("--solver", 0, solver, "unknown solver (known: auto, simplicial, supernodal)");
+  }
   params.linear_initialization = !no_init;
   lifelong::io::GraphFile file = lifelong::io::ReadGraphFile(in);
   const auto summary = lifelong::slam::Optimize(file.graph, &file.values, params);
@@ -186,9 +192,10 @@ int main(int argc, char** argv) {
   optimize->add_option("graph", graph_in, "g2o or TORO file")->required();
   optimize->add_option("-o,--out", graph_out, "write the optimized graph (g2o)");
   std::string method = "lm";
-  bool supernodal = false, no_init = false;
+  std::string solver = "auto";
+  bool no_init = false;
   optimize->add_option("--method", method, "lm (Levenberg-Marquardt) or gn (Gauss-Newton)");
-  optimize->add_flag("--supernodal", supernodal, "CHOLMOD supernodal instead of simplicial");
+  optimize->add_option("--solver", solver, "CHOLMOD factorization: auto, simplicial, supernodal");
   optimize->add_flag("--no-init", no_init, "skip the linear (LAGO-style) initialization");
 
   try {
@@ -200,7 +207,7 @@ int main(int argc, char** argv) {
     if (*run) return Run(scenario, out, modes, video, command_line);
     if (*simulate) return Simulate(sim_scenario, sim_out);
     if (*replay) return Replay(log, replay_out, replay_modes, relations, offset, command_line);
-    if (*optimize) return OptimizeGraph(graph_in, graph_out, method, supernodal, no_init);
+    if (*optimize) return OptimizeGraph(graph_in, graph_out, method, solver, no_init);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

@@ -146,14 +146,23 @@ Layout BuildLayout(const PoseGraph& graph, Values* values, NodeId anchor) {
 // CHOLMOD workspace (RAII): the upper-triangular pattern of H, its analysis, the factor.
 class Cholmod {
  public:
-  Cholmod(const Layout& layout, bool supernodal) {
+  Cholmod(const Layout& layout, LinearSolver solver) {
     cholmod_start(&common_);
     common_.print = 0;  // library code never prints
-    // Pose graphs are very sparse: a simplicial factorization with AMD ordering beats the
-    // supernodal BLAS path here (see docs/bench/backend.md), and AMD alone avoids METIS runs.
-    common_.supernodal = supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
-    common_.nmethods = 1;
-    common_.method[0].ordering = CHOLMOD_AMD;
+    // CHOLMOD picks simplicial or supernodal by the factor's density (supernodal wins on
+    // lattice-like graphs such as many passes through one corridor, simplicial on sparse
+    // ones) and tries METIS after AMD when AMD's fill is poor (docs/bench/backend.md).
+    switch (solver) {
+      case LinearSolver::kSimplicial:
+        common_.supernodal = CHOLMOD_SIMPLICIAL;
+        break;
+      case LinearSolver::kSupernodal:
+        common_.supernodal = CHOLMOD_SUPERNODAL;
+        break;
+      case LinearSolver::kAuto:
+        common_.supernodal = CHOLMOD_AUTO;
+        break;
+    }
     const std::size_t n = 3 * static_cast<std::size_t>(layout.num_blocks);
     std::size_t nnz = 0;
     for (const auto& rows : layout.rows_of_col) nnz += 9 * rows.size() + 6;
@@ -632,7 +641,7 @@ OptimizerSummary Optimize(const PoseGraph& graph, Values* values, const Optimize
     return summary;
   }
   const Layout layout = BuildLayout(graph, values, ChooseAnchor(graph, params));
-  Cholmod solver(layout, params.supernodal);
+  Cholmod solver(layout, params.linear_solver);
   System system(layout, solver.ColPtr(), solver.Nnz());
   summary.initial_chi2 = Chi2(layout, params);
   if (params.linear_initialization && layout.num_blocks > 0 && layout.cliques.empty() &&

@@ -32,6 +32,7 @@ namespace lifelong::slam {
 
 enum class RobustKernel : std::uint8_t { kNone, kHuber, kCauchy };
 enum class OptimizerMethod : std::uint8_t { kLevenbergMarquardt, kGaussNewton };
+enum class LinearSolver : std::uint8_t { kAuto, kSimplicial, kSupernodal };
 
 struct OptimizerParams {
   OptimizerMethod method = OptimizerMethod::kLevenbergMarquardt;
@@ -62,9 +63,8 @@ struct OptimizerParams {
   /// lowers the objective. Skipped when the graph has clique factors or robust edges with
   /// an active kernel (a least-squares guess would let outliers pull the start).
   bool linear_initialization = true;
-  /// CHOLMOD supernodal factorization (BLAS-bound) instead of simplicial; AMD ordering
-  /// either way.
-  bool supernodal = false;
+  /// CHOLMOD's factorization: chosen by density (kAuto), or forced.
+  LinearSolver linear_solver = LinearSolver::kAuto;
 };
 
 struct OptimizerSummary {

@@ -51,8 +51,12 @@ cv::Mat DrawCells(const View& v) {
   for (int r = 0; r < v.rows; ++r) {
     for (int c = 0; c < v.cols; ++c) {
       const float p = v.grid->At(v.col0 + c, v.row0 + r);
-      const int grey =
-          p < 0.0f ? 205 : static_cast<int>(std::lround(255.0 * (1.0 - std::min(p, 1.0f))));
+      // Reflection probabilities of walls are often well below 1 (grazing beams pass
+      // through them), so the grey ramp saturates at p = 0.5: black = at least as often hit
+      // as passed.
+      const int grey = p < 0.0f ? 205
+                                : static_cast<int>(std::lround(
+                                      255.0 * (1.0 - std::min(2.0 * static_cast<double>(p), 1.0))));
       const auto u = static_cast<uchar>(grey);
       small.at<cv::Vec3b>(v.rows - 1 - r, c) = cv::Vec3b(u, u, u);
     }

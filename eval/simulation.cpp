@@ -57,6 +57,20 @@ std::vector<Segment> TrueWalls(const sim::World& world) {
   std::vector<Segment> out;
   for (const auto& s : sim::WallSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
   for (const auto& s : sim::DoorSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+  // Boxes at every pose they take during the run: a map may show any of them.
+  sim::World moved = world;
+  for (std::size_t step = 0;; ++step) {
+    for (const auto& s : sim::BoxSegments(moved)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+    bool any = false;
+    for (std::size_t b = 0; b < world.boxes.size(); ++b) {
+      if (step < world.boxes[b].moves.size()) {
+        moved.boxes[b].center = world.boxes[b].moves[step].center;
+        moved.boxes[b].yaw_rad = world.boxes[b].moves[step].yaw_rad;
+        any = true;
+      }
+    }
+    if (!any) break;
+  }
   return out;
 }
 

@@ -24,7 +24,8 @@ struct SimulatedRun {
 /// Simulates the whole scenario; progress lines go to `progress` when given.
 SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress);
 
-/// The world's static walls plus its doors (as closed), the ground truth for map metrics.
+/// The ground truth for map metrics: static walls, doors (as closed) and the boxes at each
+/// pose they take.
 std::vector<Segment> TrueWalls(const sim::World& world);
 
 /// The time at which the first pass over the space ends: the first forth-and-back cycle of a

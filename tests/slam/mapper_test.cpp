@@ -1,0 +1,116 @@
+// Mapper properties on a short simulated corridor run (sim is used only as a data source).
+#include "slam/mapper.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "sim/scenario.hpp"
+#include "sim/simulator.hpp"
+#include "slam/dijkstra.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+std::vector<Observation> Simulate(const std::string& scenario_file) {
+  const sim::Scenario scenario = sim::LoadScenario(scenario_file);
+  sim::Simulator simulator(scenario);
+  std::vector<Observation> out;
+  Observation obs;
+  std::vector<Odometry> odometry;
+  while (simulator.Next(&obs, &odometry)) out.push_back(obs);
+  return out;
+}
+
+const std::vector<Observation>& Corridor3() {
+  static const std::vector<Observation> stream =
+      Simulate(std::string(LIFELONG_SOURCE_DIR) + "/scenarios/corridor_3.yaml");
+  return stream;
+}
+
+// RMS position error of the trajectory against the truth, after anchoring both at the
+// first scan (the mapper's world frame is the first robot pose).
+double AnchoredRmse(const std::vector<ScanPose>& est, const std::vector<Observation>& truth) {
+  const Pose2 T_true_est = *truth.front().T_world_robot_true * est.front().T_world_robot.Inverse();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    const Pose2 e = T_true_est * est[i].T_world_robot;
+    const Pose2& t = *truth[i].T_world_robot_true;
+    sum += (e.x - t.x) * (e.x - t.x) + (e.y - t.y) * (e.y - t.y);
+  }
+  return std::sqrt(sum / static_cast<double>(est.size()));
+}
+
+struct MapRun {
+  std::vector<ScanPose> trajectory;
+  std::size_t nodes = 0;
+  std::size_t edges = 0;
+  std::size_t removed = 0;
+  int observations = 0;
+  bool always_connected = true;
+  bool anchor_kept = true;
+};
+
+MapRun MapWith(PruningMode mode) {
+  MapperConfig config = DefaultMapperConfig();
+  config.pruning.mode = mode;
+  Mapper mapper(config);
+  MapRun run;
+  mapper.on_observation = [&](const StepStats& s) {
+    if (s.observation_index % 10 == 0) {
+      run.always_connected = run.always_connected && IsConnected(mapper.graph());
+      run.anchor_kept = run.anchor_kept && mapper.graph().HasNode(0);
+    }
+  };
+  for (const Observation& o : Corridor3()) mapper.AddObservation(o);
+  mapper.Finish();
+  run.trajectory = mapper.Trajectory();
+  run.nodes = mapper.graph().NumNodes();
+  run.edges = mapper.graph().NumEdgesForGamma();
+  run.removed = mapper.marginalizations().size();
+  run.observations = mapper.observations();
+  return run;
+}
+
+TEST(Mapper, StandardKeepsEveryNodeAndTracksTheTruth) {
+  const MapRun run = MapWith(PruningMode::kNone);
+  ASSERT_EQ(run.trajectory.size(), Corridor3().size());  // a pose for every scan
+  EXPECT_EQ(run.nodes, static_cast<std::size_t>(run.observations));
+  EXPECT_EQ(run.removed, 0u);
+  EXPECT_GT(run.observations, 100);
+  EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
+}
+
+TEST(Mapper, PrunedStaysConnectedSparseAndAccurate) {
+  const MapRun run = MapWith(PruningMode::kChowLiu);
+  ASSERT_EQ(run.trajectory.size(), Corridor3().size());  // removed scans keep a pose
+  EXPECT_GT(run.removed, 0u);
+  EXPECT_EQ(run.nodes + run.removed, static_cast<std::size_t>(run.observations));
+  EXPECT_TRUE(run.always_connected);
+  EXPECT_TRUE(run.anchor_kept);
+  EXPECT_LE(run.edges, 2 * run.nodes);  // Chow-Liu keeps the graph sparse
+  EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
+}
+
+TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {
+  const MapRun exact = MapWith(PruningMode::kExact);
+  const MapRun chow_liu = MapWith(PruningMode::kChowLiu);
+  EXPECT_TRUE(exact.always_connected);
+  // Same removal rule, but exact marginalization fills in the cliques.
+  EXPECT_GT(static_cast<double>(exact.edges) / static_cast<double>(exact.nodes),
+            static_cast<double>(chow_liu.edges) / static_cast<double>(chow_liu.nodes));
+}
+
+TEST(Mapper, ModeNamesRoundTrip) {
+  for (PruningMode m :
+       {PruningMode::kNone, PruningMode::kChowLiu, PruningMode::kExact, PruningMode::kNaive}) {
+    PruningMode parsed;
+    ASSERT_TRUE(ParsePruningMode(PruningModeName(m), &parsed));
+    EXPECT_EQ(parsed, m);
+  }
+  PruningMode unused;
+  EXPECT_FALSE(ParsePruningMode("prunned", &unused));
+}
+
+}  // namespace
+}  // namespace lifelong::slam

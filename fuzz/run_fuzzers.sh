@@ -33,7 +33,8 @@ for t in "${TARGETS[@]}"; do
   fi
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
+  corpus=$(grep -o 'DONE .*corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | grep -o '[0-9]*/[0-9]*[a-zA-Z]*$' || true)
   echo "fuzz_$t: ${SECONDS_PER_TARGET} s, ${execs:-?} runs, ${rate:-?} exec/s," \
-    "corpus $(find "$work" -type f | wc -l) files"
+    "corpus ${corpus:-?} (inputs/size), $(find "$work" -type f | wc -l) files in $work"
 done
 exit "$status"

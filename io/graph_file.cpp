@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -142,6 +143,9 @@ void ReadClique(Parsed* p, LineReader* r) {
   if (m < 2 || m > 1000) r->Fail("size", "clique size must be in [2, 1000]");
   slam::CliqueFactor c;
   for (slam::NodeId k = 0; k < m; ++k) c.nodes.push_back(r->Id("node"));
+  if (std::set<slam::NodeId>(c.nodes.begin(), c.nodes.end()).size() != c.nodes.size()) {
+    r->Fail("node", "clique names a node twice");
+  }
   for (slam::NodeId k = 1; k < m; ++k) c.T_root_node.push_back(ReadPose(r, "d"));
   const Eigen::Index d = 3 * (m - 1);
   c.information.resize(d, d);

@@ -33,7 +33,8 @@ struct GraphFile {
 /// Reads a g2o or TORO file, the format told by its records. Edges j == i + 1 become
 /// EdgeKind::kOdometry, others kLoop with robust = true. Throws lifelong::InputError
 /// (file, line, field) on unreadable files, corrupt or truncated lines, unknown records,
-/// duplicate vertices, edges to unknown vertices and non-positive-definite information.
+/// duplicate vertices, edges to unknown vertices, ids beyond +-2^62, cliques naming a node
+/// twice and non-positive-definite information.
 GraphFile ReadGraphFile(const std::string& path);
 /// Same, from a stream; `name` is used in error messages.
 GraphFile ParseGraph(std::istream& in, const std::string& name);

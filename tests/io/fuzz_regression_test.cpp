@@ -110,6 +110,11 @@ TEST(FuzzRegression, GraphIdsNearInt64LimitsAreRejected) {
   EXPECT_EQ(ErrorField(parse("EDGE_SE2 4 5 1 0 0 1 0 0 1 0 1\n")), "<no error>");
 }
 
+TEST(FuzzRegression, GraphCliqueNamingANodeTwiceIsRejected) {
+  std::istringstream in("VERTEX_SE2 0 0 0 0\nLIFELONG_CLIQUE_SE2 2 0 0 1 0 0 1 0 0 1 0 1\n");
+  EXPECT_THROW(io::ParseGraph(in, "clique.g2o"), InputError);
+}
+
 TEST(FuzzRegression, CarmenNulByteIsAnInputErrorOnItsLine) {
   const std::string path = testing::TempDir() + "nul.clf";
   {

@@ -1,0 +1,37 @@
+// The mapper's settings as a YAML file (`lifelong run|replay --config FILE`), read strictly and
+// written back, so a run can record exactly what it used (DIR/config.yaml).
+//
+// Layout: one section per nested struct of slam::MapperConfig, keys equal to the C++ field
+// names (configs/default.yaml documents every key with its default, unit and meaning):
+//   keyframes, incremental (+ matcher), loops (+ matcher), pruning, grid, optimizer, map_update
+// Enums by name: optimizer.method lm|gn, optimizer.robust_kernel none|huber|cauchy,
+// optimizer.linear_solver auto|simplicial|supernodal.
+// Not in the file: pruning.mode (chosen with --modes), loops.matcher's two windows (set per
+// attempt from loops.{min,max}_window_*), optimizer.anchor (always the oldest node).
+//
+// Errors are lifelong::InputError(file, 1-based line, dotted field, message): malformed YAML,
+// an unknown key, a wrong type, a value out of range (e.g. a negative distance, a resolution
+// <= 0, a coarse_factor that is not a power of 2, a score outside [0, 1]).
+#pragma once
+
+#include <string>
+
+#include "slam/mapper_config.hpp"
+
+namespace lifelong::eval {
+
+/// Reads `path` and applies it on top of `base`: settings the file does not give keep the
+/// value of `base` (pruning.mode always does). An empty file gives `base`.
+slam::MapperConfig LoadMapperConfig(const std::string& path,
+                                    const slam::MapperConfig& base = slam::DefaultMapperConfig());
+
+/// Same, from a YAML text; `name` stands for the file name in error messages.
+slam::MapperConfig LoadMapperConfigFromString(
+    const std::string& yaml, const std::string& name,
+    const slam::MapperConfig& base = slam::DefaultMapperConfig());
+
+/// Every setting of `config` (except those listed above) as a YAML document that
+/// LoadMapperConfigFromString reads back to an equal config (doubles in shortest exact form).
+std::string MapperConfigToYaml(const slam::MapperConfig& config);
+
+}  // namespace lifelong::eval

@@ -1,0 +1,281 @@
+#include "eval/mapper_config_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "sensor/input_error.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+using slam::MapperConfig;
+
+void ExpectSameMatcher(const slam::MatcherConfig& a, const slam::MatcherConfig& b) {
+  EXPECT_EQ(a.linear_window_m, b.linear_window_m);
+  EXPECT_EQ(a.angular_window_rad, b.angular_window_rad);
+  EXPECT_EQ(a.resolution_m, b.resolution_m);
+  EXPECT_EQ(a.angular_step_rad, b.angular_step_rad);
+  EXPECT_EQ(a.coarse_factor, b.coarse_factor);
+  EXPECT_EQ(a.sigma_m, b.sigma_m);
+  EXPECT_EQ(a.min_score, b.min_score);
+  EXPECT_EQ(a.ambiguity_radius_m, b.ambiguity_radius_m);
+  EXPECT_EQ(a.ambiguity_angle_rad, b.ambiguity_angle_rad);
+  EXPECT_EQ(a.floor_sigma_m, b.floor_sigma_m);
+  EXPECT_EQ(a.floor_sigma_rad, b.floor_sigma_rad);
+}
+
+void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingConfig& b) {
+  EXPECT_EQ(a.enabled, b.enabled);
+  EXPECT_EQ(a.min_path_separation_m, b.min_path_separation_m);
+  EXPECT_EQ(a.overlap_radius_m, b.overlap_radius_m);
+  EXPECT_EQ(a.gate_chi2, b.gate_chi2);
+  EXPECT_EQ(a.max_position_sigma_m, b.max_position_sigma_m);
+  EXPECT_EQ(a.min_window_m, b.min_window_m);
+  EXPECT_EQ(a.max_window_m, b.max_window_m);
+  EXPECT_EQ(a.min_window_rad, b.min_window_rad);
+  EXPECT_EQ(a.max_window_rad, b.max_window_rad);
+  EXPECT_EQ(a.neighbours_per_candidate, b.neighbours_per_candidate);
+  EXPECT_EQ(a.min_score, b.min_score);
+  EXPECT_EQ(a.max_ambiguity, b.max_ambiguity);
+  EXPECT_EQ(a.consistency_chi2, b.consistency_chi2);
+  EXPECT_EQ(a.min_reference_points, b.min_reference_points);
+  ExpectSameMatcher(a.matcher, b.matcher);
+  EXPECT_EQ(a.optimize_edge_chi2, b.optimize_edge_chi2);
+  EXPECT_EQ(a.optimize_every, b.optimize_every);
+}
+
+void ExpectSameOptimizer(const slam::OptimizerParams& a, const slam::OptimizerParams& b) {
+  EXPECT_EQ(a.method, b.method);
+  EXPECT_EQ(a.max_iterations, b.max_iterations);
+  EXPECT_EQ(a.relative_tolerance, b.relative_tolerance);
+  EXPECT_EQ(a.step_tolerance, b.step_tolerance);
+  EXPECT_EQ(a.absolute_tolerance, b.absolute_tolerance);
+  EXPECT_EQ(a.anchor, b.anchor);
+  EXPECT_EQ(a.robust_kernel, b.robust_kernel);
+  EXPECT_EQ(a.robust_delta, b.robust_delta);
+  EXPECT_EQ(a.scale_damping, b.scale_damping);
+  EXPECT_EQ(a.initial_lambda_factor, b.initial_lambda_factor);
+  EXPECT_EQ(a.evaluate_final_chi2, b.evaluate_final_chi2);
+  EXPECT_EQ(a.linear_initialization, b.linear_initialization);
+  EXPECT_EQ(a.linear_solver, b.linear_solver);
+}
+
+/// Field-by-field equality of two configs (exact: the file format must round-trip doubles).
+void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
+  EXPECT_EQ(a.keyframes.min_translation_m, b.keyframes.min_translation_m);
+  EXPECT_EQ(a.keyframes.min_rotation_rad, b.keyframes.min_rotation_rad);
+  const slam::IncrementalConfig& ia = a.incremental;
+  const slam::IncrementalConfig& ib = b.incremental;
+  EXPECT_EQ(ia.local_map_nodes, ib.local_map_nodes);
+  EXPECT_EQ(ia.point_spacing_m, ib.point_spacing_m);
+  ExpectSameMatcher(ia.matcher, ib.matcher);
+  EXPECT_EQ(ia.odom_sigma_xy_m, ib.odom_sigma_xy_m);
+  EXPECT_EQ(ia.odom_sigma_xy_per_m, ib.odom_sigma_xy_per_m);
+  EXPECT_EQ(ia.odom_sigma_rad, ib.odom_sigma_rad);
+  EXPECT_EQ(ia.odom_sigma_rad_per_rad, ib.odom_sigma_rad_per_rad);
+  ExpectSameLoops(a.loops, b.loops);
+  EXPECT_EQ(a.pruning.mode, b.pruning.mode);
+  EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
+  EXPECT_EQ(a.pruning.radius_m, b.pruning.radius_m);
+  EXPECT_EQ(a.pruning.keep_recent_nodes, b.pruning.keep_recent_nodes);
+  EXPECT_EQ(a.pruning.node_budget, b.pruning.node_budget);
+  EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
+  EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
+  ExpectSameOptimizer(a.optimizer, b.optimizer);
+  EXPECT_EQ(a.map_move_epsilon_m, b.map_move_epsilon_m);
+  EXPECT_EQ(a.map_move_epsilon_rad, b.map_move_epsilon_rad);
+}
+
+void ChangeMatcher(slam::MatcherConfig* m, bool windows) {
+  if (windows) {
+    m->linear_window_m = 0.7;
+    m->angular_window_rad = 0.1 / 3.0;  // not a short decimal: tests exact round trip
+  }
+  m->resolution_m = 0.02;
+  m->angular_step_rad = 0.011;
+  m->coarse_factor = 8;
+  m->sigma_m = 0.07;
+  m->min_score = 0.45;
+  m->ambiguity_radius_m = 0.9;
+  m->ambiguity_angle_rad = 0.3;
+  m->floor_sigma_m = 0.02;
+  m->floor_sigma_rad = 0.004;
+}
+
+/// A valid config that differs from the defaults in every setting the file holds.
+MapperConfig AllChanged() {
+  MapperConfig c = slam::DefaultMapperConfig();
+  c.keyframes = {0.25, 0.2};
+  c.incremental.local_map_nodes = 5;
+  c.incremental.point_spacing_m = 0.04;
+  ChangeMatcher(&c.incremental.matcher, true);
+  c.incremental.odom_sigma_xy_m = 0.06;
+  c.incremental.odom_sigma_xy_per_m = 0.2;
+  c.incremental.odom_sigma_rad = 0.03;
+  c.incremental.odom_sigma_rad_per_rad = 0.15;
+  slam::LoopClosingConfig& l = c.loops;
+  l.enabled = false;
+  l.min_path_separation_m = 4.0;
+  l.overlap_radius_m = 1.5;
+  l.gate_chi2 = 9.21;
+  l.max_position_sigma_m = 3.0;
+  l.min_window_m = 0.4;
+  l.max_window_m = 1.5;
+  l.min_window_rad = 0.1;
+  l.max_window_rad = 0.6;
+  l.neighbours_per_candidate = 1;
+  l.min_score = 0.7;
+  l.max_ambiguity = 0.9;
+  l.consistency_chi2 = 11.34;
+  l.min_reference_points = 40;
+  ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
+  l.optimize_edge_chi2 = 4.0;
+  l.optimize_every = 3;
+  c.pruning = {slam::PruningMode::kNone, -0.5, 4.5, 2, 300};
+  c.grid = {0.1, 6.0};
+  slam::OptimizerParams& o = c.optimizer;
+  o.method = slam::OptimizerMethod::kGaussNewton;
+  o.max_iterations = 25;
+  o.relative_tolerance = 2e-6;
+  o.step_tolerance = 3e-9;
+  o.absolute_tolerance = 1e-12;
+  o.robust_kernel = slam::RobustKernel::kHuber;
+  o.robust_delta = 1.5;
+  o.scale_damping = false;
+  o.initial_lambda_factor = 1e-3;
+  o.evaluate_final_chi2 = false;
+  o.linear_initialization = true;
+  o.linear_solver = slam::LinearSolver::kSupernodal;
+  c.map_move_epsilon_m = 0.02;
+  c.map_move_epsilon_rad = 0.01;
+  return c;
+}
+
+const std::string kDir = std::string(LIFELONG_SOURCE_DIR) + "/configs/";
+
+TEST(MapperConfigFile, DefaultYamlSetsEveryKeyToTheCodeDefaults) {
+  // Loaded on top of a config where everything differs, so a key missing from the file or a
+  // value that drifted from DefaultMapperConfig() both show.
+  ExpectSameConfig(LoadMapperConfig(kDir + "default.yaml", AllChanged()),
+                   slam::DefaultMapperConfig());
+}
+
+TEST(MapperConfigFile, PrunedBudgetExampleSetsOnlyThePruning) {
+  const MapperConfig loaded = LoadMapperConfig(kDir + "pruned_budget.yaml");
+  MapperConfig expected = slam::DefaultMapperConfig();
+  expected.pruning.radius_m = 8.0;
+  expected.pruning.node_budget = 150;
+  ExpectSameConfig(loaded, expected);
+}
+
+TEST(MapperConfigFile, OverridesApplyAndTheRestStaysAtBase) {
+  MapperConfig base = AllChanged();
+  base.pruning.mode = slam::PruningMode::kChowLiu;
+  const MapperConfig loaded = LoadMapperConfigFromString(
+      "pruning: {node_budget: 50, radius_m: 6.5}\n"
+      "loops:\n  matcher:\n    sigma_m: 0.1\n",
+      "test.yaml", base);
+  MapperConfig expected = base;
+  expected.pruning.node_budget = 50;
+  expected.pruning.radius_m = 6.5;
+  expected.loops.matcher.sigma_m = 0.1;
+  ExpectSameConfig(loaded, expected);
+}
+
+TEST(MapperConfigFile, EmptyDocumentsAndSectionsGiveTheBase) {
+  const MapperConfig base = AllChanged();
+  ExpectSameConfig(LoadMapperConfigFromString("", "empty.yaml", base), base);
+  ExpectSameConfig(LoadMapperConfigFromString("# nothing\npruning:\n", "c.yaml", base), base);
+}
+
+TEST(MapperConfigFile, EnumsAreReadByName) {
+  const MapperConfig c = LoadMapperConfigFromString(
+      "optimizer: {method: gn, robust_kernel: none, linear_solver: simplicial}\n", "e.yaml");
+  EXPECT_EQ(c.optimizer.method, slam::OptimizerMethod::kGaussNewton);
+  EXPECT_EQ(c.optimizer.robust_kernel, slam::RobustKernel::kNone);
+  EXPECT_EQ(c.optimizer.linear_solver, slam::LinearSolver::kSimplicial);
+  const MapperConfig d = LoadMapperConfigFromString(
+      "optimizer: {method: lm, robust_kernel: huber, linear_solver: supernodal}\n", "e.yaml", c);
+  EXPECT_EQ(d.optimizer.method, slam::OptimizerMethod::kLevenbergMarquardt);
+  EXPECT_EQ(d.optimizer.robust_kernel, slam::RobustKernel::kHuber);
+  EXPECT_EQ(d.optimizer.linear_solver, slam::LinearSolver::kSupernodal);
+}
+
+TEST(MapperConfigFile, RoundTripsTheDefaultsAndAChangedConfig) {
+  const std::string defaults = MapperConfigToYaml(slam::DefaultMapperConfig());
+  ExpectSameConfig(LoadMapperConfigFromString(defaults, "rt", AllChanged()),
+                   slam::DefaultMapperConfig());
+  const MapperConfig changed = AllChanged();
+  ExpectSameConfig(LoadMapperConfigFromString(MapperConfigToYaml(changed), "rt"), changed);
+}
+
+/// Loads `yaml` and expects an InputError naming the file, `line` and `field`, whose message
+/// contains `text`.
+void ExpectError(const std::string& yaml, int line, const std::string& field,
+                 const std::string& text) {
+  SCOPED_TRACE(yaml);
+  try {
+    LoadMapperConfigFromString(yaml, "bad.yaml");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "bad.yaml");
+    EXPECT_EQ(e.line(), line);
+    EXPECT_EQ(e.field(), field);
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+TEST(MapperConfigFile, UnknownKeysNameTheDottedField) {
+  ExpectError("loops:\n  matcher:\n    sigma: 0.1\n", 3, "loops.matcher.sigma", "unknown key");
+  ExpectError("grid: {resolution_m: 0.1}\npruning_radius: 3\n", 2, "pruning_radius", "unknown key");
+  ExpectError("pruning:\n  mode: pruned\n", 2, "pruning.mode", "--modes");
+  ExpectError("loops:\n  matcher: {linear_window_m: 1}\n", 2, "loops.matcher.linear_window_m",
+              "per attempt");
+}
+
+TEST(MapperConfigFile, WrongTypesAreRejected) {
+  ExpectError("pruning:\n  radius_m: six\n", 2, "pruning.radius_m", "expected a number");
+  ExpectError("pruning:\n  node_budget: 2.5\n", 2, "pruning.node_budget", "expected an integer");
+  ExpectError("loops:\n  enabled: maybe\n", 2, "loops.enabled", "expected true or false");
+  ExpectError("pruning: 3\n", 1, "pruning", "expected a section");
+  ExpectError("grid:\n  resolution_m: [0.1]\n", 2, "grid.resolution_m", "expected a number");
+  ExpectError("- 1\n- 2\n", 1, "", "expected a map");
+  ExpectError("optimizer:\n\n  method: newton\n", 3, "optimizer.method", "lm, gn");
+}
+
+TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
+  ExpectError("pruning:\n  radius_m: -1\n", 2, "pruning.radius_m", ">= 0");
+  ExpectError("pruning:\n  node_budget: -1\n", 2, "pruning.node_budget", ">= 0");
+  ExpectError("grid:\n  resolution_m: 0\n", 2, "grid.resolution_m", "> 0");
+  ExpectError("incremental:\n  matcher:\n    coarse_factor: 12\n", 3,
+              "incremental.matcher.coarse_factor", "power of 2");
+  ExpectError("incremental:\n  matcher:\n    coarse_factor: 0\n", 3,
+              "incremental.matcher.coarse_factor", ">= 1");
+  ExpectError("loops:\n  min_score: 1.5\n", 2, "loops.min_score", "in [0, 1]");
+  ExpectError("incremental:\n  matcher: {linear_window_m: 0}\n", 2,
+              "incremental.matcher.linear_window_m", "> 0");
+  ExpectError("optimizer:\n  max_iterations: 0\n", 2, "optimizer.max_iterations", ">= 1");
+  ExpectError("keyframes:\n  min_translation_m: .nan\n", 2, "keyframes.min_translation_m",
+              "got .nan");
+  // max below min: blame max when the file gives it, else min.
+  ExpectError("loops:\n  min_window_m: 0.5\n  max_window_m: 0.4\n", 3, "loops.max_window_m",
+              "exceeds");
+  ExpectError("loops:\n  min_window_rad: 0.9\n", 2, "loops.min_window_rad", "exceeds");
+}
+
+TEST(MapperConfigFile, MalformedYamlAndMissingFilesAreInputErrors) {
+  // Line 3 is indented less than its siblings: yaml-cpp reports it there (0-based 2).
+  ExpectError("pruning:\n  radius_m: 1\n node_budget: 2\n", 3, "", "malformed YAML");
+  ExpectError("pruning: {radius_m: 1\n", 2, "", "malformed YAML");
+  try {
+    LoadMapperConfig(kDir + "no_such_file.yaml");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), kDir + "no_such_file.yaml");
+    EXPECT_EQ(e.line(), 0);
+  }
+}
+
+}  // namespace
+}  // namespace lifelong::eval

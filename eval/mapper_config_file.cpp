@@ -154,6 +154,15 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
 
 // ---- Reading: strict, every error an InputError with file, 1-based line and field. ----
 
+/// Shortest text that reads back to exactly `v`, with a ".0" on integral values.
+std::string ShortestDouble(double v) {
+  char buf[64];
+  const auto result = std::to_chars(buf, buf + sizeof(buf), v);
+  std::string s(buf, result.ptr);
+  if (std::isfinite(v) && s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
 int LineOf(const YAML::Node& node) {
   const int line = node.Mark().line;
   return line >= 0 ? line + 1 : 0;
@@ -235,13 +244,16 @@ class Reader {
     if (lo <= hi) return;
     const char* key = Node()[hi_key] ? hi_key : lo_key;
     Fail(Node()[key], Name(key),
-         std::string(lo_key) + " (" + std::to_string(lo) + ") exceeds " + hi_key + " (" +
-             std::to_string(hi) + ")");
+         std::string(lo_key) + " (" + ShortestDouble(lo) + ") exceeds " + hi_key + " (" +
+             ShortestDouble(hi) + ")");
   }
 
+  /// Every key must be a known one, given once (yaml-cpp would silently keep the first).
   void RejectUnknown() const {
+    std::set<std::string> seen;
     for (auto it = node_.begin(); it != node_.end(); ++it) {
       const std::string key = it->first.Scalar();
+      if (!seen.insert(key).second) Fail(it->first, Name(key), "duplicate key");
       if (used_.count(key) != 0) continue;
       const auto hint = Hints().find(Name(key));
       Fail(it->first, Name(key),
@@ -284,15 +296,6 @@ slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
 }
 
 // ---- Writing. ----
-
-/// Shortest text that reads back to exactly `v`, with a ".0" on integral values.
-std::string ShortestDouble(double v) {
-  char buf[64];
-  const auto result = std::to_chars(buf, buf + sizeof(buf), v);
-  std::string s(buf, result.ptr);
-  if (std::isfinite(v) && s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s;
-}
 
 class Writer {
  public:

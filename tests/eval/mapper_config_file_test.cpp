@@ -232,6 +232,7 @@ TEST(MapperConfigFile, UnknownKeysNameTheDottedField) {
   ExpectError("pruning:\n  mode: pruned\n", 2, "pruning.mode", "--modes");
   ExpectError("loops:\n  matcher: {linear_window_m: 1}\n", 2, "loops.matcher.linear_window_m",
               "per attempt");
+  ExpectError("pruning:\n  radius_m: 1\n  radius_m: 2\n", 3, "pruning.radius_m", "duplicate key");
 }
 
 TEST(MapperConfigFile, WrongTypesAreRejected) {
@@ -260,7 +261,7 @@ TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
               "got .nan");
   // max below min: blame max when the file gives it, else min.
   ExpectError("loops:\n  min_window_m: 0.5\n  max_window_m: 0.4\n", 3, "loops.max_window_m",
-              "exceeds");
+              "min_window_m (0.5) exceeds max_window_m (0.4)");
   ExpectError("loops:\n  min_window_rad: 0.9\n", 2, "loops.min_window_rad", "exceeds");
 }
 

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "eval/experiment.hpp"
+#include "eval/mapper_config_file.hpp"
 #include "eval/simulation.hpp"
 #include "io/carmen_log.hpp"
 #include "io/graph_file.hpp"
@@ -80,9 +81,16 @@ struct VideoArgs {
   int stride = 20;
 };
 
+// Mapper settings: the defaults, or a YAML file over them (configs/default.yaml).
+lifelong::slam::MapperConfig MapperSettings(const std::string& config_path) {
+  return config_path.empty() ? lifelong::slam::DefaultMapperConfig()
+                             : lifelong::eval::LoadMapperConfig(config_path);
+}
+
 int Run(const std::string& scenario_path, const std::string& out, const std::string& modes,
-        const VideoArgs& video, const std::string& command_line) {
+        const std::string& config_path, const VideoArgs& video, const std::string& command_line) {
   lifelong::eval::ExperimentConfig config;
+  config.mapper = MapperSettings(config_path);
   config.video_path = video.video;
   config.frames_dir = video.frames;
   config.video_stride = video.stride;
@@ -107,8 +115,10 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
 }
 
 int Replay(const std::string& log, const std::string& out, const std::string& modes,
-           const std::string& relations, double offset, const std::string& command_line) {
+           const std::string& config_path, const std::string& relations, double offset,
+           const std::string& command_line) {
   lifelong::eval::ExperimentConfig config;
+  config.mapper = MapperSettings(config_path);
   config.modes = ParseModes(modes);
   CheckWritableDir(out);
   const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
@@ -166,6 +176,8 @@ int main(int argc, char** argv) {
   run->add_option("scenario", scenario, "scenario YAML (default: corridor_100)");
   run->add_option("-o,--out", out, "output directory");
   run->add_option("--modes", modes, "comma-separated: standard,pruned,pruned-exact,pruned-naive");
+  std::string config_path;
+  run->add_option("--config", config_path, "mapper settings, YAML (see configs/default.yaml)");
   VideoArgs video;
   run->add_option("--video", video.video, "write a video of the run (mp4)");
   run->add_option("--frames", video.frames, "write PNG frames of the run into this directory");
@@ -183,6 +195,7 @@ int main(int argc, char** argv) {
   replay->add_option("log", log, "CARMEN log, plain or gzipped")->required();
   replay->add_option("-o,--out", replay_out, "output directory");
   replay->add_option("--modes", replay_modes, "comma-separated modes");
+  replay->add_option("--config", config_path, "mapper settings, YAML (see configs/default.yaml)");
   replay->add_option("--relations", relations, "relations file (Kuemmerle et al. 2009)");
   replay->add_option("--relations-offset", offset,
                      "relation time = log time + this (default: Intel's)");
@@ -204,9 +217,11 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    if (*run) return Run(scenario, out, modes, video, command_line);
+    if (*run) return Run(scenario, out, modes, config_path, video, command_line);
     if (*simulate) return Simulate(sim_scenario, sim_out);
-    if (*replay) return Replay(log, replay_out, replay_modes, relations, offset, command_line);
+    if (*replay) {
+      return Replay(log, replay_out, replay_modes, config_path, relations, offset, command_line);
+    }
     if (*optimize) return OptimizeGraph(graph_in, graph_out, method, solver, no_init);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -11,6 +11,7 @@
 
 #include "eval/draw.hpp"
 #include "eval/map_quality.hpp"
+#include "eval/mapper_config_file.hpp"
 #include "eval/metrics.hpp"
 #include "eval/plots.hpp"
 #include "eval/report.hpp"
@@ -256,6 +257,9 @@ std::string RunExperiment(const std::vector<Observation>& stream,
   fs::create_directories(config.out_dir);
   // A summary from an earlier run must not make a failed run look complete.
   fs::remove(fs::path(config.out_dir) / "summary.json");
+  WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
+                      "# Mapper settings of this run (lifelong --config format)\n" +
+                          MapperConfigToYaml(config.mapper));
   std::vector<io::Relation> relations;
   if (config.relations_path) {
     relations = io::ReadRelations(*config.relations_path, config.relations_offset_s);

@@ -46,6 +46,9 @@ constexpr EnumName<RobustKernel> kKernels[] = {{"none", RobustKernel::kNone},
 constexpr EnumName<LinearSolver> kSolvers[] = {{"auto", LinearSolver::kAuto},
                                                {"simplicial", LinearSolver::kSimplicial},
                                                {"supernodal", LinearSolver::kSupernodal}};
+constexpr EnumName<slam::BlanketPolicy> kBlankets[] = {
+    {"factors_at_node", slam::BlanketPolicy::kFactorsAtK},
+    {"markov_blanket", slam::BlanketPolicy::kBlanket}};
 
 /// Keys that look like settings but are deliberately not in the file.
 const std::map<std::string, std::string>& Hints() {
@@ -140,6 +143,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("radius_m", c.pruning.radius_m, kNonNegative);
     s.Int("keep_recent_nodes", c.pruning.keep_recent_nodes, 0);
     s.Int("node_budget", c.pruning.node_budget, 0);
+    s.Enum("blanket", c.pruning.blanket, kBlankets);
   });
   v.Section("grid", [&](auto& s) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "slam/grid_map.hpp"
+#include "slam/marginalization.hpp"
 #include "slam/optimizer.hpp"
 #include "slam/scan_matcher.hpp"
 
@@ -63,6 +64,8 @@ struct PruningConfig {
   double radius_m = 6.0;             ///< neighbourhood (Dijkstra expansion) considered
   int keep_recent_nodes = 3;         ///< the newest nodes are never removed
   int node_budget = 0;               ///< > 0: remove the lowest gain past this many nodes
+  /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
+  BlanketPolicy blanket = BlanketPolicy::kBlanket;
 };
 
 struct MapperConfig {

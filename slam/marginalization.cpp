@@ -139,7 +139,8 @@ void AddCliqueHessian(const CliqueFactor& clique, const Values& values,
   *H += J.transpose() * clique.information * J;
 }
 
-LocalHessian LinearizeAround(const PoseGraph& graph, const Values& values, NodeId k) {
+LocalHessian LinearizeAround(const PoseGraph& graph, const Values& values, NodeId k,
+                             BlanketPolicy blanket) {
   LocalHessian out;
   const auto& neighbours = graph.Neighbours(k);
   out.neighbours.assign(neighbours.begin(), neighbours.end());
@@ -149,6 +150,11 @@ LocalHessian LinearizeAround(const PoseGraph& graph, const Values& values, NodeI
   for (std::size_t e : graph.EdgesOf(k)) AddEdgeHessian(graph.edges()[e], values, index, &out.H);
   for (std::size_t c : graph.CliquesOf(k)) {
     AddCliqueHessian(graph.cliques()[c], values, index, &out.H);
+  }
+  if (blanket == BlanketPolicy::kBlanket) {
+    for (const PoseEdge& e : graph.EdgesWithin(out.neighbours)) {
+      AddEdgeHessian(e, values, index, &out.H);
+    }
   }
   return out;
 }
@@ -330,10 +336,12 @@ std::vector<PoseEdge> NaiveEdges(const PoseGraph& graph, NodeId k) {
 }  // namespace
 
 MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, NodeId k,
-                                  MarginalizationMethod method) {
-  const LocalHessian local = LinearizeAround(graph, values, k);
+                                  MarginalizationMethod method, BlanketPolicy blanket) {
+  if (method != MarginalizationMethod::kChowLiu) blanket = BlanketPolicy::kFactorsAtK;
+  const LocalHessian local = LinearizeAround(graph, values, k, blanket);
   const std::vector<NodeId>& nodes = local.neighbours;
   MarginalizationResult result;
+  result.neighbours = nodes;
   result.clique_size = nodes.size();
   if (nodes.size() < 2) return result;  // a leaf (or isolated node) just drops out
   const MatrixXd lambda_N = SchurComplementFirstBlock(local.H);
@@ -346,6 +354,7 @@ MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, 
                      ? ChowLiuEdges(nodes, values, lambda_N, &result.regularized)
                      : NaiveEdges(graph, k);
   result.num_pairs = result.edges.size();
+  result.absorbed_blanket = blanket == BlanketPolicy::kBlanket;
   MatrixXd lambda_q = MatrixXd::Zero(lambda_N.rows(), lambda_N.cols());
   for (const PoseEdge& e : result.edges) AddEdgeHessian(e, values, nodes, &lambda_q);
   result.kl_divergence = GaugeFixedKl(lambda_N, lambda_q);
@@ -353,6 +362,7 @@ MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, 
 }
 
 void ApplyMarginalization(PoseGraph* graph, NodeId k, const MarginalizationResult& result) {
+  if (result.absorbed_blanket) graph->RemoveEdgesWithin(result.neighbours);
   graph->RemoveNode(k);
   for (const PoseEdge& e : result.edges) graph->AddEdge(e);
   if (result.clique) graph->AddClique(*result.clique);

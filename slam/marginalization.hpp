@@ -56,11 +56,23 @@ struct MarginalizationResult {
   double kl_divergence = 0.0;  ///< nats, KL(exact || approximation); 0 for kExact; +inf if the
                                ///< approximation leaves the clique disconnected
   bool regularized = false;    ///< a near-singular matrix needed the documented diagonal shift
+  /// Markov-blanket sparsification: the pose edges among the neighbours were folded into the
+  /// clique's joint before the tree was taken, and ApplyMarginalization removes them.
+  bool absorbed_blanket = false;
+  std::vector<NodeId> neighbours;  ///< N, ascending
+};
+
+/// What a marginalization folds into the clique's Gaussian.
+enum class BlanketPolicy {
+  kFactorsAtK,  ///< only the factors touching k (DESIGN.md step 1; the other factors stay)
+  kBlanket,     ///< also the pose edges among the neighbours, which the tree then replaces,
+                ///< so a removal never leaves more than m - 1 edges inside N (Chow-Liu only)
 };
 
 /// Marginalizes node k (must exist in graph and values with all its neighbours).
 MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, NodeId k,
-                                  MarginalizationMethod method);
+                                  MarginalizationMethod method,
+                                  BlanketPolicy blanket = BlanketPolicy::kFactorsAtK);
 
 /// graph->RemoveNode(k), then adds result.edges and result.clique.
 void ApplyMarginalization(PoseGraph* graph, NodeId k, const MarginalizationResult& result);
@@ -72,7 +84,8 @@ struct LocalHessian {
   std::vector<NodeId> neighbours;  ///< N, ascending; block i+1 of H is neighbours[i]
   Eigen::MatrixXd H;               ///< 3(m+1) square; block 0 is x_k
 };
-LocalHessian LinearizeAround(const PoseGraph& graph, const Values& values, NodeId k);
+LocalHessian LinearizeAround(const PoseGraph& graph, const Values& values, NodeId k,
+                             BlanketPolicy blanket = BlanketPolicy::kFactorsAtK);
 
 /// Adds J^T Omega J of `edge` into H; node n occupies block index.at(n) (rows 3*index).
 void AddEdgeHessian(const PoseEdge& edge, const Values& values, const std::vector<NodeId>& index,

@@ -1,5 +1,6 @@
 #include "slam/pose_graph.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <stdexcept>
 
@@ -57,6 +58,23 @@ void PoseGraph::RemoveNode(NodeId id) {
   }
   cliques_.swap(kept_cliques);
   adjacency_.erase(id);
+  RebuildAdjacency();
+}
+
+std::vector<PoseEdge> PoseGraph::EdgesWithin(const std::vector<NodeId>& nodes) const {
+  auto in = [&](NodeId n) { return std::binary_search(nodes.begin(), nodes.end(), n); };
+  std::vector<PoseEdge> out;
+  for (const PoseEdge& e : edges_) {
+    if (in(e.from) && in(e.to)) out.push_back(e);
+  }
+  return out;
+}
+
+void PoseGraph::RemoveEdgesWithin(const std::vector<NodeId>& nodes) {
+  auto in = [&](NodeId n) { return std::binary_search(nodes.begin(), nodes.end(), n); };
+  edges_.erase(std::remove_if(edges_.begin(), edges_.end(),
+                              [&](const PoseEdge& e) { return in(e.from) && in(e.to); }),
+               edges_.end());
   RebuildAdjacency();
 }
 

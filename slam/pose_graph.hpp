@@ -42,9 +42,9 @@ struct PoseEdge {
 /// nodes = {r, n_1..n_k} it stacks e_j = t2v(Z_j^-1 * (X_r^-1 * X_{n_j})), j = 1..k,
 /// with one dense 3k x 3k information over the stacked error. Block j starts at row 3(j-1).
 struct CliqueFactor {
-  std::vector<NodeId> nodes;           ///< nodes[0] is the root r
-  std::vector<Pose2> T_root_node;      ///< Z_j for nodes[1..], size nodes.size() - 1
-  Eigen::MatrixXd information;         ///< 3k x 3k, symmetric positive (semi)definite
+  std::vector<NodeId> nodes;       ///< nodes[0] is the root r
+  std::vector<Pose2> T_root_node;  ///< Z_j for nodes[1..], size nodes.size() - 1
+  Eigen::MatrixXd information;     ///< 3k x 3k, symmetric positive (semi)definite
 };
 
 /// The graph's factors plus adjacency. Node ids are stable and never reused.
@@ -58,6 +58,10 @@ class PoseGraph {
   /// Removes a node and every edge and clique factor touching it (no marginalization:
   /// that is the caller's job, see marginalization.hpp).
   void RemoveNode(NodeId id);
+  /// The pose edges with both ends in `nodes` (ascending ids).
+  std::vector<PoseEdge> EdgesWithin(const std::vector<NodeId>& nodes) const;
+  /// Removes the pose edges with both ends in `nodes` (ascending ids).
+  void RemoveEdgesWithin(const std::vector<NodeId>& nodes);
 
   const std::vector<PoseEdge>& edges() const { return edges_; }
   const std::vector<CliqueFactor>& cliques() const { return cliques_; }

@@ -62,7 +62,7 @@ void Mapper::State::Prune(NodeId current) {
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   const MarginalizationResult result =
-      Marginalize(graph, values, id, MethodOf(config.pruning.mode));
+      Marginalize(graph, values, id, MethodOf(config.pruning.mode), config.pruning.blanket);
   // The removed node's scans are held relative to its nearest surviving neighbour.
   const Pose2& X = values.at(id);
   NodeId keeper = id;

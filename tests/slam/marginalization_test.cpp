@@ -321,3 +321,39 @@ TEST(CliquePairWeights, EqualWeakPriorMutualInformationUpToOneConstant) {
 
 }  // namespace
 }  // namespace lifelong::slam
+
+namespace lifelong::slam {
+namespace {
+
+// Markov-blanket sparsification: with an extra edge a-b among the neighbours of k, the tree
+// replaces it (m - 1 = 2 edges inside N), while the default policy keeps it beside the tree.
+TEST(MarginalizeBlanket, TreeReplacesTheEdgesAmongTheNeighbours) {
+  std::mt19937 rng(11);
+  const Values v = RandomValues({0, 1, 2, 3}, &rng);
+  PoseGraph g = Star(v, {1, 2, 3}, {{1, 2}}, &rng);
+  const std::vector<NodeId> n{1, 2, 3};
+  ASSERT_EQ(g.EdgesWithin(n).size(), 1u);
+
+  PoseGraph kept = g;
+  const auto plain = Marginalize(kept, v, 0, MarginalizationMethod::kChowLiu);
+  ApplyMarginalization(&kept, 0, plain);
+  EXPECT_EQ(kept.EdgesWithin(n).size(), 3u);
+
+  const auto blanket =
+      Marginalize(g, v, 0, MarginalizationMethod::kChowLiu, BlanketPolicy::kBlanket);
+  EXPECT_TRUE(blanket.absorbed_blanket);
+  EXPECT_GE(blanket.kl_divergence, 0.0);
+  ApplyMarginalization(&g, 0, blanket);
+  EXPECT_FALSE(g.HasNode(0));
+  EXPECT_EQ(g.EdgesWithin(n).size(), 2u);
+  EXPECT_EQ(g.edges().size(), 2u);
+
+  // Exact marginalization ignores the policy: the clique is the seed's fill-in.
+  PoseGraph dense = Star(v, {1, 2, 3}, {}, &rng);
+  const auto exact =
+      Marginalize(dense, v, 0, MarginalizationMethod::kExact, BlanketPolicy::kBlanket);
+  EXPECT_FALSE(exact.absorbed_blanket);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

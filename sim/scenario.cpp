@@ -1,5 +1,6 @@
 #include "sim/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -163,6 +164,11 @@ void ParseTour(Fields* f, const World& world, const RobotConfig& robot, RouteCon
   }
   if (r->tour_places.size() < 2)
     Fail(f->file(), f->node(), f->Name("places"), "needs 2 or more places");
+  // A tour that can never leave its start would spin ExpandRoute without moving.
+  if (std::all_of(r->tour_places.begin(), r->tour_places.end(),
+                  [&](int p) { return p == r->start_place; })) {
+    Fail(f->file(), f->node(), f->Name("places"), "needs a place other than the start");
+  }
 }
 
 RouteConfig ParseRoute(Fields f, const World& world, const RobotConfig& robot) {

@@ -88,6 +88,7 @@ TEST(FuzzRegression, ScenarioLimitsNameTheField) {
   EXPECT_EQ(ErrorField(scenario("huge_tour_duration.yaml")), "route.duration_s");
   EXPECT_EQ(ErrorField(scenario("world_is_a_device.yaml")), "world");
   EXPECT_EQ(ErrorField(scenario("world_name_too_long.yaml")), "world");
+  EXPECT_EQ(ErrorField(scenario("tour_only_start.yaml")), "route.places");
 }
 
 TEST(FuzzRegression, WorldNonFiniteNumbersNameTheField) {

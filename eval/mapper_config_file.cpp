@@ -148,6 +148,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
   v.Section("grid", [&](auto& s) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);
     s.Number("max_free_range_m", c.grid.max_free_range_m, kNonNegative);
+    s.Number("max_hit_range_m", c.grid.max_hit_range_m, kPositive);
   });
   v.Section("optimizer", [&](auto& s) { VisitOptimizer(s, c.optimizer); });
   v.Section("map_update", [&](auto& s) {

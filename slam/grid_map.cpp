@@ -128,8 +128,10 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const double r = scan.ranges_m[i];
     if (!(r > 0.0)) continue;
-    const bool hit = scan.IsReturn(i);
-    const double range = hit ? r : config_.max_free_range_m;
+    // Returns beyond the usable range are too sparse and too noisy to map (one beam per
+    // cell at best): like "no return" beams they only clear space, up to max_free_range_m.
+    const bool hit = scan.IsReturn(i) && r <= config_.max_hit_range_m;
+    const double range = hit ? r : std::min(r, config_.max_free_range_m);
     const double a = scan.Bearing(i);
     double x = 0.0, y = 0.0;
     T_world_laser.Apply(range * std::cos(a), range * std::sin(a), &x, &y);

@@ -47,6 +47,7 @@ struct CellBounds {
 struct GridMapConfig {
   double resolution_m = 0.05;     ///< m, cell side
   double max_free_range_m = 8.0;  ///< m, "no return" beams add misses up to this range
+  double max_hit_range_m = 12.0;  ///< m, returns farther than this count as "no return"
 };
 
 /// Binary entropy in bits of a cell with these counts (1 bit when unknown).

@@ -62,7 +62,11 @@ std::string PruningModeName(PruningMode mode) {
 
 MapperConfig DefaultMapperConfig() {
   MapperConfig c;
-  c.optimizer.max_iterations = 10;
+  // Warm-started Gauss-Newton: near the optimum it needs no damping, and every LM trial
+  // step costs a factorization (3x the back-end time on corridor_100, BENCHMARKS.md).
+  c.optimizer.method = OptimizerMethod::kGaussNewton;
+  c.optimizer.max_iterations = 5;
+  c.optimizer.evaluate_final_chi2 = false;
   c.optimizer.relative_tolerance = 1e-5;
   c.optimizer.robust_kernel = RobustKernel::kCauchy;
   c.optimizer.robust_delta = 3.0;

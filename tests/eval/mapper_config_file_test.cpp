@@ -83,6 +83,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.blanket, b.pruning.blanket);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
+  EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
   ExpectSameOptimizer(a.optimizer, b.optimizer);
   EXPECT_EQ(a.map_move_epsilon_m, b.map_move_epsilon_m);
   EXPECT_EQ(a.map_move_epsilon_rad, b.map_move_epsilon_rad);
@@ -134,7 +135,7 @@ MapperConfig AllChanged() {
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
   c.pruning = {slam::PruningMode::kNone, -0.5, 4.5, 2, 300, slam::BlanketPolicy::kFactorsAtK};
-  c.grid = {0.1, 6.0};
+  c.grid = {0.1, 6.0, 9.5};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;
   o.max_iterations = 25;

@@ -64,6 +64,19 @@ TEST(GridMapTest, NoReturnAddsMissesUpToMaxFreeRange) {
   }
 }
 
+// A return beyond the usable range only clears space, like a "no return" beam.
+TEST(GridMapTest, FarReturnOnlyClearsUpToMaxFreeRange) {
+  GridMapConfig config;
+  config.max_hit_range_m = 0.3;
+  config.max_free_range_m = 0.2;  // end x = 0.225: cell 4
+  GridMap map(config);
+  map.AddScan(OneBeam(0.4f, 10.0), kCellCentre);  // a return at 0.4 m > 0.3 m
+  EXPECT_EQ(map.NumKnownCells(), 5u);
+  for (int x = 0; x <= 4; ++x) EXPECT_EQ(map.Hits({x, 0}), 0u);
+  map.AddScan(OneBeam(0.26f, 10.0), kCellCentre);  // within range: a hit in cell 5
+  EXPECT_EQ(map.Hits({5, 0}), 1u);
+}
+
 TEST(GridMapTest, CountsAccumulateAndProbabilityIsTheirRatio) {
   GridMap map;
   map.AddScan(OneBeam(0.26f), kCellCentre);  // cell 5: hit

@@ -1,0 +1,89 @@
+// Map-quality regression tests (issue #6): short scenarios with fixed seeds run through the
+// whole pipeline (simulate, map with standard and pruned, evaluate, write the outputs), and
+// their metrics must stay within bounds recorded from a good run (BENCHMARKS.md). A change
+// that makes the maps worse fails here.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "eval/experiment.hpp"
+#include "eval/simulation.hpp"
+#include "sim/scenario.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Recorded bounds: a good run's figure with headroom for platform differences.
+struct Bounds {
+  double max_ate_m;         // trajectory error over every scan
+  double max_blur_mean_cm;  // mean distance of occupied cells to the true walls
+  double min_recall;        // share of visible true walls in the map
+  double max_edges_per_node;
+  double max_kept_pct;  // pruned only: share of observations kept as nodes
+  double min_loop_precision;
+};
+
+nlohmann::json RunScenario(const std::string& name) {
+  const sim::Scenario scenario =
+      sim::LoadScenario(std::string(LIFELONG_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
+  const SimulatedRun run = SimulateScenario(scenario, nullptr);
+  EXPECT_TRUE(run.collisions.empty());
+  ExperimentConfig config;
+  config.out_dir = (fs::temp_directory_path() / ("lifelong_regression_" + name)).string();
+  fs::remove_all(config.out_dir);
+  config.source = name;
+  config.first_pass_s = FirstPassEnd(scenario, run);
+  const std::string text =
+      RunExperiment(run.observations, GroundTruth{TrueWalls(scenario.world)}, config);
+  for (const char* file : {"summary.json", "config.yaml", "standard/trajectory.tum",
+                           "pruned/trajectory.tum", "pruned/map.pgm", "truth/map.pgm"}) {
+    EXPECT_TRUE(fs::exists(fs::path(config.out_dir) / file)) << file;
+  }
+  return nlohmann::json::parse(text);
+}
+
+void Check(const nlohmann::json& mode, const Bounds& b, bool pruned) {
+  EXPECT_LT(mode["ate_rmse_m"].get<double>(), b.max_ate_m);
+  EXPECT_LT(mode["blur"]["mean_cm"].get<double>(), b.max_blur_mean_cm);
+  EXPECT_GT(mode["blur"]["recall"].get<double>(), b.min_recall);
+  EXPECT_GE(mode["loop_precision"].get<double>(), b.min_loop_precision);
+  const double nodes = mode["nodes_final"].get<double>();
+  EXPECT_LT(mode["edges_final"].get<double>() / nodes, b.max_edges_per_node);
+  if (pruned) {
+    EXPECT_LT(mode["scans_kept_pct"].get<double>(), b.max_kept_pct);
+    EXPECT_TRUE(mode.contains("kld"));
+  } else {
+    EXPECT_DOUBLE_EQ(mode["scans_kept_pct"].get<double>(), 100.0);
+    EXPECT_FALSE(mode.contains("kld"));
+  }
+}
+
+TEST(MapQualityRegression, Corridor3) {
+  const nlohmann::json s = RunScenario("corridor_3");
+  const auto& standard = s["modes"]["standard"];
+  const auto& pruned = s["modes"]["pruned"];
+  // Recorded (BENCHMARKS.md): standard ATE 1.8 cm, blur 2.8 cm, recall 0.86, 1.19 e/n;
+  // pruned ATE 2.8 cm, blur 2.4 cm, recall 0.81, 1.31 e/n, 10 % kept.
+  Check(standard, {0.05, 4.5, 0.78, 1.5, 100.0, 0.95}, false);
+  Check(pruned, {0.06, 4.0, 0.72, 2.0, 20.0, 0.95}, true);
+  EXPECT_LT(pruned["nodes_final"].get<int>(), standard["nodes_final"].get<int>() / 4);
+  EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(), standard["blur"]["mean_cm"].get<double>());
+}
+
+TEST(MapQualityRegression, Office5min) {
+  const nlohmann::json s = RunScenario("office_5min");
+  const auto& standard = s["modes"]["standard"];
+  const auto& pruned = s["modes"]["pruned"];
+  // Recorded: standard ATE 5.2 cm, blur 4.2 cm, recall 0.65, 1.11 e/n, precision 0.97;
+  // pruned ATE 3.7 cm, blur 2.8 cm, recall 0.66, 1.16 e/n, 49 % kept.
+  Check(standard, {0.10, 6.0, 0.58, 1.5, 100.0, 0.90}, false);
+  Check(pruned, {0.08, 4.5, 0.58, 2.0, 65.0, 0.90}, true);
+  EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(), standard["blur"]["mean_cm"].get<double>());
+}
+
+}  // namespace
+}  // namespace lifelong::eval

@@ -127,22 +127,22 @@ void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Grou
   bs.thickness = blur.thickness;
   if (blur.wall_cells > 0) bs.recall = blur.recall;
   summary->blur = bs;
-  // Loop closures against the true poses of the two nodes' scans.
+  // Loop closures against the true poses of the observations (every node ever created,
+  // in creation order: the timeline has one row per observation).
   std::map<double, int> index_of_stamp;
   std::vector<Pose2> true_nodes;
-  auto node_index = [&](double stamp) {
-    auto [it, inserted] = index_of_stamp.emplace(stamp, static_cast<int>(true_nodes.size()));
-    if (inserted) true_nodes.push_back(true_at.at(stamp));
-    return it->second;
-  };
+  for (const TimelineRow& row : timeline_) {
+    index_of_stamp.emplace(row.t_s, static_cast<int>(true_nodes.size()));
+    true_nodes.push_back(true_at.at(row.t_s));
+  }
   std::vector<LoopClosure> closures;
   for (const auto& lc : mapper_->loop_closures()) {
-    closures.push_back(
-        {node_index(lc.stamp_old_s), node_index(lc.stamp_current_s), lc.T_old_current});
+    closures.push_back({index_of_stamp.at(lc.stamp_old_s), index_of_stamp.at(lc.stamp_current_s),
+                        lc.T_old_current});
   }
-  if (!closures.empty()) {
-    summary->loop_precision = ComputeLoopClosureStats(closures, true_nodes).precision;
-  }
+  const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
+  if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
+  if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
   overlays->push_back({TrajectoryKind::kTrue, {}});
   for (const Pose2& p : true_poses) overlays->back().poses.push_back(T_truth_est.Inverse() * p);
 }

@@ -6,7 +6,7 @@ packages=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libyaml-cp
   libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0)
 # An optimized serial BLAS for CHOLMOD's supernodal factorization (the reference BLAS is
 # several times slower on large pose graphs).
-packages+=(libopenblas0-serial)
+packages+=(libopenblas0-serial python3)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -60,10 +60,12 @@ struct LoopClosingConfig {
 
 struct PruningConfig {
   PruningMode mode = PruningMode::kNone;
-  double gain_threshold_bits = 0.0;  ///< remove while the lowest gain is <= this (seed §5.1)
-  double radius_m = 6.0;             ///< neighbourhood (Dijkstra expansion) considered
-  int keep_recent_nodes = 3;         ///< the newest nodes are never removed
-  int node_budget = 0;               ///< > 0: remove the lowest gain past this many nodes
+  /// Remove while the lowest gain is <= this, bits. The seed (§5.1) uses 0; 5 bits, about five
+  /// cells no other scan sees, keeps range-noise speckle from growing the graph.
+  double gain_threshold_bits = 5.0;
+  double radius_m = 6.0;      ///< neighbourhood (Dijkstra expansion) considered
+  int keep_recent_nodes = 3;  ///< the newest nodes are never removed
+  int node_budget = 0;        ///< > 0: remove the lowest gain past this many nodes
   /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
   BlanketPolicy blanket = BlanketPolicy::kBlanket;
 };

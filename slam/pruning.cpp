@@ -29,6 +29,10 @@ MarginalizationMethod MethodOf(PruningMode mode) {
 
 void Mapper::State::Prune(NodeId current) {
   const PruningConfig& pc = config.pruning;
+  // Marginalization linearizes at the current estimate and keeps its means for good, so the
+  // estimate must be the optimum: settle any loop closure not yet optimized (cheap here, the
+  // pruned graph is small).
+  if (closures_since_optimize > 0) OptimizeAndSyncMap();
   const NodeId anchor = graph.NodeIds().front();
   std::set<NodeId> protected_ids{current, anchor};
   for (int i = 0; i < pc.keep_recent_nodes && i < static_cast<int>(recent.size()); ++i) {

@@ -315,7 +315,9 @@ std::string RunExperiment(const std::vector<Observation>& stream,
     page.maps[r->name()] = map_png;
   }
   if (truth) WriteTruth(stream, *truth, config);
-  const PlotResult plots = PlotTimelines(timelines, config.out_dir);
+  PlotConfig plot_config;
+  plot_config.log_time = true;  // the modes differ by orders of magnitude
+  const PlotResult plots = PlotTimelines(timelines, config.out_dir, plot_config);
   for (const std::string& f : plots.files) page.figures.push_back(fs::path(f).filename().string());
   if (!kld.empty()) {
     const PlotResult kp = PlotKld(kld, config.out_dir);

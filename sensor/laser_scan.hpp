@@ -9,12 +9,12 @@
 namespace lifelong {
 
 struct LaserScan {
-  double stamp_s = 0.0;             ///< s, time of the scan
-  double angle_min_rad = 0.0;       ///< bearing of beam 0 in the laser frame
-  double angle_increment_rad = 0.0; ///< bearing step between beams
-  double range_max_m = 81.83;       ///< readings >= this are "no return"
-  Pose2 T_robot_laser;              ///< laser mount on the robot
-  std::vector<float> ranges_m;      ///< one range per beam, m
+  double stamp_s = 0.0;              ///< s, time of the scan
+  double angle_min_rad = 0.0;        ///< bearing of beam 0 in the laser frame
+  double angle_increment_rad = 0.0;  ///< bearing step between beams
+  double range_max_m = 81.83;        ///< readings >= this are "no return"
+  Pose2 T_robot_laser;               ///< laser mount on the robot
+  std::vector<float> ranges_m;       ///< one range per beam, m
 
   double Bearing(std::size_t i) const {
     return angle_min_rad + angle_increment_rad * static_cast<double>(i);

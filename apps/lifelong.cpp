@@ -57,7 +57,9 @@ std::string CommandLine(int argc, char** argv) {
   return s;
 }
 
-void PrintSummaryTable(const std::string& json_text) { std::cout << json_text << "\n"; }
+void PrintSummaryTable(const std::string& json_text) {
+  std::cout << lifelong::eval::SummaryTable(json_text);
+}
 
 int Simulate(const std::string& scenario_path, const std::string& out) {
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);

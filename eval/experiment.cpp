@@ -23,6 +23,8 @@
 #include "io/tum.hpp"
 #include "slam/mapper.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace lifelong::eval {
 namespace {
 
@@ -36,6 +38,8 @@ double Seconds(Clock::time_point since) {
 void Progress(const ExperimentConfig& c, const std::string& line) {
   if (c.progress) *c.progress << line << std::flush;
 }
+
+void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper);
 
 // One mode: its mapper, its timeline and, at the end, its outputs and metrics.
 class ModeRunner {
@@ -194,6 +198,9 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                          rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
   }
   WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
+  if (mode_ != slam::PruningMode::kNone) {
+    WriteMarginalizations((dir / "marginalizations.csv").string(), m);
+  }
   DrawConfig draw;
   draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
   WriteMapPng((dir / "map.png").string(), grid, MakeGraphOverlay(m.graph(), m.values()), overlays,
@@ -225,11 +232,63 @@ void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth
   io::WritePgmMap((dir / "map.pgm").string(),
                   RasterizeWalls(truth.walls, config.mapper.grid.resolution_m));
   std::vector<io::StampedPose> poses;
-  for (const Observation& o : stream) poses.push_back({o.stamp_s, *o.T_world_robot_true});
+  TrajectoryOverlay path{TrajectoryKind::kTrue, {}};
+  for (const Observation& o : stream) {
+    poses.push_back({o.stamp_s, *o.T_world_robot_true});
+    path.poses.push_back(*o.T_world_robot_true);
+  }
   io::WriteTum((dir / "trajectory.tum").string(), poses);
+  DrawConfig draw;
+  draw.world_resolution_m = config.mapper.grid.resolution_m;
+  WriteWorldPng((dir / "map.png").string(), truth.walls, {path}, draw);
+}
+
+// Writes DIR/<mode>/marginalizations.csv: one row per removed node.
+void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper) {
+  std::string text = "node,clique_size,kl_nats,information_gain_bits\n";
+  char line[128];
+  for (const auto& m : mapper.marginalizations()) {
+    std::snprintf(line, sizeof(line), "%lld,%zu,%.9g,%.9g\n", static_cast<long long>(m.node),
+                  m.clique_size, m.kl_divergence, m.information_gain_bits);
+    text += line;
+  }
+  WriteFileAtomically(path, text);
+}
+
+std::string Cell(const nlohmann::json& j, std::initializer_list<const char*> keys, double scale,
+                 int precision) {
+  const nlohmann::json* v = &j;
+  for (const char* k : keys) {
+    if (!v->contains(k)) return "-";
+    v = &(*v)[k];
+  }
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(precision) << v->get<double>() * scale;
+  return out.str();
 }
 
 }  // namespace
+
+std::string SummaryTable(const std::string& summary_json) {
+  const nlohmann::json s = nlohmann::json::parse(summary_json);
+  std::ostringstream out;
+  const char* header[] = {"mode",      "obs",    "nodes",  "edges",   "kept %", "ms/obs",
+                          "last10 ms", "wall s", "ATE cm", "blur cm", "rel. m", "KL mean"};
+  for (const char* h : header) out << std::setw(h == header[0] ? 13 : 10) << h;
+  out << "\n";
+  for (const auto& [mode, m] : s["modes"].items()) {
+    out << std::setw(13) << mode << std::setw(10) << Cell(m, {"observations"}, 1, 0)
+        << std::setw(10) << Cell(m, {"nodes_final"}, 1, 0) << std::setw(10)
+        << Cell(m, {"edges_final"}, 1, 0) << std::setw(10) << Cell(m, {"scans_kept_pct"}, 1, 1)
+        << std::setw(10) << Cell(m, {"time_per_obs_ms", "mean"}, 1, 2) << std::setw(10)
+        << Cell(m, {"time_per_obs_ms", "last10_mean"}, 1, 2) << std::setw(10)
+        << Cell(m, {"wall_time_s"}, 1, 1) << std::setw(10) << Cell(m, {"ate_rmse_m"}, 100, 1)
+        << std::setw(10) << Cell(m, {"blur", "mean_cm"}, 1, 2) << std::setw(10)
+        << Cell(m, {"relations", "trans_mean_m"}, 1, 4) << std::setw(10)
+        << Cell(m, {"kld", "mean"}, 1, 3) << "\n";
+  }
+  return out.str();
+}
 
 io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   io::OccupancyGrid grid;
@@ -314,7 +373,10 @@ std::string RunExperiment(const std::vector<Observation>& stream,
     if (!kl.empty()) kld[r->name()] = std::move(kl);
     page.maps[r->name()] = map_png;
   }
-  if (truth) WriteTruth(stream, *truth, config);
+  if (truth) {
+    WriteTruth(stream, *truth, config);
+    page.maps["ground truth"] = "truth/map.png";
+  }
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   const PlotResult plots = PlotTimelines(timelines, config.out_dir, plot_config);

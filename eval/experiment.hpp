@@ -38,6 +38,9 @@ struct ExperimentConfig {
   int video_stride = 20;  ///< render every this many scans
 };
 
+/// A short table of the key figures per mode, from RunExperiment's JSON, for the console.
+std::string SummaryTable(const std::string& summary_json);
+
 /// The mapper's counting grid as an io::OccupancyGrid (p = hits / (hits + misses)).
 io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
 

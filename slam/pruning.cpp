@@ -25,6 +25,25 @@ MarginalizationMethod MethodOf(PruningMode mode) {
   }
 }
 
+// Inclusive cell box of an increment list.
+CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
+  CellBounds b;
+  for (const CellUpdate& u : cells) {
+    if (b.empty) {
+      b.min = b.max = u.cell;
+      b.empty = false;
+    }
+    b.min = {std::min(b.min.x, u.cell.x), std::min(b.min.y, u.cell.y)};
+    b.max = {std::max(b.max.x, u.cell.x), std::max(b.max.y, u.cell.y)};
+  }
+  return b;
+}
+
+bool Overlap(const CellBounds& a, const CellBounds& b) {
+  return !a.empty && !b.empty && a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
+         b.min.y <= a.max.y;
+}
+
 }  // namespace
 
 void Mapper::State::Prune(NodeId current) {
@@ -59,8 +78,12 @@ void Mapper::State::Prune(NodeId current) {
     const NodeId victim = lowest->first;
     const double gain = lowest->second;
     gains.erase(lowest);
+    const CellBounds changed = BoxOf(Touched(victim));
     RemoveNode(victim, gain);
-    for (auto& [id, g] : gains) g = Gain(id);
+    // Only the gains of scans sharing cells with the removed one can have changed.
+    for (auto& [id, g] : gains) {
+      if (Overlap(BoxOf(Touched(id)), changed)) g = Gain(id);
+    }
   }
 }
 

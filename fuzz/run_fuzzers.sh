@@ -15,7 +15,7 @@ TARGETS=("$@")
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DLIFELONG_BUILD_FUZZERS=ON -DLIFELONG_BUILD_TESTS=OFF -DLIFELONG_BUILD_BENCHMARKS=OFF \
-  -DLIFELONG_BUILD_RENDER=OFF >/dev/null
+  >/dev/null
 cmake --build build-fuzz -j"${JOBS:-1}" --target "${TARGETS[@]/#/fuzz_}"
 
 declare -A DICT=([world]=yaml [scenario]=yaml [carmen]=carmen [graph]=graph)

@@ -8,20 +8,14 @@
 #include <stdexcept>
 
 #include "io/carmen_log.hpp"
+#include "io/text_fields.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
 namespace {
 
-/// Locale-independent fixed-point formatting (std::to_chars), so output is byte-stable.
-void Put(std::string* s, double v, int decimals) {
-  char buf[512];
-  const auto [end, ec] =
-      std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
-  if (ec != std::errc()) throw std::invalid_argument("CarmenWriter: cannot format a number");
-  s->push_back(' ');
-  s->append(buf, end);
-}
+// Every field follows a token, so AppendFixed's separator is always written.
+void Put(std::string* s, double v, int decimals) { AppendFixed(s, v, decimals); }
 void PutPose(std::string* s, const Pose2& p) {
   Put(s, p.x, 6);
   Put(s, p.y, 6);

@@ -54,6 +54,8 @@ class ModeRunner {
 
   const std::string& name() const { return name_; }
   const slam::Mapper& mapper() const { return *mapper_; }
+  /// Frees the mapper once the mode is finished and written.
+  void Release() { mapper_.reset(); }
 
   void Step(const Observation& obs) {
     const auto start = Clock::now();
@@ -338,6 +340,23 @@ std::string RunExperiment(const std::vector<Observation>& stream,
   }
   const std::size_t n = stream.size();
   const std::size_t report_every = std::max<std::size_t>(1, n / 20);
+  RunSummary summary;
+  summary.source = config.source;
+  summary.seed = config.seed;
+  if (!stream.empty()) summary.log_duration_s = stream.back().stamp_s - stream.front().stamp_s;
+  ModeTimelines timelines;
+  std::map<std::string, std::vector<double>> kld;
+  ReportPage page;
+  // Evaluates a mode, writes its outputs and frees its mapper.
+  auto finish = [&](ModeRunner* r) {
+    std::vector<double> kl;
+    std::string map_png;
+    summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
+    timelines[r->name()] = r->timeline();
+    if (!kl.empty()) kld[r->name()] = std::move(kl);
+    page.maps[r->name()] = map_png;
+    r->Release();
+  };
   if (sink) {  // lockstep: every mode sees scan i before any sees scan i + 1
     for (std::size_t i = 0; i < n; ++i) {
       for (auto& r : runners) r->Step(stream[i]);
@@ -348,30 +367,17 @@ std::string RunExperiment(const std::vector<Observation>& stream,
     }
     sink->Close();
     Progress(config, "\n");
-  } else {  // one mode after the other
+    for (auto& r : runners) finish(r.get());
+  } else {  // one mode after the other, each with its own peak RSS
     for (auto& r : runners) {
+      ResetPeakRss();
       for (std::size_t i = 0; i < n; ++i) {
         r->Step(stream[i]);
         if ((i + 1) % report_every == 0 || i + 1 == n) Progress(config, r->ProgressLine(i + 1, n));
       }
       Progress(config, "\n");
+      finish(r.get());
     }
-  }
-
-  RunSummary summary;
-  summary.source = config.source;
-  summary.seed = config.seed;
-  if (!stream.empty()) summary.log_duration_s = stream.back().stamp_s - stream.front().stamp_s;
-  ModeTimelines timelines;
-  std::map<std::string, std::vector<double>> kld;
-  ReportPage page;
-  for (auto& r : runners) {
-    std::vector<double> kl;
-    std::string map_png;
-    summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
-    timelines[r->name()] = r->timeline();
-    if (!kl.empty()) kld[r->name()] = std::move(kl);
-    page.maps[r->name()] = map_png;
   }
   if (truth) {
     WriteTruth(stream, *truth, config);

@@ -1,9 +1,20 @@
 #include "eval/resources.hpp"
 
+#include <malloc.h>
+
 #include <fstream>
 #include <sstream>
 
 namespace lifelong::eval {
+
+bool ResetPeakRss() {
+  malloc_trim(0);
+  std::ofstream clear("/proc/self/clear_refs");
+  if (!clear) return false;
+  clear << "5";
+  return static_cast<bool>(clear.flush());
+}
+
 namespace {
 
 /// Value in kB of a "Key:   1234 kB" line of /proc/self/status, in MB.

@@ -12,6 +12,11 @@ namespace lifelong::eval {
 std::optional<double> CurrentRssMb();
 /// MB (2^20 bytes) peak resident ("high water mark"), from /proc/self/status VmHWM.
 std::optional<double> PeakRssMb();
+/// Resets the peak (VmHWM) to the current RSS by writing 5 to /proc/self/clear_refs
+/// (Linux >= 4.0), so that the next PeakRssMb() covers only what runs from now on.
+/// Also hands freed heap memory back to the system first (malloc_trim). False when the
+/// kernel does not allow it.
+bool ResetPeakRss();
 /// "model name" of the first CPU in /proc/cpuinfo and the number of CPUs listed, e.g.
 /// "Intel(R) Xeon(R) ... (2 CPUs)"; "unknown" when not available.
 std::string CpuModelName();

@@ -64,6 +64,12 @@ struct Mapper::State {
   void RemoveNode(NodeId id, double gain_bits);
 };
 
+/// Keeps the reference points that a query scan placed within `window_m` of `guess` can
+/// reach: those within (the query's farthest point + window_m) of the guess. The others
+/// cannot match and would only enlarge the lookup table.
+void CropToReach(const std::vector<Eigen::Vector2d>& query_points, const Pose2& guess,
+                 double window_m, std::vector<Eigen::Vector2d>* reference);
+
 /// Rotates a world-frame (x, y, theta) covariance or information into the frame of a pose
 /// with heading theta_rad: R^T M R on the translation block.
 Eigen::Matrix3d RotateIntoFrame(const Eigen::Matrix3d& m, double theta_rad);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
@@ -67,6 +68,8 @@ void Mapper::State::Prune(NodeId current) {
     gains[id] = 0.0;
   }
   for (auto& [id, gain] : gains) gain = Gain(id);
+  std::set<NodeId> considered = protected_ids;
+  for (const auto& [id, gain] : gains) considered.insert(id);
 
   while (!gains.empty()) {
     auto lowest = std::min_element(gains.begin(), gains.end(), [](const auto& a, const auto& b) {
@@ -84,6 +87,12 @@ void Mapper::State::Prune(NodeId current) {
     for (auto& [id, g] : gains) {
       if (Overlap(BoxOf(Touched(id)), changed)) g = Gain(id);
     }
+  }
+  // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
+  // so memory follows the neighbourhood, not the graph.
+  for (auto& [id, data] : nodes) {
+    if (!data.touched.empty() && !considered.count(id))
+      std::vector<CellUpdate>().swap(data.touched);
   }
 }
 

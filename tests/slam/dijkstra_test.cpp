@@ -16,15 +16,20 @@ PoseEdge Edge(NodeId a, NodeId b, const Pose2& z, double sigma_xy, double sigma_
   return e;
 }
 
+// Nodes 0..n-1 at x = 0, 1, 2, ... m, no edges yet.
+void AddNodesAlongX(int n, PoseGraph* g, Values* v) {
+  for (NodeId i = 0; i < n; ++i) {
+    g->AddNode(i);
+    (*v)[i] = Pose2(static_cast<double>(i), 0.0, 0.0);
+  }
+}
+
 // Chain 0 -> 1 -> 2 along +x, 1 m apart. With only translational noise, covariances add:
 // node 2 relative to node 0 has position variance 2 sigma^2 per axis.
 TEST(ProjectCovariances, TranslationOnlyNoiseAddsUp) {
   PoseGraph g;
   Values v;
-  for (NodeId i = 0; i < 3; ++i) {
-    g.AddNode(i);
-    v[i] = Pose2(static_cast<double>(i), 0.0, 0.0);
-  }
+  AddNodesAlongX(3, &g, &v);
   g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 0.1, 1e-6));
   g.AddEdge(Edge(1, 2, Pose2(1, 0, 0), 0.1, 1e-6));
   const auto proj = ProjectCovariances(g, v, 0);
@@ -39,10 +44,7 @@ TEST(ProjectCovariances, TranslationOnlyNoiseAddsUp) {
 TEST(ProjectCovariances, HeadingNoiseGrowsLateralUncertainty) {
   PoseGraph g;
   Values v;
-  for (NodeId i = 0; i < 3; ++i) {
-    g.AddNode(i);
-    v[i] = Pose2(static_cast<double>(i), 0.0, 0.0);
-  }
+  AddNodesAlongX(3, &g, &v);
   g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 1e-6, 0.1));
   g.AddEdge(Edge(1, 2, Pose2(1, 0, 0), 1e-6, 1e-6));
   const auto proj = ProjectCovariances(g, v, 0);
@@ -53,10 +55,7 @@ TEST(ProjectCovariances, HeadingNoiseGrowsLateralUncertainty) {
 TEST(ProjectCovariances, PrefersTheMoreCertainPath) {
   PoseGraph g;
   Values v;
-  for (NodeId i = 0; i < 3; ++i) {
-    g.AddNode(i);
-    v[i] = Pose2(static_cast<double>(i), 0.0, 0.0);
-  }
+  AddNodesAlongX(3, &g, &v);
   g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 0.5, 0.01));
   g.AddEdge(Edge(1, 2, Pose2(1, 0, 0), 0.5, 0.01));
   g.AddEdge(Edge(0, 2, Pose2(2, 0, 0), 0.05, 0.01));  // a tight loop closure

@@ -179,7 +179,13 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     graph.AddEdge(edge);
   }
   data.T_world_map = values.at(id);
-  map.AddScan(data.scan, data.T_world_map);
+  if (config.pruning.mode == PruningMode::kNone) {
+    map.AddScan(data.scan, data.T_world_map);
+  } else {
+    data.touched = map.TouchedCells(data.scan, data.T_world_map);
+    map.Add(data.touched);
+    NoteMapChange(BoxOf(data.touched));
+  }
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
 
@@ -237,12 +243,15 @@ void Mapper::State::SyncMap() {
     const Pose2& X = values.at(id);
     const Pose2 d = Between(data.T_world_map, X);
     if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
-      if (data.touched.empty()) {
+      if (config.pruning.mode == PruningMode::kNone) {
         map.MoveScan(data.scan, data.T_world_map, X);
       } else {
+        if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
+        NoteMapChange(BoxOf(data.touched));
         map.Remove(data.touched);
         data.touched = map.TouchedCells(data.scan, X);
         map.Add(data.touched);
+        NoteMapChange(BoxOf(data.touched));
       }
       data.T_world_map = X;
     }
@@ -253,6 +262,15 @@ const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
   NodeData& data = nodes.at(id);
   if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
   return data.touched;
+}
+
+double Mapper::State::Gain(NodeId id) {
+  const std::vector<CellUpdate>& cells = Touched(id);
+  NodeData& data = nodes.at(id);
+  data.gain_bits = map.InformationGain(cells);
+  data.box = BoxOf(cells);
+  data.gain_valid = true;
+  return data.gain_bits;
 }
 
 void Mapper::Finish() {

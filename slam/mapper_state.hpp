@@ -20,6 +20,9 @@ struct NodeData {
   Pose2 T_odom_robot;                   ///< odometry at the scan
   int scan_index = 0;
   std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
+  double gain_bits = 0.0;           ///< information gain when last computed...
+  bool gain_valid = false;          ///< ...still exact unless a map change overlaps `box`
+  CellBounds box;                   ///< cell box of the scan at T_world_map
 };
 
 /// Where a scan of the stream is held: relative to an anchor node.
@@ -59,7 +62,14 @@ struct Mapper::State {
   void SyncMap();
   /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.
   const std::vector<CellUpdate>& Touched(NodeId id);
-  double Gain(NodeId id) { return map.InformationGain(Touched(id)); }
+  /// Information gain of node `id`'s scan, computed now and remembered with its box.
+  double Gain(NodeId id);
+  /// Records that the map's counts changed inside `box` (pruned modes: gains whose scans
+  /// overlap it must be recomputed).
+  void NoteMapChange(const CellBounds& box) {
+    if (config.pruning.mode != PruningMode::kNone) map_changes.push_back(box);
+  }
+  std::vector<CellBounds> map_changes;  ///< since the last pruning round
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
 };
@@ -69,6 +79,10 @@ struct Mapper::State {
 /// cannot match and would only enlarge the lookup table.
 void CropToReach(const std::vector<Eigen::Vector2d>& query_points, const Pose2& guess,
                  double window_m, std::vector<Eigen::Vector2d>* reference);
+
+/// Inclusive cell box of an increment list, and whether two boxes share a cell.
+CellBounds BoxOf(const std::vector<CellUpdate>& cells);
+bool Overlap(const CellBounds& a, const CellBounds& b);
 
 /// Rotates a world-frame (x, y, theta) covariance or information into the frame of a pose
 /// with heading theta_rad: R^T M R on the translation block.

@@ -26,7 +26,8 @@ MarginalizationMethod MethodOf(PruningMode mode) {
   }
 }
 
-// Inclusive cell box of an increment list.
+}  // namespace
+
 CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
   CellBounds b;
   for (const CellUpdate& u : cells) {
@@ -44,8 +45,6 @@ bool Overlap(const CellBounds& a, const CellBounds& b) {
   return !a.empty && !b.empty && a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
          b.min.y <= a.max.y;
 }
-
-}  // namespace
 
 void Mapper::State::Prune(NodeId current) {
   const PruningConfig& pc = config.pruning;
@@ -67,7 +66,14 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  for (auto& [id, gain] : gains) gain = Gain(id);
+  // A remembered gain stays exact until the map changes inside its scan's box.
+  for (auto& [id, gain] : gains) {
+    const NodeData& data = nodes.at(id);
+    bool stale = !data.gain_valid;
+    for (const CellBounds& change : map_changes) stale = stale || Overlap(data.box, change);
+    gain = stale ? Gain(id) : data.gain_bits;
+  }
+  map_changes.clear();
   std::set<NodeId> considered = protected_ids;
   for (const auto& [id, gain] : gains) considered.insert(id);
 
@@ -83,9 +89,11 @@ void Mapper::State::Prune(NodeId current) {
     gains.erase(lowest);
     const CellBounds changed = BoxOf(Touched(victim));
     RemoveNode(victim, gain);
-    // Only the gains of scans sharing cells with the removed one can have changed.
+    // Only the gains of scans sharing cells with the removed one can have changed; the
+    // nodes outside this round see the change at the next one.
+    map_changes.push_back(changed);
     for (auto& [id, g] : gains) {
-      if (Overlap(BoxOf(Touched(id)), changed)) g = Gain(id);
+      if (Overlap(nodes.at(id).box, changed)) g = Gain(id);
     }
   }
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,

@@ -289,6 +289,20 @@ const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
 }
 int Mapper::observations() const { return state_->observations; }
 
+double Mapper::MaxGainCacheError() const {
+  double worst = 0.0;
+  for (const auto& [id, data] : state_->nodes) {
+    bool pending = false;  // a change not yet applied invalidates it before any use
+    for (const CellBounds& change : state_->map_changes)
+      pending = pending || Overlap(data.box, change);
+    if (!data.gain_valid || pending) continue;
+    const double fresh =
+        state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
+    worst = std::max(worst, std::abs(fresh - data.gain_bits));
+  }
+  return worst;
+}
+
 std::vector<ScanPose> Mapper::Trajectory() const {
   std::vector<ScanPose> out;
   out.reserve(state_->scans.size());

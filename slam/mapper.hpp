@@ -88,6 +88,11 @@ class Mapper {
   const std::vector<LoopClosureRecord>& loop_closures() const;
   const std::vector<MarginalizationRecord>& marginalizations() const;
   int observations() const;
+  /// Self-check of the pruned modes' remembered information gains: the largest difference
+  /// (bits) between a remembered gain that would be reused (valid, and no pending map change
+  /// overlaps its scan) and the gain computed afresh from the map now. 0 when the
+  /// bookkeeping is right (or nothing is remembered).
+  double MaxGainCacheError() const;
 
   /// Called after every AddObservation that took an observation (keyframe).
   std::function<void(const StepStats&)> on_observation;

@@ -66,14 +66,19 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  // A remembered gain stays exact until the map changes inside its scan's box.
-  for (auto& [id, gain] : gains) {
-    const NodeData& data = nodes.at(id);
-    bool stale = !data.gain_valid;
-    for (const CellBounds& change : map_changes) stale = stale || Overlap(data.box, change);
-    gain = stale ? Gain(id) : data.gain_bits;
+  // A remembered gain stays exact until the map changes inside its scan's box: every node
+  // (not only this round's candidates) forgets its gain when a change since the last round
+  // overlaps its box.
+  for (auto& [id, data] : nodes) {
+    for (const CellBounds& change : map_changes) {
+      if (data.gain_valid && Overlap(data.box, change)) data.gain_valid = false;
+    }
   }
   map_changes.clear();
+  for (auto& [id, gain] : gains) {
+    const NodeData& data = nodes.at(id);
+    gain = data.gain_valid ? data.gain_bits : Gain(id);
+  }
   std::set<NodeId> considered = protected_ids;
   for (const auto& [id, gain] : gains) considered.insert(id);
 

@@ -101,6 +101,22 @@ TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {
             static_cast<double>(chow_liu.edges) / static_cast<double>(chow_liu.nodes));
 }
 
+// Remembered gains are only reused while no map change overlaps their scan: checked against
+// a fresh computation after every observation (a version that forgot changes made while a
+// node was outside the pruning neighbourhood failed this).
+TEST(Mapper, RememberedGainsStayExact) {
+  MapperConfig config = DefaultMapperConfig();
+  config.pruning.mode = PruningMode::kChowLiu;
+  config.pruning.radius_m = 3.0;  // nodes leave and re-enter the neighbourhood often
+  Mapper mapper(config);
+  double worst = 0.0;
+  mapper.on_observation = [&](const StepStats&) {
+    worst = std::max(worst, mapper.MaxGainCacheError());
+  };
+  for (const Observation& o : Corridor3()) mapper.AddObservation(o);
+  EXPECT_LT(worst, 1e-9);
+}
+
 TEST(Mapper, ModeNamesRoundTrip) {
   for (PruningMode m :
        {PruningMode::kNone, PruningMode::kChowLiu, PruningMode::kExact, PruningMode::kNaive}) {

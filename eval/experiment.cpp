@@ -217,8 +217,7 @@ void AddVideoFrame(VideoSink* sink, const Observation& obs, const std::optional<
   std::vector<render::Panel> panels;
   for (const auto& r : runners) {
     const slam::Mapper& m = r->mapper();
-    const auto trajectory = m.Trajectory();
-    const Pose2 estimate = trajectory.empty() ? Pose2() : trajectory.back().T_world_robot;
+    const Pose2 estimate = m.LastScanPose().T_world_robot;
     panels.push_back(MakePanel(r->name(), ToOccupancyGrid(m.map()), m.graph(), m.values(), estimate,
                                m.observations()));
   }

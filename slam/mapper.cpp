@@ -121,6 +121,9 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   if (s.config.pruning.mode != PruningMode::kNone) s.Prune(current);
 
   s.step = nullptr;
+  // The mapper's own time; the statistics below are instrumentation, not mapping.
+  stats.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   stats.observation_index = s.observations++;
   stats.nodes = s.graph.NumNodes();
   stats.edges = s.graph.NumEdgesForGamma();
@@ -128,8 +131,6 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   stats.graph_bytes = s.graph.Bytes();
   stats.loop_closures_total = static_cast<int>(s.loops.size());
   stats.nodes_removed_total = static_cast<int>(s.marginalizations.size());
-  stats.time_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (on_observation) on_observation(stats);
   return stats;
 }
@@ -301,6 +302,12 @@ double Mapper::MaxGainCacheError() const {
     worst = std::max(worst, std::abs(fresh - data.gain_bits));
   }
   return worst;
+}
+
+ScanPose Mapper::LastScanPose() const {
+  if (state_->scans.empty()) return {};
+  const ScanAnchor& a = state_->scans.back();
+  return {a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan};
 }
 
 std::vector<ScanPose> Mapper::Trajectory() const {

@@ -85,6 +85,8 @@ class Mapper {
   /// A pose for every scan seen so far, in stream order (removed nodes' scans included,
   /// held relative to a surviving node).
   std::vector<ScanPose> Trajectory() const;
+  /// The pose of the latest scan (as Trajectory().back(), without building the whole list).
+  ScanPose LastScanPose() const;
   const std::vector<LoopClosureRecord>& loop_closures() const;
   const std::vector<MarginalizationRecord>& marginalizations() const;
   int observations() const;

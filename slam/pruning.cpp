@@ -92,7 +92,7 @@ void Mapper::State::Prune(NodeId current) {
     const NodeId victim = lowest->first;
     const double gain = lowest->second;
     gains.erase(lowest);
-    const CellBounds changed = BoxOf(Touched(victim));
+    const CellBounds changed = nodes.at(victim).box;  // its gain, hence box, is current
     RemoveNode(victim, gain);
     // Only the gains of scans sharing cells with the removed one can have changed; the
     // nodes outside this round see the change at the next one.

@@ -171,6 +171,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     summary.scans_kept_pct =
         100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
   }
+  summary.edges_by_kind = EdgesByKind(m.graph());
   for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
   if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
 

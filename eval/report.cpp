@@ -52,6 +52,7 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "nodes_max", m.nodes_max);
   Put(j, "edges_max", m.edges_max);
   Put(j, "nodes_after_first_pass", m.nodes_after_first_pass);
+  if (!m.edges_by_kind.empty()) j["edges_by_kind"] = m.edges_by_kind;
   Put(j, "gamma_final", m.gamma_final);
   Put(j, "scans_kept_pct", m.scans_kept_pct);
   Put(j, "peak_rss_mb", m.peak_rss_mb);
@@ -80,6 +81,30 @@ json ModeJson(const ModeSummary& m) {
 }
 
 }  // namespace
+
+std::map<std::string, std::int64_t> EdgesByKind(const slam::PoseGraph& graph) {
+  std::map<std::string, std::int64_t> out;
+  for (const slam::PoseEdge& e : graph.edges()) {
+    switch (e.kind) {
+      case slam::EdgeKind::kOdometry:
+        ++out["odometry"];
+        break;
+      case slam::EdgeKind::kLoop:
+        ++out["loop"];
+        break;
+      case slam::EdgeKind::kMarginal:
+        ++out["marginal"];
+        break;
+      case slam::EdgeKind::kPrior:
+        ++out["prior"];
+        break;
+    }
+  }
+  for (const slam::CliqueFactor& c : graph.cliques()) {
+    out["clique_pairs"] += static_cast<std::int64_t>(c.nodes.size() * (c.nodes.size() - 1) / 2);
+  }
+  return out;
+}
 
 std::optional<TimeStats> ComputeTimeStats(const std::vector<TimelineRow>& rows,
                                           std::optional<int> first_pass_end_obs) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "eval/types.hpp"
+#include "slam/pose_graph.hpp"
 
 namespace lifelong::eval {
 
@@ -41,6 +42,9 @@ struct ModeSummary {
   std::optional<TimeStats> time_per_obs_ms;
   std::optional<std::int64_t> nodes_final, edges_final, nodes_max, edges_max;
   std::optional<std::int64_t> nodes_after_first_pass;
+  /// Final graph's factors by origin: "odometry", "loop", "marginal" (Chow-Liu or naive
+  /// edges), "prior", and "clique_pairs" (pairs of exact clique factors, as for gamma).
+  std::map<std::string, std::int64_t> edges_by_kind;
   std::optional<double> gamma_final;
   std::optional<double> scans_kept_pct;
   std::optional<double> peak_rss_mb;
@@ -62,6 +66,10 @@ struct RunSummary {
   std::optional<double> log_duration_s;  ///< s, simulated or recorded time covered
   std::map<std::string, ModeSummary> modes;
 };
+
+/// The graph's factors counted by origin (ModeSummary::edges_by_kind); kinds with no factor
+/// are left out.
+std::map<std::string, std::int64_t> EdgesByKind(const slam::PoseGraph& graph);
 
 /// Time statistics of a timeline; empty optional for an empty timeline.
 /// first_pass_end_obs: observations with obs < this form the first pass (absent: none).

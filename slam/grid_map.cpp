@@ -143,27 +143,40 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
   return Accumulate(origin, beams, lo, hi);
 }
 
+namespace {
+
+std::size_t SlotOf(std::uint64_t key) {
+  // Chunk keys of neighbouring chunks differ in their low bits of x (high word) and y.
+  return static_cast<std::size_t>((key >> 32) * 5u + key) & 15u;
+}
+
+}  // namespace
+
 CellCounts* GridMap::Find(CellIndex c, Cursor* cursor) const {
+  static_assert(Cursor::kSlots == 16, "SlotOf masks with 15");
   const std::uint64_t key = ChunkKey(ChunkOf(c.x), ChunkOf(c.y));
-  if (!cursor->valid || key != cursor->key) {
+  const std::size_t slot = SlotOf(key);
+  if (!cursor->valid[slot] || cursor->keys[slot] != key) {
     const auto it = chunks_.find(key);
-    cursor->valid = true;
-    cursor->key = key;
-    cursor->chunk = it == chunks_.end() ? nullptr : it->second.get();
+    cursor->valid[slot] = true;
+    cursor->keys[slot] = key;
+    cursor->chunks[slot] = it == chunks_.end() ? nullptr : it->second.get();
   }
-  return cursor->chunk ? &cursor->chunk->cells[static_cast<std::size_t>(Offset(c))] : nullptr;
+  Chunk* chunk = cursor->chunks[slot];
+  return chunk ? &chunk->cells[static_cast<std::size_t>(Offset(c))] : nullptr;
 }
 
 CellCounts* GridMap::FindOrCreate(CellIndex c, Cursor* cursor) {
   const std::uint64_t key = ChunkKey(ChunkOf(c.x), ChunkOf(c.y));
-  if (!cursor->valid || key != cursor->key || cursor->chunk == nullptr) {
+  const std::size_t slot = SlotOf(key);
+  if (!cursor->valid[slot] || cursor->keys[slot] != key || cursor->chunks[slot] == nullptr) {
     std::unique_ptr<Chunk>& chunk = chunks_[key];
     if (!chunk) chunk = std::make_unique<Chunk>();
-    cursor->valid = true;
-    cursor->key = key;
-    cursor->chunk = chunk.get();
+    cursor->valid[slot] = true;
+    cursor->keys[slot] = key;
+    cursor->chunks[slot] = chunk.get();
   }
-  return &cursor->chunk->cells[static_cast<std::size_t>(Offset(c))];
+  return &cursor->chunks[slot]->cells[static_cast<std::size_t>(Offset(c))];
 }
 
 void GridMap::Add(const std::vector<CellUpdate>& updates) {

@@ -8,6 +8,7 @@
 // [x * res, (x + 1) * res) x [y * res, (y + 1) * res) in the world frame.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -101,11 +102,13 @@ class GridMap {
 
  private:
   struct Chunk;
-  /// The last chunk looked up: consecutive cells of an update list mostly share a chunk.
+  /// The chunks looked up recently, direct-mapped by key: consecutive cells of an update
+  /// list (ordered by row) come from the few chunks the rows cross, so most lookups hit.
   struct Cursor {
-    bool valid = false;
-    std::uint64_t key = 0;
-    Chunk* chunk = nullptr;
+    static constexpr std::size_t kSlots = 16;
+    std::array<std::uint64_t, kSlots> keys;
+    std::array<Chunk*, kSlots> chunks{};
+    std::array<bool, kSlots> valid{};
   };
   CellCounts* Find(CellIndex c, Cursor* cursor) const;
   CellCounts* FindOrCreate(CellIndex c, Cursor* cursor);

@@ -184,8 +184,9 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     map.AddScan(data.scan, data.T_world_map);
   } else {
     data.touched = map.TouchedCells(data.scan, data.T_world_map);
+    data.footprint = Footprint::Of(data.touched);
     map.Add(data.touched);
-    NoteMapChange(BoxOf(data.touched));
+    NoteMapChange(data.footprint);
   }
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
@@ -247,12 +248,12 @@ void Mapper::State::SyncMap() {
       if (config.pruning.mode == PruningMode::kNone) {
         map.MoveScan(data.scan, data.T_world_map, X);
       } else {
-        if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
-        NoteMapChange(BoxOf(data.touched));
-        map.Remove(data.touched);
+        NoteMapChange(data.footprint);
+        map.Remove(Touched(id));
         data.touched = map.TouchedCells(data.scan, X);
+        data.footprint = Footprint::Of(data.touched);
         map.Add(data.touched);
-        NoteMapChange(BoxOf(data.touched));
+        NoteMapChange(data.footprint);
       }
       data.T_world_map = X;
     }
@@ -262,6 +263,8 @@ void Mapper::State::SyncMap() {
 const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
   NodeData& data = nodes.at(id);
   if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
+  // (The footprint is kept when the list is freed: it is set wherever the list is computed
+  // at a new pose.)
   return data.touched;
 }
 
@@ -269,7 +272,6 @@ double Mapper::State::Gain(NodeId id) {
   const std::vector<CellUpdate>& cells = Touched(id);
   NodeData& data = nodes.at(id);
   data.gain_bits = map.InformationGain(cells);
-  data.box = BoxOf(cells);
   data.gain_valid = true;
   return data.gain_bits;
 }
@@ -294,8 +296,8 @@ double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   for (const auto& [id, data] : state_->nodes) {
     bool pending = false;  // a change not yet applied invalidates it before any use
-    for (const CellBounds& change : state_->map_changes)
-      pending = pending || Overlap(data.box, change);
+    for (const Footprint& change : state_->map_changes)
+      pending = pending || data.footprint.Shares(change);
     if (!data.gain_valid || pending) continue;
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));

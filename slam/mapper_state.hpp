@@ -2,6 +2,7 @@
 // Not part of the public API.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <vector>
 
@@ -13,6 +14,21 @@
 
 namespace lifelong::slam {
 
+/// Where an increment list lies: its cell box and a bitmap of the 16 x 16-cell blocks it
+/// touches. Two lists can share a cell only if their footprints share a block, a much finer
+/// test than the boxes (a scan's box spans walls and rooms it never sees into).
+struct Footprint {
+  static constexpr int kBlockBits = 4;  ///< blocks of 2^4 x 2^4 cells
+  CellBounds box;
+  CellIndex first_block;            ///< block of box.min
+  int blocks_x = 0, blocks_y = 0;   ///< blocks spanned by the box
+  std::vector<std::uint64_t> bits;  ///< row-major over the box's blocks
+
+  static Footprint Of(const std::vector<CellUpdate>& cells);
+  bool Shares(const Footprint& other) const;
+  bool HasBlock(int bx, int by) const;
+};
+
 struct NodeData {
   LaserScan scan;
   std::vector<Eigen::Vector2d> points;  ///< thinned return end points, robot frame
@@ -21,8 +37,8 @@ struct NodeData {
   int scan_index = 0;
   std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
   double gain_bits = 0.0;           ///< information gain when last computed...
-  bool gain_valid = false;          ///< ...still exact unless a map change overlaps `box`
-  CellBounds box;                   ///< cell box of the scan at T_world_map
+  bool gain_valid = false;          ///< ...still exact unless a map change shares a block
+  Footprint footprint;              ///< of `touched` (kept when the list is freed)
 };
 
 /// Where a scan of the stream is held: relative to an anchor node.
@@ -64,12 +80,12 @@ struct Mapper::State {
   const std::vector<CellUpdate>& Touched(NodeId id);
   /// Information gain of node `id`'s scan, computed now and remembered with its box.
   double Gain(NodeId id);
-  /// Records that the map's counts changed inside `box` (pruned modes: gains whose scans
-  /// overlap it must be recomputed).
-  void NoteMapChange(const CellBounds& box) {
-    if (config.pruning.mode != PruningMode::kNone) map_changes.push_back(box);
+  /// Records that the map's counts changed in these cells (pruned modes: gains of scans
+  /// sharing a block with them must be recomputed).
+  void NoteMapChange(const Footprint& cells) {
+    if (config.pruning.mode != PruningMode::kNone) map_changes.push_back(cells);
   }
-  std::vector<CellBounds> map_changes;  ///< since the last pruning round
+  std::vector<Footprint> map_changes;  ///< since the last pruning round
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
 };

@@ -41,6 +41,45 @@ CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
   return b;
 }
 
+Footprint Footprint::Of(const std::vector<CellUpdate>& cells) {
+  Footprint f;
+  f.box = BoxOf(cells);
+  if (f.box.empty) return f;
+  f.first_block = {f.box.min.x >> kBlockBits, f.box.min.y >> kBlockBits};
+  f.blocks_x = (f.box.max.x >> kBlockBits) - f.first_block.x + 1;
+  f.blocks_y = (f.box.max.y >> kBlockBits) - f.first_block.y + 1;
+  const std::size_t n = static_cast<std::size_t>(f.blocks_x) * static_cast<std::size_t>(f.blocks_y);
+  f.bits.assign((n + 63) / 64, 0);
+  for (const CellUpdate& u : cells) {
+    const auto i =
+        static_cast<std::size_t>(((u.cell.y >> kBlockBits) - f.first_block.y) * f.blocks_x +
+                                 ((u.cell.x >> kBlockBits) - f.first_block.x));
+    f.bits[i / 64] |= std::uint64_t{1} << (i % 64);
+  }
+  return f;
+}
+
+bool Footprint::HasBlock(int bx, int by) const {
+  const int x = bx - first_block.x, y = by - first_block.y;
+  if (x < 0 || y < 0 || x >= blocks_x || y >= blocks_y) return false;
+  const auto i = static_cast<std::size_t>(y * blocks_x + x);
+  return (bits[i / 64] >> (i % 64)) & 1u;
+}
+
+bool Footprint::Shares(const Footprint& other) const {
+  if (!Overlap(box, other.box)) return false;
+  const int x0 = std::max(first_block.x, other.first_block.x);
+  const int x1 = std::min(first_block.x + blocks_x, other.first_block.x + other.blocks_x);
+  const int y0 = std::max(first_block.y, other.first_block.y);
+  const int y1 = std::min(first_block.y + blocks_y, other.first_block.y + other.blocks_y);
+  for (int by = y0; by < y1; ++by) {
+    for (int bx = x0; bx < x1; ++bx) {
+      if (HasBlock(bx, by) && other.HasBlock(bx, by)) return true;
+    }
+  }
+  return false;
+}
+
 bool Overlap(const CellBounds& a, const CellBounds& b) {
   return !a.empty && !b.empty && a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
          b.min.y <= a.max.y;
@@ -66,12 +105,12 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  // A remembered gain stays exact until the map changes inside its scan's box: every node
-  // (not only this round's candidates) forgets its gain when a change since the last round
-  // overlaps its box.
+  // A remembered gain stays exact until the map changes in one of its scan's cells: every
+  // node (not only this round's candidates) forgets its gain when a change since the last
+  // round shares a block with its footprint.
   for (auto& [id, data] : nodes) {
-    for (const CellBounds& change : map_changes) {
-      if (data.gain_valid && Overlap(data.box, change)) data.gain_valid = false;
+    for (const Footprint& change : map_changes) {
+      if (data.gain_valid && data.footprint.Shares(change)) data.gain_valid = false;
     }
   }
   map_changes.clear();
@@ -92,13 +131,14 @@ void Mapper::State::Prune(NodeId current) {
     const NodeId victim = lowest->first;
     const double gain = lowest->second;
     gains.erase(lowest);
-    const CellBounds changed = nodes.at(victim).box;  // its gain, hence box, is current
+    // Its gain, hence its footprint, is current.
+    const Footprint changed = nodes.at(victim).footprint;
     RemoveNode(victim, gain);
     // Only the gains of scans sharing cells with the removed one can have changed; the
     // nodes outside this round see the change at the next one.
     map_changes.push_back(changed);
     for (auto& [id, g] : gains) {
-      if (Overlap(nodes.at(id).box, changed)) g = Gain(id);
+      if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
     }
   }
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,

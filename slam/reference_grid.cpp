@@ -118,19 +118,32 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
   }
 }
 
-// Step 2: level l holds the max of level 0 over [x, x + 2^l)^2, from level l - 1.
+// Step 2: level l holds the max of level 0 over [x, x + 2^l)^2, from level l - 1 as the max
+// of four shifted copies, taken separably (first along x, then along y) so that the inner
+// loops are branch-free and vectorize. Cells past the table's edge count as 0.
 void ReferenceGrid::BuildLevels() {
+  const auto w = static_cast<std::size_t>(width_);
+  std::vector<float> along_x(levels_.back().size());
   for (int half = 1; half < coarse_factor_; half *= 2) {
     const std::vector<float>& prev = levels_.back();
-    std::vector<float> next(prev.size(), 0.0f);
-    for (int y = 0; y < height_; ++y) {
-      for (int x = 0; x < width_; ++x) {
-        float m = prev[Index(x, y)];
-        if (x + half < width_) m = std::max(m, prev[Index(x + half, y)]);
-        if (y + half < height_) m = std::max(m, prev[Index(x, y + half)]);
-        if (x + half < width_ && y + half < height_)
-          m = std::max(m, prev[Index(x + half, y + half)]);
-        next[Index(x, y)] = m;
+    const auto h = static_cast<std::size_t>(std::min(half, width_));
+    for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y) {
+      const float* in = prev.data() + y * w;
+      float* out = along_x.data() + y * w;
+      for (std::size_t x = 0; x + h < w; ++x) out[x] = std::max(in[x], in[x + h]);
+      for (std::size_t x = w - h; x < w; ++x) out[x] = in[x];
+    }
+    std::vector<float> next(prev.size());
+    const auto rows = static_cast<std::size_t>(height_);
+    const auto hy = static_cast<std::size_t>(std::min(half, height_));
+    for (std::size_t y = 0; y < rows; ++y) {
+      const float* a = along_x.data() + y * w;
+      float* out = next.data() + y * w;
+      if (y + hy < rows) {
+        const float* b = a + hy * w;
+        for (std::size_t x = 0; x < w; ++x) out[x] = std::max(a[x], b[x]);
+      } else {
+        std::copy(a, a + w, out);
       }
     }
     levels_.push_back(std::move(next));

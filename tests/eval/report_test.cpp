@@ -88,6 +88,7 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
   full.relations = RelationsSummary{10, 0.1, 0.01, 1.0, 0.1};
   full.kld = SummarizeKld({0.5, 1.5});
   full.map_entropy_bits = 1234.0, full.occupied_share = 0.1;
+  full.edges_by_kind = {{"odometry", 3}, {"marginal", 4}};
   s.modes["chow_liu"] = full;
   s.modes["standard"].observations = 20;
   s.modes["standard"].ate_rmse_m = std::numeric_limits<double>::quiet_NaN();  // never written
@@ -100,26 +101,15 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
             (std::set<std::string>{"source", "seed", "wall_time_s", "log_duration_s", "modes"}));
   EXPECT_EQ(j["seed"], 7);
   const auto& m = j["modes"]["chow_liu"];
-  EXPECT_EQ(Keys(m), (std::set<std::string>{"observations",
-                                            "wall_time_s",
-                                            "time_per_obs_ms",
-                                            "nodes_final",
-                                            "edges_final",
-                                            "nodes_max",
-                                            "edges_max",
-                                            "nodes_after_first_pass",
-                                            "gamma_final",
-                                            "scans_kept_pct",
-                                            "peak_rss_mb",
-                                            "graph_bytes_final",
-                                            "blur",
-                                            "ate_rmse_m",
-                                            "loop_precision",
-                                            "loop_recall",
-                                            "relations",
-                                            "kld",
-                                            "map_entropy_bits",
-                                            "occupied_share"}));
+  EXPECT_EQ(Keys(m),
+            (std::set<std::string>{
+                "observations", "wall_time_s", "time_per_obs_ms", "nodes_final", "edges_final",
+                "nodes_max", "edges_max", "nodes_after_first_pass", "gamma_final", "scans_kept_pct",
+                "peak_rss_mb", "graph_bytes_final", "blur", "ate_rmse_m", "loop_precision",
+                "loop_recall", "relations", "kld", "map_entropy_bits", "occupied_share",
+                // our extension of the contract (README)
+                "edges_by_kind"}));
+  EXPECT_EQ(m["edges_by_kind"]["marginal"], 4);
   EXPECT_EQ(Keys(m["time_per_obs_ms"]),
             (std::set<std::string>{"mean", "p50", "p95", "max", "first_pass_mean", "last10_mean"}));
   EXPECT_EQ(Keys(m["blur"]), (std::set<std::string>{"mean_cm", "p95_cm", "thickness", "recall"}));
@@ -131,6 +121,26 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
   EXPECT_DOUBLE_EQ(m["time_per_obs_ms"]["p95"].get<double>(), 19.05);
   // figures that do not apply are absent, not zero
   EXPECT_EQ(Keys(j["modes"]["standard"]), (std::set<std::string>{"observations"}));
+}
+
+TEST(EdgesByKindTest, CountsEachFactorByOriginAndCliquesAsPairs) {
+  slam::PoseGraph graph;
+  for (slam::NodeId id = 0; id < 4; ++id) graph.AddNode(id);
+  slam::PoseEdge edge;
+  edge.information = Eigen::Matrix3d::Identity();
+  edge.from = 0, edge.to = 1, edge.kind = slam::EdgeKind::kOdometry;
+  graph.AddEdge(edge);
+  edge.from = 1, edge.to = 2;
+  graph.AddEdge(edge);
+  edge.from = 0, edge.to = 2, edge.kind = slam::EdgeKind::kLoop;
+  graph.AddEdge(edge);
+  slam::CliqueFactor clique;
+  clique.nodes = {1, 2, 3};
+  clique.T_root_node = {Pose2(), Pose2()};
+  clique.information = Eigen::MatrixXd::Identity(6, 6);
+  graph.AddClique(clique);
+  EXPECT_EQ(EdgesByKind(graph), (std::map<std::string, std::int64_t>{
+                                    {"odometry", 2}, {"loop", 1}, {"clique_pairs", 3}}));
 }
 
 TEST(SummaryJsonTest, SeedAndDurationAbsentWhenUnknown) {

@@ -2,7 +2,9 @@
 // two boxes, a featureless corridor and an unrelated lattice of posts.
 #include "slam/scan_matcher.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -111,6 +113,36 @@ TEST(ScanMatcherTest, EmptyQueryIsNotOk) {
   const MatcherConfig config;
   const ReferenceGrid ref({{1.0, 0.0}}, config);
   EXPECT_FALSE(Match(ref, {}, Pose2(), config).ok);
+}
+
+// Every coarse level must bound the fine table exactly (the branch and bound is only exact
+// if it does): Bound(l, x, y) is the max of Likelihood over [x, x + 2^l)^2, cells past the
+// table's edges counting 0. Checked cell by cell, edges included, on a random point set.
+TEST(ScanMatcherTest, CoarseLevelsAreTheExactMaxOfTheFineTable) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(-1.0, 1.5);
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 40; ++i) points.emplace_back(coord(rng), coord(rng));
+  MatcherConfig config;
+  config.resolution_m = 0.05;
+  config.sigma_m = 0.04;
+  config.coarse_factor = 16;
+  const ReferenceGrid grid(points, config);
+  ASSERT_EQ(grid.num_levels(), 5);
+  for (int level = 1; level < grid.num_levels(); ++level) {
+    const int side = 1 << level;
+    for (int y = 0; y < grid.height(); ++y) {
+      for (int x = 0; x < grid.width(); ++x) {
+        float expected = 0.0f;
+        for (int j = 0; j < side; ++j) {
+          for (int i = 0; i < side; ++i)
+            expected = std::max(expected, grid.Likelihood(x + i, y + j));
+        }
+        ASSERT_EQ(grid.Bound(level, x, y), expected)
+            << "level " << level << " at " << x << ", " << y;
+      }
+    }
+  }
 }
 
 }  // namespace

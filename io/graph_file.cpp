@@ -3,9 +3,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -198,16 +200,34 @@ void ChainValues(GraphFile* g) {
       v[id] = v[id - 1] * it->second->T_from_to;
     }
   }
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const slam::PoseEdge& e : g->graph.edges()) {
-      const bool has_from = v.count(e.from) != 0, has_to = v.count(e.to) != 0;
-      if (has_from && !has_to) v[e.to] = v[e.from] * e.T_from_to;
-      if (!has_from && has_to) v[e.from] = v[e.to] * e.T_from_to.Inverse();
-      changed = changed || has_from != has_to;
-    }
+  // Breadth-first over the edges from every node placed so far, then from the lowest id of
+  // each piece still unplaced (at the origin): linear in the edges, whatever their order.
+  std::map<slam::NodeId, std::vector<const slam::PoseEdge*>> incident;
+  for (const slam::PoseEdge& e : g->graph.edges()) {
+    incident[e.from].push_back(&e);
+    incident[e.to].push_back(&e);
   }
-  for (slam::NodeId id : ids) v.emplace(id, Pose2());  // disconnected pieces at the origin
+  std::deque<slam::NodeId> queue;
+  for (const auto& [id, unused] : v) queue.push_back(id);
+  const auto spread = [&]() {
+    while (!queue.empty()) {
+      const slam::NodeId u = queue.front();
+      queue.pop_front();
+      for (const slam::PoseEdge* e : incident[u]) {
+        const slam::NodeId w = e->from == u ? e->to : e->from;
+        if (v.count(w)) continue;
+        v[w] = e->from == u ? v.at(u) * e->T_from_to : v.at(u) * e->T_from_to.Inverse();
+        queue.push_back(w);
+      }
+    }
+  };
+  spread();
+  for (slam::NodeId id : ids) {
+    if (v.count(id)) continue;
+    v[id] = Pose2();  // a piece not connected to the first node starts at the origin
+    queue.push_back(id);
+    spread();
+  }
 }
 
 void AddFactors(Parsed* p, const std::string& name) {

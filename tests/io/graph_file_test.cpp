@@ -117,6 +117,25 @@ TEST(GraphFile, EdgesOnlyChainsOdometryForInitialGuess) {
   EXPECT_NEAR(f.values.at(7).theta, 1.5707963267948966, 1e-12);
 }
 
+// Edges listed against the chain (each one reaching back to a node placed by the next line)
+// and a second piece not connected to node 0: every node is placed through the edges, the
+// second piece from its lowest id at the origin. (The placement is a breadth-first search:
+// an earlier fixed-point sweep placed one node per pass over all edges here, quadratic.)
+TEST(GraphFile, EdgesOnlyPlacesEveryNodeWhateverTheEdgeOrder) {
+  std::string text;
+  const int n = 3000;
+  for (int i = n - 1; i >= 1; --i) {
+    text += "EDGE_SE2 " + std::to_string(i + 1) + " " + std::to_string(i) + " -1 0 0 1 0 0 1 0 1\n";
+  }
+  text += "EDGE_SE2 0 1 1 0 0 1 0 0 1 0 1\n";
+  text += "EDGE_SE2 5001 5000 2 0 0 1 0 0 1 0 1\n";
+  const GraphFile f = Parse(text);
+  ASSERT_EQ(f.values.size(), static_cast<std::size_t>(n + 3));
+  for (int i = 0; i <= n; ++i) EXPECT_NEAR(f.values.at(i).x, i, 1e-9) << "node " << i;
+  EXPECT_NEAR(f.values.at(5000).x, 0.0, 1e-12);
+  EXPECT_NEAR(f.values.at(5001).x, -2.0, 1e-12);
+}
+
 TEST(GraphFile, CorruptLinesNameLineAndField) {
   ExpectInputError("VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 0 zero 0\n", 2, "y");
   ExpectInputError("VERTEX_SE2 0 0 0\n", 1, "theta");                                 // truncated

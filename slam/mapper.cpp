@@ -248,12 +248,16 @@ void Mapper::State::SyncMap() {
       if (config.pruning.mode == PruningMode::kNone) {
         map.MoveScan(data.scan, data.T_world_map, X);
       } else {
+        // Only the nodes near the robot keep their cell lists (Prune); the others get theirs
+        // computed for the move and freed again, so memory follows the neighbourhood.
+        const bool cached = !data.touched.empty();
         NoteMapChange(data.footprint);
         map.Remove(Touched(id));
         data.touched = map.TouchedCells(data.scan, X);
         data.footprint = Footprint::Of(data.touched);
         map.Add(data.touched);
         NoteMapChange(data.footprint);
+        if (!cached) std::vector<CellUpdate>().swap(data.touched);
       }
       data.T_world_map = X;
     }

@@ -40,6 +40,7 @@ void Progress(const ExperimentConfig& c, const std::string& line) {
 }
 
 void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper);
+void WriteSparsifications(const std::string& path, const slam::Mapper& mapper);
 
 // One mode: its mapper, its timeline and, at the end, its outputs and metrics.
 class ModeRunner {
@@ -203,6 +204,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
   if (mode_ != slam::PruningMode::kNone) {
     WriteMarginalizations((dir / "marginalizations.csv").string(), m);
+    WriteSparsifications((dir / "sparsifications.csv").string(), m);
   }
   DrawConfig draw;
   draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
@@ -252,6 +254,18 @@ void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper) 
   for (const auto& m : mapper.marginalizations()) {
     std::snprintf(line, sizeof(line), "%lld,%zu,%.9g,%.9g\n", static_cast<long long>(m.node),
                   m.clique_size, m.kl_divergence, m.information_gain_bits);
+    text += line;
+  }
+  WriteFileAtomically(path, text);
+}
+
+// Writes DIR/<mode>/sparsifications.csv: one row per edge-budget sparsification.
+void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
+  std::string text = "centre,nodes,edges_before,edges_after,kl_nats\n";
+  char line[128];
+  for (const auto& s : mapper.sparsifications()) {
+    std::snprintf(line, sizeof(line), "%lld,%zu,%zu,%zu,%.9g\n", static_cast<long long>(s.centre),
+                  s.nodes, s.edges_before, s.edges_after, s.kl_divergence);
     text += line;
   }
   WriteFileAtomically(path, text);

@@ -143,6 +143,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("radius_m", c.pruning.radius_m, kNonNegative);
     s.Int("keep_recent_nodes", c.pruning.keep_recent_nodes, 0);
     s.Int("node_budget", c.pruning.node_budget, 0);
+    s.Number("max_edges_per_node", c.pruning.max_edges_per_node, kNonNegative);
     s.Enum("blanket", c.pruning.blanket, kBlankets);
   });
   v.Section("grid", [&](auto& s) {

@@ -294,6 +294,9 @@ const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return sta
 const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
   return state_->marginalizations;
 }
+const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
+  return state_->sparsifications;
+}
 int Mapper::observations() const { return state_->observations; }
 
 double Mapper::MaxGainCacheError() const {

@@ -59,6 +59,16 @@ struct MarginalizationRecord {
   double information_gain_bits = 0.0;
 };
 
+/// One edge-budget sparsification (PruningConfig::max_edges_per_node): the pose edges among a
+/// node and its neighbours replaced by their Chow-Liu tree.
+struct SparsificationRecord {
+  NodeId centre = 0;             ///< the node whose Markov blanket was sparsified
+  std::size_t nodes = 0;         ///< the centre and its neighbours
+  std::size_t edges_before = 0;  ///< pose edges among them before...
+  std::size_t edges_after = 0;   ///< ...and after (nodes - 1)
+  double kl_divergence = 0.0;    ///< nats, KL(joint of the old edges || tree)
+};
+
 /// A pose for one scan of the stream.
 struct ScanPose {
   double stamp_s = 0.0;
@@ -89,6 +99,7 @@ class Mapper {
   ScanPose LastScanPose() const;
   const std::vector<LoopClosureRecord>& loop_closures() const;
   const std::vector<MarginalizationRecord>& marginalizations() const;
+  const std::vector<SparsificationRecord>& sparsifications() const;
   int observations() const;
   /// Self-check of the pruned modes' remembered information gains: the largest difference
   /// (bits) between a remembered gain that would be reused (valid, and no pending map change

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <vector>
 
 #include <Eigen/Core>
@@ -63,6 +64,7 @@ struct Mapper::State {
   std::vector<std::size_t> pending;  ///< non-keyframe scans since the last node
   std::vector<LoopClosureRecord> loops;
   std::vector<MarginalizationRecord> marginalizations;
+  std::vector<SparsificationRecord> sparsifications;
   NodeId next_id = 0;
   int observations = 0;
   int closures_since_optimize = 0;
@@ -88,6 +90,10 @@ struct Mapper::State {
   std::vector<Footprint> map_changes;  ///< since the last pruning round
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
+  /// While the graph holds more than max_edges_per_node edges per node, replaces the edges
+  /// in the Markov blanket (node + neighbours) of one of `around` with the most edges beyond
+  /// a tree by their Chow-Liu tree; at most a few per call.
+  void KeepEdgeBudget(const std::set<NodeId>& around);
 };
 
 /// Keeps the reference points that a query scan placed within `window_m` of `guess` can

@@ -368,4 +368,27 @@ void ApplyMarginalization(PoseGraph* graph, NodeId k, const MarginalizationResul
   if (result.clique) graph->AddClique(*result.clique);
 }
 
+SparsificationResult SparsifyWithin(const PoseGraph& graph, const Values& values,
+                                    const std::vector<NodeId>& nodes) {
+  SparsificationResult result;
+  result.nodes = nodes;
+  const std::vector<PoseEdge> within = graph.EdgesWithin(nodes);
+  result.edges_before = within.size();
+  if (nodes.size() < 2 || within.size() + 1 <= nodes.size()) return result;  // a tree already
+  MatrixXd lambda = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
+  for (const PoseEdge& e : within) AddEdgeHessian(e, values, nodes, &lambda);
+  result.edges = ChowLiuEdges(nodes, values, lambda, &result.regularized);
+  MatrixXd lambda_q = MatrixXd::Zero(lambda.rows(), lambda.cols());
+  for (const PoseEdge& e : result.edges) AddEdgeHessian(e, values, nodes, &lambda_q);
+  result.kl_divergence = GaugeFixedKl(lambda, lambda_q);
+  result.applied = true;
+  return result;
+}
+
+void ApplySparsification(PoseGraph* graph, const SparsificationResult& result) {
+  if (!result.applied) return;
+  graph->RemoveEdgesWithin(result.nodes);
+  for (const PoseEdge& e : result.edges) graph->AddEdge(e);
+}
+
 }  // namespace lifelong::slam

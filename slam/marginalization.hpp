@@ -77,6 +77,24 @@ MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, 
 /// graph->RemoveNode(k), then adds result.edges and result.clique.
 void ApplyMarginalization(PoseGraph* graph, NodeId k, const MarginalizationResult& result);
 
+/// Chow-Liu sparsification without a removal (this project's extension, used by the pruning
+/// edge budget): the pose edges among `nodes` (ascending; they must connect all of them) are
+/// one Gaussian over the nodes, which is replaced by its Chow-Liu tree with the exact pair
+/// conditionals, as a removal does with its elimination clique under BlanketPolicy::kBlanket.
+/// The edges among the nodes go from edges_before to nodes.size() - 1.
+struct SparsificationResult {
+  std::vector<NodeId> nodes;     ///< ascending
+  std::vector<PoseEdge> edges;   ///< the tree, kind kMarginal
+  std::size_t edges_before = 0;  ///< pose edges among the nodes before
+  double kl_divergence = 0.0;    ///< nats, KL(joint of the old edges || tree), gauge fixed
+  bool regularized = false;      ///< see MarginalizationResult
+  bool applied = false;          ///< false: the edges already formed a tree (or forest)
+};
+SparsificationResult SparsifyWithin(const PoseGraph& graph, const Values& values,
+                                    const std::vector<NodeId>& nodes);
+/// Replaces the pose edges among result.nodes by result.edges (nothing if !result.applied).
+void ApplySparsification(PoseGraph* graph, const SparsificationResult& result);
+
 // ---- Building blocks, public for tests and the pruning code. ----
 
 /// Step 1: H over [x_k, x_N], with N = graph.Neighbours(k) ascending.

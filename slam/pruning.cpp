@@ -141,11 +141,45 @@ void Mapper::State::Prune(NodeId current) {
       if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
     }
   }
+  if (pc.mode == PruningMode::kChowLiu && pc.max_edges_per_node > 0.0) KeepEdgeBudget(considered);
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
   // so memory follows the neighbourhood, not the graph.
   for (auto& [id, data] : nodes) {
     if (!data.touched.empty() && !considered.count(id))
       std::vector<CellUpdate>().swap(data.touched);
+  }
+}
+
+void Mapper::State::KeepEdgeBudget(const std::set<NodeId>& around) {
+  constexpr int kMaxPerRound = 4;  // the budget is restored over the next rounds if need be
+  for (int done = 0; done < kMaxPerRound; ++done) {
+    const double num_nodes = static_cast<double>(graph.NumNodes());
+    if (static_cast<double>(graph.NumEdgesForGamma()) <=
+        config.pruning.max_edges_per_node * num_nodes)
+      return;
+    // Edges beyond a tree in each blanket: the neighbours' edges among themselves.
+    NodeId centre = 0;
+    std::size_t most = 0;
+    for (NodeId s : around) {
+      if (!graph.HasNode(s)) continue;
+      const std::set<NodeId>& blanket = graph.Neighbours(s);
+      std::size_t among = 0;
+      for (NodeId a : blanket) {
+        for (NodeId b : graph.Neighbours(a)) among += (a < b && blanket.count(b)) ? 1 : 0;
+      }
+      if (among > most) {
+        most = among;
+        centre = s;
+      }
+    }
+    if (most == 0) return;  // every blanket near here is a tree already
+    std::vector<NodeId> set(graph.Neighbours(centre).begin(), graph.Neighbours(centre).end());
+    set.insert(std::lower_bound(set.begin(), set.end(), centre), centre);
+    const SparsificationResult result = SparsifyWithin(graph, values, set);
+    if (!result.applied) return;
+    ApplySparsification(&graph, result);
+    sparsifications.push_back(
+        {centre, set.size(), result.edges_before, result.edges.size(), result.kl_divergence});
   }
 }
 

@@ -80,6 +80,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.radius_m, b.pruning.radius_m);
   EXPECT_EQ(a.pruning.keep_recent_nodes, b.pruning.keep_recent_nodes);
   EXPECT_EQ(a.pruning.node_budget, b.pruning.node_budget);
+  EXPECT_EQ(a.pruning.max_edges_per_node, b.pruning.max_edges_per_node);
   EXPECT_EQ(a.pruning.blanket, b.pruning.blanket);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
@@ -134,7 +135,7 @@ MapperConfig AllChanged() {
   ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
-  c.pruning = {slam::PruningMode::kNone, -0.5, 4.5, 2, 300, slam::BlanketPolicy::kFactorsAtK};
+  c.pruning = {slam::PruningMode::kNone, -0.5, 4.5, 2, 300, 1.5, slam::BlanketPolicy::kFactorsAtK};
   c.grid = {0.1, 6.0, 9.5};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

@@ -2,6 +2,7 @@
 #include "slam/mapper.hpp"
 
 #include <cmath>
+#include <memory>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -162,6 +163,33 @@ TEST(Footprint, NeverMissesASharedCellAndSeparatesDisjointBlocks) {
   EXPECT_TRUE(Overlap(BoxOf(l_shape), BoxOf(corner)));
   EXPECT_FALSE(Footprint::Of(l_shape).Shares(Footprint::Of(corner)));
   EXPECT_FALSE(Footprint::Of({}).Shares(Footprint::Of(corner)));
+}
+
+// The edge budget: every sparsification leaves a tree over its blanket with fewer edges than
+// before, the graph stays connected, and a tight budget ends with fewer edges than none.
+TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {
+  const auto run = [](double budget) {
+    MapperConfig config = DefaultMapperConfig();
+    config.pruning.mode = PruningMode::kChowLiu;
+    config.pruning.max_edges_per_node = budget;
+    auto mapper = std::make_unique<Mapper>(config);
+    for (const Observation& o : Corridor3()) mapper->AddObservation(o);
+    return mapper;
+  };
+  const auto none = run(0.0), tight = run(1.05);
+  EXPECT_TRUE(none->sparsifications().empty());
+  ASSERT_FALSE(tight->sparsifications().empty());
+  for (const SparsificationRecord& s : tight->sparsifications()) {
+    EXPECT_EQ(s.edges_after, s.nodes - 1);
+    EXPECT_LT(s.edges_after, s.edges_before);
+    EXPECT_GE(s.kl_divergence, 0.0);
+  }
+  EXPECT_TRUE(IsConnected(tight->graph()));
+  const auto per_node = [](const Mapper& m) {
+    return static_cast<double>(m.graph().NumEdgesForGamma()) /
+           static_cast<double>(m.graph().NumNodes());
+  };
+  EXPECT_LT(per_node(*tight), per_node(*none));
 }
 
 TEST(Mapper, ModeNamesRoundTrip) {

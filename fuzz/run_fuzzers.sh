@@ -11,14 +11,15 @@ cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
 TARGETS=("$@")
-[[ ${#TARGETS[@]} -eq 0 ]] && TARGETS=(world scenario carmen graph)
+[[ ${#TARGETS[@]} -eq 0 ]] && TARGETS=(world scenario carmen graph relations tum map)
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DLIFELONG_BUILD_FUZZERS=ON -DLIFELONG_BUILD_TESTS=OFF -DLIFELONG_BUILD_BENCHMARKS=OFF \
   >/dev/null
 cmake --build build-fuzz -j"${JOBS:-1}" --target "${TARGETS[@]/#/fuzz_}"
 
-declare -A DICT=([world]=yaml [scenario]=yaml [carmen]=carmen [graph]=graph)
+declare -A DICT=([world]=yaml [scenario]=yaml [carmen]=carmen [graph]=graph [relations]=numbers
+  [tum]=numbers [map]=map)
 status=0
 for t in "${TARGETS[@]}"; do
   work="build-fuzz/corpus/$t" art="build-fuzz/artifacts/$t" log="build-fuzz/logs/$t.log"
@@ -34,7 +35,8 @@ for t in "${TARGETS[@]}"; do
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
   rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
   corpus=$(grep -o 'DONE .*corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | grep -o '[0-9]*/[0-9]*[a-zA-Z]*$' || true)
-  echo "fuzz_$t: ${SECONDS_PER_TARGET} s, ${execs:-?} runs, ${rate:-?} exec/s," \
+  cov=$(grep -o 'DONE *cov: [0-9]* ft: [0-9]*' "$log" | grep -o 'cov: .*' || true)
+  echo "fuzz_$t: ${SECONDS_PER_TARGET} s, ${execs:-?} runs, ${rate:-?} exec/s, ${cov:-cov ?}," \
     "corpus ${corpus:-?} (inputs/size), $(find "$work" -type f | wc -l) files in $work"
 done
 exit "$status"

@@ -1,14 +1,17 @@
 // ROS map_server PGM + YAML maps; see map_file.hpp.
 #include "io/map_file.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "sensor/input_error.hpp"
 
@@ -54,12 +57,11 @@ struct YamlEntry {
   std::string value;
   int line = 0;
 };
-std::map<std::string, YamlEntry> ReadFlatYaml(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "", "cannot open file");
+std::map<std::string, YamlEntry> ReadFlatYaml(std::istream& in, const std::string& path) {
   std::map<std::string, YamlEntry> entries;
   std::string text;
   for (int line = 1; std::getline(in, text); ++line) {
+    if (line == std::numeric_limits<int>::max()) throw InputError(path, line, "", "too many lines");
     const std::size_t hash = text.find('#');
     if (hash != std::string::npos) text.resize(hash);
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -68,11 +70,12 @@ std::map<std::string, YamlEntry> ReadFlatYaml(const std::string& path) {
     const std::size_t b = text.find_first_not_of(" \t", colon + 1);
     const std::size_t e = text.find_last_not_of(" \t\r");
     std::string value = b == std::string::npos ? "" : text.substr(b, e - b + 1);
-    if (value.size() >= 2 && (value[0] == '"' || value[0] == '\''))
+    if (value.size() >= 2 && (value[0] == '"' || value[0] == '\'') && value.back() == value[0])
       value = value.substr(1, value.size() - 2);
     const std::size_t kb = text.find_first_not_of(" \t");
     entries[text.substr(kb, colon - kb)] = {value, line};
   }
+  if (in.bad()) throw InputError(path, 0, "", "read error");
   return entries;
 }
 
@@ -83,109 +86,148 @@ const YamlEntry& Require(const std::map<std::string, YamlEntry>& yaml, const std
   return it->second;
 }
 
+/// `[x, y, yaw]` with yaw 0: the map's lower-left corner.
+void ParseOrigin(const YamlEntry& origin, const std::string& path, MapYaml* out) {
+  const std::string& list = origin.value;
+  if (list.size() < 2 || list.front() != '[' || list.back() != ']') {
+    throw InputError(path, origin.line, "origin", "expected [x, y, yaw]");
+  }
+  std::vector<double> xyz;
+  std::istringstream items(list.substr(1, list.size() - 2));
+  for (std::string item; std::getline(items, item, ',');) {
+    xyz.push_back(ParseNumber(item, path, origin.line, "origin"));
+  }
+  if (xyz.size() != 3) throw InputError(path, origin.line, "origin", "expected [x, y, yaw]");
+  if (xyz[2] != 0.0) throw InputError(path, origin.line, "origin", "rotated maps unsupported");
+  out->origin_x_m = xyz[0];
+  out->origin_y_m = xyz[1];
+}
+
 std::string Directory(const std::string& path) {
   const std::size_t slash = path.rfind('/');
   return slash == std::string::npos ? "" : path.substr(0, slash + 1);
 }
 
-/// A binary PGM (P5, maxval < 256): header tokens with `#` comments, then width*height bytes.
-struct Pgm {
-  int width = 0, height = 0, maxval = 0;
-  std::string pixels;
-};
-Pgm ReadPgm(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::size_t i = 0;
-  auto token = [&](const char* field) {
-    while (i < bytes.size() &&
-           (std::isspace(static_cast<unsigned char>(bytes[i])) || bytes[i] == '#')) {
-      if (bytes[i] == '#') i = bytes.find('\n', i);
-      if (i == std::string::npos)
-        i = bytes.size();
-      else
-        ++i;
-    }
-    const std::size_t b = i;
-    while (i < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[i]))) ++i;
-    if (b == i) throw InputError(path, 0, field, "truncated PGM header");
-    return bytes.substr(b, i - b);
-  };
-  if (token("magic") != "P5") throw InputError(path, 1, "magic", "not a binary PGM (P5)");
-  Pgm pgm;
-  pgm.width = static_cast<int>(ParseNumber(token("width"), path, 0, "width"));
-  pgm.height = static_cast<int>(ParseNumber(token("height"), path, 0, "height"));
-  pgm.maxval = static_cast<int>(ParseNumber(token("maxval"), path, 0, "maxval"));
-  if (pgm.width <= 0 || pgm.height <= 0 || pgm.maxval <= 0 || pgm.maxval > 255) {
-    throw InputError(path, 0, "header", "unsupported size or maxval (8-bit P5 only)");
+bool IsSpace(int c) { return c != EOF && std::isspace(c); }
+
+/// The next PGM header token: skips whitespace and `#` comments (to the end of the line),
+/// and consumes the one whitespace byte after the token.
+std::string HeaderToken(std::istream& in, const std::string& path, const char* field) {
+  int c = in.get();
+  for (; c == '#' || IsSpace(c); c = in.get()) {
+    if (c != '#') continue;
+    while (c != EOF && c != '\n') c = in.get();  // a comment runs to the end of the line
   }
-  const std::size_t n = static_cast<std::size_t>(pgm.width) * static_cast<std::size_t>(pgm.height);
-  if (bytes.size() < i + 1 + n)
-    throw InputError(path, 0, "pixels", "fewer pixels than width*height");
-  pgm.pixels = bytes.substr(i + 1, n);
-  return pgm;
+  std::string token;
+  for (; c != EOF && !IsSpace(c); c = in.get()) {
+    if (token.size() == 32) throw InputError(path, 0, field, "PGM header token too long");
+    token.push_back(static_cast<char>(c));
+  }
+  if (token.empty()) throw InputError(path, 0, field, "truncated PGM header");
+  return token;
+}
+
+/// A positive decimal integer no larger than `max`.
+int HeaderInt(std::istream& in, const std::string& path, const char* field, int max) {
+  const std::string token = HeaderToken(in, path, field);
+  int v = 0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+  if (ec != std::errc() || end != token.data() + token.size() || v <= 0 || v > max) {
+    throw InputError(path, 0, field,
+                     "expected an integer in [1, " + std::to_string(max) + "]: '" + token + "'");
+  }
+  return v;
+}
+
+/// Reads exactly n bytes, in chunks so a header that lies about the size costs no memory.
+std::string ReadPixels(std::istream& in, std::size_t n, const std::string& path) {
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::string pixels;
+  while (pixels.size() < n) {
+    const std::size_t old = pixels.size(), want = std::min(kChunk, n - old);
+    pixels.resize(old + want);
+    if (!in.read(&pixels[old], static_cast<std::streamsize>(want))) {
+      throw InputError(path, 0, "pixels", "fewer pixels than width*height");
+    }
+  }
+  return pixels;
 }
 
 }  // namespace
 
-OccupancyGrid ReadPgmMap(const std::string& yaml_path) {
-  const auto yaml = ReadFlatYaml(yaml_path);
+MapYaml ParseMapYaml(std::istream& in, const std::string& path) {
+  const auto yaml = ReadFlatYaml(in, path);
   auto number = [&](const std::string& key, double fallback) {
     const auto it = yaml.find(key);
-    return it == yaml.end() ? fallback
-                            : ParseNumber(it->second.value, yaml_path, it->second.line, key);
+    return it == yaml.end() ? fallback : ParseNumber(it->second.value, path, it->second.line, key);
   };
   const auto mode = yaml.find("mode");
   if (mode != yaml.end() && mode->second.value != "trinary") {
-    throw InputError(yaml_path, mode->second.line, "mode", "only 'trinary' maps are supported");
+    throw InputError(path, mode->second.line, "mode", "only 'trinary' maps are supported");
   }
-  const YamlEntry& origin = Require(yaml, "origin", yaml_path);
-  std::vector<double> xyz;
-  {
-    std::string list = origin.value;
-    if (list.size() < 2 || list.front() != '[' || list.back() != ']') {
-      throw InputError(yaml_path, origin.line, "origin", "expected [x, y, yaw]");
-    }
-    std::istringstream items(list.substr(1, list.size() - 2));
-    for (std::string item; std::getline(items, item, ',');) {
-      xyz.push_back(ParseNumber(item, yaml_path, origin.line, "origin"));
-    }
-    if (xyz.size() != 3) throw InputError(yaml_path, origin.line, "origin", "expected [x, y, yaw]");
-    if (xyz[2] != 0.0)
-      throw InputError(yaml_path, origin.line, "origin", "rotated maps unsupported");
+  MapYaml out;
+  ParseOrigin(Require(yaml, "origin", path), path, &out);
+  const YamlEntry& resolution = Require(yaml, "resolution", path);
+  out.resolution_m = ParseNumber(resolution.value, path, resolution.line, "resolution");
+  if (out.resolution_m <= 0.0) throw InputError(path, resolution.line, "resolution", "must be > 0");
+  out.negate = number("negate", 0.0) != 0.0;
+  out.thresholds.occupied_thresh = number("occupied_thresh", 0.65);
+  out.thresholds.free_thresh = number("free_thresh", 0.196);
+  const YamlEntry& image = Require(yaml, "image", path);
+  if (image.value.empty()) throw InputError(path, image.line, "image", "empty");
+  out.image = image.value;
+  out.image_line = image.line;
+  return out;
+}
+
+OccupancyGrid ParsePgmImage(std::istream& in, const std::string& path, const MapYaml& yaml) {
+  if (HeaderToken(in, path, "magic") != "P5") {
+    throw InputError(path, 1, "magic", "not a binary PGM (P5)");
   }
+  constexpr int kMaxInt = std::numeric_limits<int>::max();
   OccupancyGrid grid;
-  const YamlEntry& resolution = Require(yaml, "resolution", yaml_path);
-  grid.resolution_m = ParseNumber(resolution.value, yaml_path, resolution.line, "resolution");
-  if (grid.resolution_m <= 0.0)
-    throw InputError(yaml_path, resolution.line, "resolution", "must be > 0");
-  grid.origin_x_m = xyz[0];
-  grid.origin_y_m = xyz[1];
-  const bool negate = number("negate", 0.0) != 0.0;
-  const double occupied_thresh = number("occupied_thresh", 0.65);
-  const double free_thresh = number("free_thresh", 0.196);
-  const YamlEntry& image = Require(yaml, "image", yaml_path);
-  const std::string pgm_path =
-      image.value.rfind('/', 0) == 0 ? image.value : Directory(yaml_path) + image.value;
-  const Pgm pgm = ReadPgm(pgm_path);
-  grid.width = pgm.width;
-  grid.height = pgm.height;
-  grid.p_occ.assign(pgm.pixels.size(), OccupancyGrid::kUnknown);
+  grid.width = HeaderInt(in, path, "width", kMaxInt);
+  grid.height = HeaderInt(in, path, "height", kMaxInt);
+  const int maxval = HeaderInt(in, path, "maxval", 255);  // 8-bit P5 only
+  const std::size_t n =
+      static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
+  if (n > static_cast<std::size_t>(kMaxInt)) {
+    throw InputError(path, 0, "height", "width*height exceeds 2^31 - 1 cells");
+  }
+  const std::string pixels = ReadPixels(in, n, path);
+  grid.resolution_m = yaml.resolution_m;
+  grid.origin_x_m = yaml.origin_x_m;
+  grid.origin_y_m = yaml.origin_y_m;
+  grid.p_occ.assign(n, OccupancyGrid::kUnknown);
   for (int row = 0; row < grid.height; ++row) {
     for (int col = 0; col < grid.width; ++col) {
       const std::size_t k =
           static_cast<std::size_t>(grid.height - 1 - row) * static_cast<std::size_t>(grid.width) +
           static_cast<std::size_t>(col);
-      const double v = static_cast<unsigned char>(pgm.pixels[k]) / static_cast<double>(pgm.maxval);
-      const double p = negate ? v : 1.0 - v;  // map_server: dark = occupied
-      if (p > occupied_thresh)
+      const double v = static_cast<unsigned char>(pixels[k]) / static_cast<double>(maxval);
+      const double p = yaml.negate ? v : 1.0 - v;  // map_server: dark = occupied
+      if (p > yaml.thresholds.occupied_thresh)
         grid.At(col, row) = 1.0f;
-      else if (p < free_thresh)
+      else if (p < yaml.thresholds.free_thresh)
         grid.At(col, row) = 0.0f;
     }
   }
   return grid;
+}
+
+OccupancyGrid ReadPgmMap(const std::string& yaml_path) {
+  std::ifstream yaml_in(yaml_path);
+  if (!yaml_in) throw InputError(yaml_path, 0, "", "cannot open file");
+  const MapYaml yaml = ParseMapYaml(yaml_in, yaml_path);
+  const std::string pgm_path =
+      yaml.image.rfind('/', 0) == 0 ? yaml.image : Directory(yaml_path) + yaml.image;
+  std::error_code error;  // a too-long or unreadable path is "not found", not an exception
+  if (!std::filesystem::is_regular_file(pgm_path, error)) {  // no device, FIFO, folder
+    throw InputError(yaml_path, yaml.image_line, "image", "no such image file: " + pgm_path);
+  }
+  std::ifstream pgm_in(pgm_path, std::ios::binary);
+  if (!pgm_in) throw InputError(pgm_path, 0, "", "cannot open file");
+  return ParsePgmImage(pgm_in, pgm_path, yaml);
 }
 
 MapFilePaths WritePgmMap(const std::string& stem_or_pgm_path, const OccupancyGrid& grid,

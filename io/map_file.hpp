@@ -4,6 +4,7 @@
 // Trinary pixels: occupied 0, free 254, unknown 205.
 #pragma once
 
+#include <iosfwd>
 #include <string>
 
 #include "io/occupancy_grid.hpp"
@@ -27,7 +28,25 @@ MapFilePaths WritePgmMap(const std::string& stem_or_pgm_path, const OccupancyGri
 
 /// Reads a map_server YAML and its image (path relative to the YAML) in trinary mode:
 /// occupied cells get p_occ 1, free 0, the rest OccupancyGrid::kUnknown. The origin's yaw
-/// must be 0. Throws InputError naming the file, line and field on bad input.
+/// must be 0, and the image a regular file (no device, FIFO or folder). Throws InputError
+/// naming the file, line and field on bad input.
 OccupancyGrid ReadPgmMap(const std::string& yaml_path);
+
+/// What ReadPgmMap takes from the YAML (flat `key: value` lines, `#` comments).
+struct MapYaml {
+  std::string image;           ///< image path as written, relative to the YAML's folder
+  int image_line = 0;          ///< line of `image:`, for errors about the image file
+  double resolution_m = 0.05;  ///< m per cell, > 0
+  double origin_x_m = 0.0;     ///< m, world x of the lower-left corner of the image
+  double origin_y_m = 0.0;     ///< m, world y of the lower-left corner of the image
+  bool negate = false;         ///< true: bright pixels are occupied
+  MapFileConfig thresholds;    ///< occupied_thresh / free_thresh as read
+};
+
+/// The two halves of ReadPgmMap, on streams; `name` stands for the file in error messages.
+/// ParsePgmImage reads the P5 header and then only width*height pixel bytes, so memory
+/// grows with the bytes actually present, not with the size the header claims.
+MapYaml ParseMapYaml(std::istream& in, const std::string& name);
+OccupancyGrid ParsePgmImage(std::istream& in, const std::string& name, const MapYaml& yaml);
 
 }  // namespace lifelong::io

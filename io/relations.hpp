@@ -3,6 +3,7 @@
 // the robot at t2 in the frame of the robot at t1. Planar use keeps x, y and yaw.
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -23,5 +24,8 @@ struct Relation {
 /// times. Blank lines and `#` comments are skipped; anything else malformed throws
 /// lifelong::InputError with the line number and field.
 std::vector<Relation> ReadRelations(const std::string& path, double time_offset_s);
+/// Same, from a stream; `name` stands for the file in error messages.
+std::vector<Relation> ParseRelations(std::istream& in, const std::string& name,
+                                     double time_offset_s);
 
 }  // namespace lifelong::io

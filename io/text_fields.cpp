@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -33,11 +34,18 @@ void ForEachNumericRow(const std::string& path, const std::vector<std::string>& 
                        const std::function<void(int, const std::vector<double>&)>& row) {
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "", "cannot open file");
+  ForEachNumericRow(in, path, fields, row);
+}
+
+void ForEachNumericRow(std::istream& in, const std::string& name,
+                       const std::vector<std::string>& fields,
+                       const std::function<void(int, const std::vector<double>&)>& row) {
   const std::size_t n_fields = fields.size();
   std::vector<double> values;
   std::string text;
   int line = 0;
   while (std::getline(in, text)) {
+    if (line == std::numeric_limits<int>::max()) throw InputError(name, line, "", "too many lines");
     ++line;
     std::istringstream tokens(text);
     std::string token;
@@ -45,18 +53,19 @@ void ForEachNumericRow(const std::string& path, const std::vector<std::string>& 
     while (tokens >> token) {
       if (values.empty() && token[0] == '#') break;
       if (values.size() == n_fields) {
-        throw InputError(path, line, "", "more than " + std::to_string(n_fields) + " fields");
+        throw InputError(name, line, "", "more than " + std::to_string(n_fields) + " fields");
       }
-      values.push_back(ParseFiniteNumber(token, path, line, fields[values.size()]));
+      values.push_back(ParseFiniteNumber(token, name, line, fields[values.size()]));
     }
     if (values.empty()) continue;
     if (values.size() < n_fields) {
-      throw InputError(path, line, fields[values.size()],
+      throw InputError(name, line, fields[values.size()],
                        "missing (line has " + std::to_string(values.size()) + " of " +
                            std::to_string(n_fields) + " fields)");
     }
     row(line, values);
   }
+  if (in.bad()) throw InputError(name, line, "", "read error");
 }
 
 }  // namespace lifelong::io

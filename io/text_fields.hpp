@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ void AppendFixed(std::string* s, double v, int decimals);
 /// data line. Throws InputError naming the file, line and field on a missing file, a missing
 /// or extra field, or a token that is not a finite number.
 void ForEachNumericRow(const std::string& path, const std::vector<std::string>& fields,
+                       const std::function<void(int, const std::vector<double>&)>& row);
+/// Same, from a stream; `name` stands for the file in error messages.
+void ForEachNumericRow(std::istream& in, const std::string& name,
+                       const std::vector<std::string>& fields,
                        const std::function<void(int, const std::vector<double>&)>& row);
 
 }  // namespace lifelong::io

@@ -1,6 +1,7 @@
 // TUM trajectory files; see tum.hpp.
 #include "io/tum.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -9,6 +10,22 @@
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
+namespace {
+
+/// Yaw (ZYX convention) of the quaternion v[4..7] = (qx, qy, qz, qw), whatever its norm.
+/// The components are divided by the largest magnitude first: squaring them as read
+/// overflowed to inf for components near 1e200, and inf - inf made the yaw NaN.
+double YawOf(const std::vector<double>& v, const std::string& name, int line) {
+  const double scale = std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6]), std::abs(v[7])});
+  if (scale == 0.0) throw InputError(name, line, "qw", "zero quaternion");
+  const double qx = v[4] / scale, qy = v[5] / scale, qz = v[6] / scale, qw = v[7] / scale;
+  if (scale * std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw) < 1e-6) {
+    throw InputError(name, line, "qw", "zero quaternion");  // |q| < 1e-6, as before
+  }
+  return std::atan2(2.0 * (qw * qz + qx * qy), qw * qw + qx * qx - qy * qy - qz * qz);
+}
+
+}  // namespace
 
 void WriteTum(const std::string& path, const std::vector<StampedPose>& poses) {
   const std::string tmp = path + ".tmp";
@@ -36,17 +53,16 @@ void WriteTum(const std::string& path, const std::vector<StampedPose>& poses) {
 }
 
 std::vector<StampedPose> ReadTum(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", "cannot open file");
+  return ParseTum(in, path);
+}
+
+std::vector<StampedPose> ParseTum(std::istream& in, const std::string& name) {
   std::vector<StampedPose> poses;
-  ForEachNumericRow(path, {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"},
+  ForEachNumericRow(in, name, {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"},
                     [&](int line, const std::vector<double>& v) {
-                      const double qx = v[4], qy = v[5], qz = v[6], qw = v[7];
-                      if (qx * qx + qy * qy + qz * qz + qw * qw < 1e-12) {
-                        throw InputError(path, line, "qw", "zero quaternion");
-                      }
-                      // Yaw (ZYX convention); invariant to the quaternion's norm.
-                      const double yaw = std::atan2(2.0 * (qw * qz + qx * qy),
-                                                    qw * qw + qx * qx - qy * qy - qz * qz);
-                      poses.push_back({v[0], Pose2(v[1], v[2], yaw)});
+                      poses.push_back({v[0], Pose2(v[1], v[2], YawOf(v, name, line))});
                     });
   return poses;
 }

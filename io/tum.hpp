@@ -3,6 +3,7 @@
 // q = (0, 0, sin(yaw/2), cos(yaw/2)).
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -22,5 +23,7 @@ void WriteTum(const std::string& path, const std::vector<StampedPose>& poses);
 /// Reads a TUM file back, converting each quaternion to yaw (roll and pitch ignored).
 /// `#` comments and blank lines are skipped; malformed lines throw InputError.
 std::vector<StampedPose> ReadTum(const std::string& path);
+/// Same, from a stream; `name` stands for the file in error messages.
+std::vector<StampedPose> ParseTum(std::istream& in, const std::string& name);
 
 }  // namespace lifelong::io

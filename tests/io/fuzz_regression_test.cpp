@@ -3,6 +3,7 @@
 // a sanitizer report, a huge allocation or any other exception type fails the test.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -10,8 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "fuzz/map_input.hpp"
 #include "io/carmen_log.hpp"
 #include "io/graph_file.hpp"
+#include "io/map_file.hpp"
+#include "io/relations.hpp"
+#include "io/tum.hpp"
 #include "sensor/input_error.hpp"
 #include "sim/scenario.hpp"
 #include "sim/world_loader.hpp"
@@ -46,6 +51,39 @@ void LoadCarmen(const fs::path& p) {
   }
 }
 void LoadGraph(const fs::path& p) { io::ReadGraphFile(p.string()); }
+void LoadRelations(const fs::path& p) {
+  for (const io::Relation& r : io::ReadRelations(p.string(), io::kIntelRelationsTimeOffsetS)) {
+    EXPECT_TRUE(std::isfinite(r.t1_s) && std::isfinite(r.t2_s) && std::isfinite(r.T_1_2.x) &&
+                std::isfinite(r.T_1_2.y) && std::isfinite(r.T_1_2.theta));
+  }
+}
+void LoadTum(const fs::path& p) {
+  for (const io::StampedPose& pose : io::ReadTum(p.string())) {
+    const Pose2& T = pose.T_world_robot;
+    EXPECT_TRUE(std::isfinite(pose.stamp_s) && std::isfinite(T.x) && std::isfinite(T.y) &&
+                std::isfinite(T.theta));
+  }
+}
+/// fuzz_map's input (fuzz/map_input.hpp): both halves from memory as the fuzzer does, then
+/// as files through ReadPgmMap, the image written as fuzz_map.pgm next to the YAML.
+void LoadMap(const fs::path& p) {
+  const fuzz::MapInput input = fuzz::SplitMapInput(ReadText(p));
+  io::MapYaml yaml;
+  try {
+    std::istringstream in(input.yaml);
+    yaml = io::ParseMapYaml(in, p.string());
+  } catch (const InputError&) {
+  }
+  try {
+    std::istringstream in(input.pgm);
+    io::ParsePgmImage(in, p.string(), yaml);
+  } catch (const InputError&) {
+  }
+  const std::string dir = testing::TempDir();
+  std::ofstream(dir + "fuzz_map.yaml", std::ios::binary) << input.yaml;
+  std::ofstream(dir + "fuzz_map.pgm", std::ios::binary) << input.pgm;
+  io::ReadPgmMap(dir + "fuzz_map.yaml");
+}
 
 /// Runs `load` on every file of the target's folder; returns how many files there were.
 int RunAll(const std::string& target, const std::function<void(const fs::path&)>& load) {
@@ -69,6 +107,11 @@ TEST(FuzzRegression, CarmenInputsLoadOrThrowInputError) {
   EXPECT_GT(RunAll("carmen", LoadCarmen), 0);
 }
 TEST(FuzzRegression, GraphInputsLoadOrThrowInputError) { EXPECT_GT(RunAll("graph", LoadGraph), 0); }
+TEST(FuzzRegression, RelationsInputsLoadOrThrowInputError) {
+  EXPECT_GT(RunAll("relations", LoadRelations), 0);
+}
+TEST(FuzzRegression, TumInputsLoadOrThrowInputError) { EXPECT_GT(RunAll("tum", LoadTum), 0); }
+TEST(FuzzRegression, MapInputsLoadOrThrowInputError) { EXPECT_GT(RunAll("map", LoadMap), 0); }
 
 /// The field an InputError names, or "<no error>".
 std::string ErrorField(const std::function<void()>& fn) {
@@ -97,6 +140,22 @@ TEST(FuzzRegression, WorldNonFiniteNumbersNameTheField) {
   };
   EXPECT_EQ(ErrorField(world("nonfinite_coordinates.yaml")), "walls[0].polyline");
   EXPECT_EQ(ErrorField(world("nonfinite_clearance_box.yaml")), "clearance_m");
+}
+
+TEST(FuzzRegression, MapSizesAndDevicesNameTheField) {
+  const auto map = [](const std::string& file) {
+    return [file] { LoadMap(kDir + "map/" + file); };
+  };
+  EXPECT_EQ(ErrorField(map("width_1e10.map")), "width");
+  EXPECT_EQ(ErrorField(map("size_beyond_int.map")), "width");
+  EXPECT_EQ(ErrorField(map("size_without_pixels.map")), "pixels");
+  EXPECT_EQ(ErrorField(map("image_is_a_device.map")), "image");
+}
+
+TEST(FuzzRegression, TumHugeQuaternionGivesFiniteYaw) {
+  const auto poses = io::ReadTum(kDir + "tum/huge_quaternion_nan_yaw.tum");
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_NEAR(poses[0].T_world_robot.theta, 3.14159265358979323846 / 2, 1e-12);
 }
 
 TEST(FuzzRegression, GraphIdsNearInt64LimitsAreRejected) {

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "io/map_file.hpp"
 #include "sensor/input_error.hpp"
@@ -104,6 +105,76 @@ TEST(MapFile, BadInputThrowsWithFieldAndLine) {
   ExpectMapError(ok, "P2\n2 1\n255\n0 254\n", 1, "magic");
   EXPECT_THROW(ReadPgmMap(TempPath("missing.yaml")), InputError);
   EXPECT_THROW(WritePgmMap(TempPath("no_dir/m"), SmallGrid()), InputError);
+}
+
+TEST(MapFile, StreamHalvesGiveTheSameGridAsTheFiles) {
+  const MapFilePaths paths = WritePgmMap(TempPath("streams"), SmallGrid());
+  std::istringstream yaml_in(ReadBytes(paths.yaml));
+  const MapYaml yaml = ParseMapYaml(yaml_in, "mem.yaml");
+  EXPECT_EQ(yaml.image, "io_map_streams.pgm");
+  EXPECT_EQ(yaml.image_line, 1);
+  std::istringstream pgm_in(ReadBytes(paths.pgm));
+  const OccupancyGrid g = ParsePgmImage(pgm_in, "mem.pgm", yaml);
+  EXPECT_EQ(g.p_occ, ReadPgmMap(paths.yaml).p_occ);
+  EXPECT_EQ(g.width, 3);
+  EXPECT_DOUBLE_EQ(g.origin_x_m, -1.5);
+}
+
+// Found by review: a value opening with a quote lost its last character even when that
+// was not the closing quote (`image: "map.pgm` named `map.pg`).
+TEST(MapFile, OnlyMatchingQuotesAreStripped) {
+  const auto image = [](const std::string& value) {
+    std::istringstream in("resolution: 1\norigin: [0, 0, 0]\nimage: " + value + "\n");
+    return ParseMapYaml(in, "q.yaml").image;
+  };
+  EXPECT_EQ(image("\"map.pgm\""), "map.pgm");
+  EXPECT_EQ(image("'map.pgm'"), "map.pgm");
+  EXPECT_EQ(image("\"map.pgm"), "\"map.pgm");
+  EXPECT_EQ(image("'map.pgm\""), "'map.pgm\"");
+}
+
+/// The field ParsePgmImage names for a bad `header` (followed by two pixel bytes).
+std::string PgmHeaderError(const std::string& header) {
+  std::istringstream in(header + std::string(2, '\0'));
+  try {
+    ParsePgmImage(in, "mem.pgm", MapYaml{});
+  } catch (const InputError& e) {
+    return e.field();
+  }
+  return "<no error>";
+}
+
+// Found by review while fuzzing: the size went through static_cast<int>(double), undefined
+// for 1e10 (UBSan: "outside the range of representable values of type 'int'"), and 2.5
+// was read as 2. A size whose pixels are not there is read in 1 MiB chunks and rejected.
+TEST(MapFile, PgmSizesAreIntegersInRange) {
+  EXPECT_EQ(PgmHeaderError("P5\n2 1\n255\n"), "<no error>");
+  EXPECT_EQ(PgmHeaderError("P5\n1e10 1\n255\n"), "width");
+  EXPECT_EQ(PgmHeaderError("P5\n2.5 1\n255\n"), "width");
+  EXPECT_EQ(PgmHeaderError("P5\n2 -1\n255\n"), "height");
+  EXPECT_EQ(PgmHeaderError("P5\n2 3000000000\n255\n"), "height");
+  EXPECT_EQ(PgmHeaderError("P5\n2 1\n256\n"), "maxval");
+  EXPECT_EQ(PgmHeaderError("P5\n65536 65536\n255\n"), "height");  // > 2^31 - 1 cells
+  EXPECT_EQ(PgmHeaderError("P5\n46340 46340\n255\n"), "pixels");
+  EXPECT_EQ(PgmHeaderError("P5 #c\n#\n2#x\n"), "width");
+  EXPECT_EQ(PgmHeaderError("P5\n2 1\n" + std::string(40, '1')), "maxval");
+}
+
+// Found by review while fuzzing: the image named by the YAML was read whole, so
+// `image: /dev/zero` allocated until std::bad_alloc (and a FIFO would block).
+TEST(MapFile, ImageMustBeARegularFile) {
+  const std::vector<std::string> images = {"/dev/zero", "/dev/null", ::testing::TempDir(),
+                                           "none.pgm"};
+  for (const std::string& image : images) {
+    WriteBytes(TempPath("dev.yaml"), "resolution: 0.05\norigin: [0, 0, 0]\nimage: " + image + "\n");
+    try {
+      ReadPgmMap(TempPath("dev.yaml"));
+      ADD_FAILURE() << image;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "image") << e.what();
+      EXPECT_EQ(e.line(), 3) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -67,8 +67,9 @@ struct PruningConfig {
   int keep_recent_nodes = 3;  ///< the newest nodes are never removed
   int node_budget = 0;        ///< > 0: remove the lowest gain past this many nodes
   /// > 0 (Chow-Liu mode): when the graph holds more edges than this per node, the edges in
-  /// a nearby node's Markov blanket are replaced by their Chow-Liu tree (this project's
-  /// extension of the seed: a bound on edges as node_budget is one on nodes). 0: off.
+  /// a node's Markov blanket (or two-hop neighbourhood) are replaced by their Chow-Liu tree
+  /// (this project's extension of the seed: a bound on edges as node_budget is one on
+  /// nodes). 0: off.
   double max_edges_per_node = 2.0;
   /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
   BlanketPolicy blanket = BlanketPolicy::kBlanket;

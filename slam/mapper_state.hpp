@@ -91,9 +91,10 @@ struct Mapper::State {
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// While the graph holds more than max_edges_per_node edges per node, replaces the edges
-  /// in the Markov blanket (node + neighbours) of one of `around` with the most edges beyond
-  /// a tree by their Chow-Liu tree; at most a few per call.
-  void KeepEdgeBudget(const std::set<NodeId>& around);
+  /// in the Markov blanket (node + neighbours) with the most edges beyond a tree by their
+  /// Chow-Liu tree, or, when every blanket is a tree, those of the two-hop neighbourhood with
+  /// the most; at most a few per call. (The pruned graph is small: every node is considered.)
+  void KeepEdgeBudget();
 };
 
 /// Keeps the reference points that a query scan placed within `window_m` of `guess` can

@@ -141,7 +141,7 @@ void Mapper::State::Prune(NodeId current) {
       if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
     }
   }
-  if (pc.mode == PruningMode::kChowLiu && pc.max_edges_per_node > 0.0) KeepEdgeBudget(considered);
+  if (pc.mode == PruningMode::kChowLiu && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
   // so memory follows the neighbourhood, not the graph.
   for (auto& [id, data] : nodes) {
@@ -150,36 +150,60 @@ void Mapper::State::Prune(NodeId current) {
   }
 }
 
-void Mapper::State::KeepEdgeBudget(const std::set<NodeId>& around) {
-  constexpr int kMaxPerRound = 4;  // the budget is restored over the next rounds if need be
+void Mapper::State::KeepEdgeBudget() {
+  // The nodes within `hops` edges of `centre`, ascending.
+  const auto ball = [this](NodeId centre, int hops) {
+    std::set<NodeId> in{centre}, frontier{centre};
+    for (int h = 0; h < hops; ++h) {
+      std::set<NodeId> next;
+      for (NodeId u : frontier) {
+        for (NodeId w : graph.Neighbours(u)) {
+          if (in.insert(w).second) next.insert(w);
+        }
+      }
+      frontier = std::move(next);
+    }
+    return std::vector<NodeId>(in.begin(), in.end());
+  };
+  // Edges beyond a spanning tree among the nodes of a (connected) ball: its cycle rank.
+  const auto excess = [this](const std::vector<NodeId>& set) {
+    std::size_t within = 0;
+    for (NodeId a : set) {
+      for (NodeId b : graph.Neighbours(a)) {
+        within += (a < b && std::binary_search(set.begin(), set.end(), b)) ? 1 : 0;
+      }
+    }
+    return within + 1 > set.size() ? within + 1 - set.size() : 0;
+  };
+  // Bounds the work of one observation; the budget is restored over the next ones if need be.
+  constexpr int kMaxPerRound = 16;
   for (int done = 0; done < kMaxPerRound; ++done) {
     const double num_nodes = static_cast<double>(graph.NumNodes());
     if (static_cast<double>(graph.NumEdgesForGamma()) <=
         config.pruning.max_edges_per_node * num_nodes)
       return;
-    // Edges beyond a tree in each blanket: the neighbours' edges among themselves.
-    NodeId centre = 0;
+    // The Markov blanket (one hop) with the most edges beyond a tree; when every blanket is
+    // a tree already, the two-hop neighbourhood with the most.
+    std::vector<NodeId> best;
     std::size_t most = 0;
-    for (NodeId s : around) {
-      if (!graph.HasNode(s)) continue;
-      const std::set<NodeId>& blanket = graph.Neighbours(s);
-      std::size_t among = 0;
-      for (NodeId a : blanket) {
-        for (NodeId b : graph.Neighbours(a)) among += (a < b && blanket.count(b)) ? 1 : 0;
-      }
-      if (among > most) {
-        most = among;
-        centre = s;
+    NodeId centre = 0;
+    for (int hops = 1; hops <= 2 && most == 0; ++hops) {
+      for (const auto& [id, unused] : nodes) {
+        std::vector<NodeId> set = ball(id, hops);
+        const std::size_t e = excess(set);
+        if (e > most) {
+          most = e;
+          centre = id;
+          best = std::move(set);
+        }
       }
     }
-    if (most == 0) return;  // every blanket near here is a tree already
-    std::vector<NodeId> set(graph.Neighbours(centre).begin(), graph.Neighbours(centre).end());
-    set.insert(std::lower_bound(set.begin(), set.end(), centre), centre);
-    const SparsificationResult result = SparsifyWithin(graph, values, set);
+    if (most == 0) return;  // the graph is a tree near every node
+    const SparsificationResult result = SparsifyWithin(graph, values, best);
     if (!result.applied) return;
     ApplySparsification(&graph, result);
     sparsifications.push_back(
-        {centre, set.size(), result.edges_before, result.edges.size(), result.kl_divergence});
+        {centre, best.size(), result.edges_before, result.edges.size(), result.kl_divergence});
   }
 }
 

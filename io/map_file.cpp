@@ -194,6 +194,13 @@ OccupancyGrid ParsePgmImage(std::istream& in, const std::string& path, const Map
   if (n > static_cast<std::size_t>(kMaxInt)) {
     throw InputError(path, 0, "height", "width*height exceeds 2^31 - 1 cells");
   }
+  // The far edges must be finite too: a huge resolution or origin passes the YAML's own
+  // checks but would put the map's corner at infinity.
+  const double far_x = yaml.origin_x_m + yaml.resolution_m * static_cast<double>(grid.width);
+  const double far_y = yaml.origin_y_m + yaml.resolution_m * static_cast<double>(grid.height);
+  if (!std::isfinite(far_x) || !std::isfinite(far_y)) {
+    throw InputError(path, 0, "resolution", "origin + resolution * size is not finite");
+  }
   const std::string pixels = ReadPixels(in, n, path);
   grid.resolution_m = yaml.resolution_m;
   grid.origin_x_m = yaml.origin_x_m;

@@ -160,6 +160,24 @@ TEST(MapFile, PgmSizesAreIntegersInRange) {
   EXPECT_EQ(PgmHeaderError("P5\n2 1\n" + std::string(40, '1')), "maxval");
 }
 
+// A resolution or origin near the double's limit passed the YAML checks and gave a map whose
+// far edge was infinite.
+TEST(MapFile, MapExtentMustBeFinite) {
+  MapYaml yaml;
+  yaml.resolution_m = 1e308;
+  std::istringstream in("P5\n2 1\n255\n" + std::string(2, '\0'));
+  try {
+    ParsePgmImage(in, "mem.pgm", yaml);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "resolution");
+  }
+  yaml.resolution_m = 0.05;
+  yaml.origin_x_m = 1.7e308;
+  std::istringstream ok("P5\n2 1\n255\n" + std::string(2, '\0'));
+  EXPECT_NO_THROW(ParsePgmImage(ok, "mem.pgm", yaml));  // finite: 1.7e308 + 0.1
+}
+
 // Found by review while fuzzing: the image named by the YAML was read whole, so
 // `image: /dev/zero` allocated until std::bad_alloc (and a FIFO would block).
 TEST(MapFile, ImageMustBeARegularFile) {

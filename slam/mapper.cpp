@@ -302,10 +302,8 @@ int Mapper::observations() const { return state_->observations; }
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   for (const auto& [id, data] : state_->nodes) {
-    bool pending = false;  // a change not yet applied invalidates it before any use
-    for (const Footprint& change : state_->map_changes)
-      pending = pending || data.footprint.Shares(change);
-    if (!data.gain_valid || pending) continue;
+    // A change not yet applied invalidates the gain before any use.
+    if (!data.gain_valid || state_->ChangedSinceLastRound(data.footprint)) continue;
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
     worst = std::max(worst, std::abs(fresh - data.gain_bits));

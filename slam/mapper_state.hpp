@@ -2,6 +2,7 @@
 // Not part of the public API.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -88,6 +89,11 @@ struct Mapper::State {
     if (config.pruning.mode != PruningMode::kNone) map_changes.push_back(cells);
   }
   std::vector<Footprint> map_changes;  ///< since the last pruning round
+  /// Whether a map change since the last pruning round touches a scan with this footprint.
+  bool ChangedSinceLastRound(const Footprint& scan) const {
+    return std::any_of(map_changes.begin(), map_changes.end(),
+                       [&](const Footprint& change) { return scan.Shares(change); });
+  }
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// While the graph holds more than max_edges_per_node edges per node, replaces the edges

@@ -245,6 +245,14 @@ std::vector<PoseEdge> EdgesFromSigma(const std::vector<NodeId>& nodes, const Val
 }
 
 /// Steps 3-4: Chow-Liu tree edges over `nodes` (oriented away from nodes[0]).
+// Step 5 for an approximation given as edges over `nodes`: KL(lambda_p || their Hessian).
+double EdgesKl(const MatrixXd& lambda_p, const std::vector<PoseEdge>& edges, const Values& values,
+               const std::vector<NodeId>& nodes) {
+  MatrixXd lambda_q = MatrixXd::Zero(lambda_p.rows(), lambda_p.cols());
+  for (const PoseEdge& e : edges) AddEdgeHessian(e, values, nodes, &lambda_q);
+  return GaugeFixedKl(lambda_p, lambda_q);
+}
+
 std::vector<PoseEdge> ChowLiuEdges(const std::vector<NodeId>& nodes, const Values& values,
                                    const MatrixXd& lambda_N, bool* regularized) {
   const MatrixXd sigma = AnchoredCovariance(lambda_N, regularized);
@@ -355,9 +363,7 @@ MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, 
                      : NaiveEdges(graph, k);
   result.num_pairs = result.edges.size();
   result.absorbed_blanket = blanket == BlanketPolicy::kBlanket;
-  MatrixXd lambda_q = MatrixXd::Zero(lambda_N.rows(), lambda_N.cols());
-  for (const PoseEdge& e : result.edges) AddEdgeHessian(e, values, nodes, &lambda_q);
-  result.kl_divergence = GaugeFixedKl(lambda_N, lambda_q);
+  result.kl_divergence = EdgesKl(lambda_N, result.edges, values, nodes);
   return result;
 }
 
@@ -378,9 +384,7 @@ SparsificationResult SparsifyWithin(const PoseGraph& graph, const Values& values
   MatrixXd lambda = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
   for (const PoseEdge& e : within) AddEdgeHessian(e, values, nodes, &lambda);
   result.edges = ChowLiuEdges(nodes, values, lambda, &result.regularized);
-  MatrixXd lambda_q = MatrixXd::Zero(lambda.rows(), lambda.cols());
-  for (const PoseEdge& e : result.edges) AddEdgeHessian(e, values, nodes, &lambda_q);
-  result.kl_divergence = GaugeFixedKl(lambda, lambda_q);
+  result.kl_divergence = EdgesKl(lambda, result.edges, values, nodes);
   result.applied = true;
   return result;
 }

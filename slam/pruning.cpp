@@ -109,9 +109,7 @@ void Mapper::State::Prune(NodeId current) {
   // node (not only this round's candidates) forgets its gain when a change since the last
   // round shares a block with its footprint.
   for (auto& [id, data] : nodes) {
-    for (const Footprint& change : map_changes) {
-      if (data.gain_valid && data.footprint.Shares(change)) data.gain_valid = false;
-    }
+    if (data.gain_valid && ChangedSinceLastRound(data.footprint)) data.gain_valid = false;
   }
   map_changes.clear();
   for (auto& [id, gain] : gains) {

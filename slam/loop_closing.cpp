@@ -79,10 +79,10 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   mc.linear_window_m = std::max(Clamp3Sigma(var_x, lc.min_window_m, lc.max_window_m),
                                 Clamp3Sigma(var_y, lc.min_window_m, lc.max_window_m));
   mc.angular_window_rad = Clamp3Sigma(var_th, lc.min_window_rad, lc.max_window_rad);
-  CropToReach(nodes.at(current).points, X_cur, mc.linear_window_m, &reference);
+  CropToSearch(nodes.at(current).points, X_cur, mc, &reference);
   if (static_cast<int>(reference.size()) < lc.min_reference_points) return false;
-  const ReferenceGrid grid(reference, mc);
-  const MatchResult match = Match(grid, nodes.at(current).points, X_cur, mc);
+  match_grid.Build(reference, mc);
+  const MatchResult match = Match(match_grid, nodes.at(current).points, X_cur, mc);
   if (!match.ok || match.score < lc.min_score || match.ambiguity > lc.max_ambiguity) return false;
 
   // The correction must be plausible under the projected uncertainty of the best candidate.

@@ -77,19 +77,6 @@ MapperConfig DefaultMapperConfig() {
   return c;
 }
 
-void CropToReach(const std::vector<Eigen::Vector2d>& query_points, const Pose2& guess,
-                 double window_m, std::vector<Eigen::Vector2d>* reference) {
-  double reach = 0.0;
-  for (const Eigen::Vector2d& p : query_points) reach = std::max(reach, p.norm());
-  reach += window_m + 0.5;  // + the table's kernel and the laser mount, generously
-  const Eigen::Vector2d centre(guess.x, guess.y);
-  const double reach2 = reach * reach;
-  reference->erase(
-      std::remove_if(reference->begin(), reference->end(),
-                     [&](const Eigen::Vector2d& p) { return (p - centre).squaredNorm() > reach2; }),
-      reference->end());
-}
-
 Eigen::Matrix3d RotateIntoFrame(const Eigen::Matrix3d& m, double theta_rad) {
   Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
   const double c = std::cos(theta_rad), s = std::sin(theta_rad);
@@ -165,10 +152,10 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     edge.kind = EdgeKind::kOdometry;
     Pose2 X_new = guess;
     edge.information = OdometryInformation(inc, delta);
-    CropToReach(data.points, guess, inc.matcher.linear_window_m, &reference);
+    CropToSearch(data.points, guess, inc.matcher, &reference);
     if (reference.size() >= 10 && data.points.size() >= 10) {
-      const ReferenceGrid grid(reference, inc.matcher);
-      const MatchResult match = Match(grid, data.points, guess, inc.matcher);
+      match_grid.Build(reference, inc.matcher);
+      const MatchResult match = Match(match_grid, data.points, guess, inc.matcher);
       if (match.ok) {
         X_new = match.T_ref_cur;
         edge.information = RotateIntoFrame(match.information, X_new.theta);

@@ -13,6 +13,7 @@
 #include "slam/grid_map.hpp"
 #include "slam/mapper.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/scan_matcher.hpp"
 
 namespace lifelong::slam {
 
@@ -72,6 +73,7 @@ struct Mapper::State {
   StepStats* step = nullptr;  ///< stats of the observation being processed
   bool have_last = false;
   NodeId last_node = 0;
+  ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);
@@ -102,12 +104,6 @@ struct Mapper::State {
   /// the most; at most a few per call. (The pruned graph is small: every node is considered.)
   void KeepEdgeBudget();
 };
-
-/// Keeps the reference points that a query scan placed within `window_m` of `guess` can
-/// reach: those within (the query's farthest point + window_m) of the guess. The others
-/// cannot match and would only enlarge the lookup table.
-void CropToReach(const std::vector<Eigen::Vector2d>& query_points, const Pose2& guess,
-                 double window_m, std::vector<Eigen::Vector2d>* reference);
 
 /// Inclusive cell box of an increment list, and whether two boxes share a cell.
 CellBounds BoxOf(const std::vector<CellUpdate>& cells);

@@ -48,11 +48,17 @@ std::vector<Eigen::Vector2d> PointsInReference(const std::vector<PosedScan>& sca
 }
 
 ReferenceGrid::ReferenceGrid(const std::vector<Eigen::Vector2d>& points_in_ref,
-                             const MatcherConfig& config)
-    : resolution_m_(config.resolution_m), coarse_factor_(1) {
-  if (!(resolution_m_ > 0.0) || !(config.sigma_m > 0.0)) {
+                             const MatcherConfig& config) {
+  Build(points_in_ref, config);
+}
+
+void ReferenceGrid::Build(const std::vector<Eigen::Vector2d>& points_in_ref,
+                          const MatcherConfig& config) {
+  if (!(config.resolution_m > 0.0) || !(config.sigma_m > 0.0)) {
     throw std::invalid_argument("ReferenceGrid: resolution_m and sigma_m must be > 0");
   }
+  resolution_m_ = config.resolution_m;
+  coarse_factor_ = 1;
   while (coarse_factor_ < config.coarse_factor) coarse_factor_ *= 2;
   Rasterize(points_in_ref, config.sigma_m);
   BuildLevels();
@@ -69,8 +75,12 @@ Eigen::Vector2i ReferenceGrid::CellOf(const Eigen::Vector2d& p) const {
 
 // Step 1: v = exp(-d^2 / (2 sigma^2)) of the nearest point within 3 sigma, at cell centres.
 void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m) {
-  levels_.assign(1, {});
-  if (points.empty()) return;
+  num_levels_ = 1;
+  width_ = height_ = 0;
+  if (points.empty()) {
+    levels_[0].clear();
+    return;
+  }
   Eigen::Vector2d lo = points.front(), hi = points.front();
   for (const Eigen::Vector2d& p : points) {
     lo = lo.cwiseMin(p);
@@ -82,10 +92,8 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
   origin_m_ = (lo / r).array().floor().matrix() * r - Eigen::Vector2d::Constant(margin * r);
   width_ = static_cast<int>(std::ceil((hi.x() - origin_m_.x()) / r)) + margin + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - origin_m_.y()) / r)) + margin + 1;
-  levels_.assign(
-      1, std::vector<float>(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_),
-                            0.0f));
   std::vector<float>& fine = levels_[0];
+  fine.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
   const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
   // The Gaussian is separable: exp(-(dx^2 + dy^2) / 2s^2) = gx(dx) * gy(dy), so each point
   // costs 2 (2k + 1) exponentials instead of (2k + 1)^2.
@@ -123,21 +131,25 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
 // loops are branch-free and vectorize. Cells past the table's edge count as 0.
 void ReferenceGrid::BuildLevels() {
   const auto w = static_cast<std::size_t>(width_);
-  std::vector<float> along_x(levels_.back().size());
+  const std::size_t cells = levels_[0].size();
+  along_x_.resize(cells);
+  float* const along_x = along_x_.data();
   for (int half = 1; half < coarse_factor_; half *= 2) {
-    const std::vector<float>& prev = levels_.back();
+    if (levels_.size() <= static_cast<std::size_t>(num_levels_)) levels_.emplace_back();
+    std::vector<float>& next = levels_[static_cast<std::size_t>(num_levels_)];
+    const std::vector<float>& prev = levels_[static_cast<std::size_t>(num_levels_ - 1)];
+    next.resize(cells);  // every cell is written below
     const auto h = static_cast<std::size_t>(std::min(half, width_));
     for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y) {
       const float* in = prev.data() + y * w;
-      float* out = along_x.data() + y * w;
+      float* out = along_x + y * w;
       for (std::size_t x = 0; x + h < w; ++x) out[x] = std::max(in[x], in[x + h]);
       for (std::size_t x = w - h; x < w; ++x) out[x] = in[x];
     }
-    std::vector<float> next(prev.size());
     const auto rows = static_cast<std::size_t>(height_);
     const auto hy = static_cast<std::size_t>(std::min(half, height_));
     for (std::size_t y = 0; y < rows; ++y) {
-      const float* a = along_x.data() + y * w;
+      const float* a = along_x + y * w;
       float* out = next.data() + y * w;
       if (y + hy < rows) {
         const float* b = a + hy * w;
@@ -146,7 +158,7 @@ void ReferenceGrid::BuildLevels() {
         std::copy(a, a + w, out);
       }
     }
-    levels_.push_back(std::move(next));
+    ++num_levels_;
   }
 }
 

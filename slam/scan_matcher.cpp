@@ -199,6 +199,46 @@ void EvaluateNeighbourhood(const Eval& best, const Lattice& l, Searcher* s) {
 
 }  // namespace
 
+void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2& T_ref_cur_guess,
+                  const MatcherConfig& config, std::vector<Eigen::Vector2d>* reference) {
+  if (points_in_cur.empty()) {
+    reference->clear();
+    return;
+  }
+  // The lattice as Match sets it up: rotations up to K steps, translations of -W .. W fine
+  // cells, and blocks of up to coarse_factor cells starting at W (their bounds read past W).
+  const double res = config.resolution_m;
+  const double step = AngularStep(points_in_cur, config);
+  const double max_turn = std::ceil(config.angular_window_rad / step) * step;
+  const double W = std::ceil(config.linear_window_m / res);
+  int side = 1;
+  while (side < config.coarse_factor) side *= 2;
+  // Each point sweeps an arc of half-angle max_turn about the guess; the box of its two ends
+  // grown by r (1 - cos max_turn) holds it (by the whole radius past a quarter turn).
+  const double sweep = max_turn < 1.5 ? 1.0 - std::cos(max_turn) : 1.0;
+  const Eigen::Rotation2Dd R_lo(T_ref_cur_guess.theta - max_turn),
+      R_hi(T_ref_cur_guess.theta + max_turn);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (const Eigen::Vector2d& p : points_in_cur) {
+    const Eigen::Vector2d a = R_lo * p, b = R_hi * p;
+    const double grow = p.norm() * sweep;
+    lo = lo.cwiseMin(a.cwiseMin(b) - Eigen::Vector2d::Constant(grow));
+    hi = hi.cwiseMax(a.cwiseMax(b) + Eigen::Vector2d::Constant(grow));
+  }
+  // Translations, cell rounding on both ends, and the kernel (3 sigma) of the field.
+  const Eigen::Vector2d guess(T_ref_cur_guess.x, T_ref_cur_guess.y);
+  const double kernel = 3.0 * config.sigma_m;
+  lo += guess - Eigen::Vector2d::Constant((W + 2.0) * res + kernel);
+  hi += guess + Eigen::Vector2d::Constant((W + side + 2.0) * res + kernel);
+  reference->erase(std::remove_if(reference->begin(), reference->end(),
+                                  [&](const Eigen::Vector2d& p) {
+                                    return (p.array() < lo.array()).any() ||
+                                           (p.array() > hi.array()).any();
+                                  }),
+                   reference->end());
+}
+
 MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points_in_cur,
                   const Pose2& T_ref_cur_guess, const MatcherConfig& config) {
   MatchResult result;

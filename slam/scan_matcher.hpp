@@ -43,8 +43,13 @@ struct MatcherConfig {
 /// Likelihood field of a reference point set, in the reference frame (steps 1 and 2).
 class ReferenceGrid {
  public:
+  /// An empty table (every lookup is 0), to be filled by Build.
+  ReferenceGrid() = default;
   /// Only resolution_m, sigma_m and coarse_factor of the config are used here.
   ReferenceGrid(const std::vector<Eigen::Vector2d>& points_in_ref, const MatcherConfig& config);
+  /// Rebuilds the tables for other points, reusing their memory: a mapper builds one per
+  /// scan, and fresh multi-megabyte tables cost more in page faults than in filling them.
+  void Build(const std::vector<Eigen::Vector2d>& points_in_ref, const MatcherConfig& config);
 
   double resolution_m() const { return resolution_m_; }
   int coarse_factor() const { return coarse_factor_; }
@@ -58,7 +63,7 @@ class ReferenceGrid {
   /// ln v, floored; the floor outside the table.
   float LogLikelihood(int x, int y) const;
   /// Number of tables: level 0 is Likelihood, level l the max over 2^l x 2^l cells.
-  int num_levels() const { return static_cast<int>(levels_.size()); }
+  int num_levels() const { return num_levels_; }
   /// Max of Likelihood over [x, x + 2^level) x [y, y + 2^level); 0 outside the table.
   float Bound(int level, int x, int y) const {
     return Contains(x, y) ? levels_[static_cast<std::size_t>(level)][Index(x, y)] : 0.0f;
@@ -74,13 +79,16 @@ class ReferenceGrid {
   void Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m);
   void BuildLevels();
 
-  double resolution_m_;
-  int coarse_factor_;
+  double resolution_m_ = 1.0;
+  int coarse_factor_ = 1;
   Eigen::Vector2d origin_m_ = Eigen::Vector2d::Zero();  ///< lower-left corner of cell (0, 0)
   int width_ = 0;
   int height_ = 0;
-  std::vector<std::vector<float>> levels_;  ///< levels_[0]: v per cell
+  int num_levels_ = 1;
+  /// levels_[0]: v per cell; levels past num_levels_ are spare capacity.
+  std::vector<std::vector<float>> levels_ = {{}};
   std::vector<float> log_fine_;
+  std::vector<float> along_x_;  ///< BuildLevels' scratch
 };
 
 struct MatchResult {
@@ -97,6 +105,13 @@ struct MatchResult {
 /// Matches points (current robot frame) against the reference around the guess.
 MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points_in_cur,
                   const Pose2& T_ref_cur_guess, const MatcherConfig& config);
+
+/// Keeps the reference points that can change the match of `points_in_cur` around the
+/// guess: those whose likelihood kernel reaches a table cell that Match would look up for some
+/// rotation and translation of its search lattice (its bounds' blocks included). The match is
+/// unchanged; the table built from the rest is smaller and faster to build.
+void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2& T_ref_cur_guess,
+                  const MatcherConfig& config, std::vector<Eigen::Vector2d>* reference);
 
 /// End points of the returns of a scan in the robot frame (via T_robot_laser), thinned so
 /// that at most one point falls in each spacing_m x spacing_m voxel (the first one kept).

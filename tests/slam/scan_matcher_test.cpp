@@ -7,6 +7,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "tests/slam/synthetic_scans.hpp"
 
@@ -140,6 +141,134 @@ TEST(ScanMatcherTest, CoarseLevelsAreTheExactMaxOfTheFineTable) {
         }
         ASSERT_EQ(grid.Bound(level, x, y), expected)
             << "level " << level << " at " << x << ", " << y;
+      }
+    }
+  }
+}
+
+// Cropping the reference to what the search can reach drops points but changes no lookup, so
+// the match is the same to rounding: a corridor mapped far past an 8 m scan's reach, matched
+// with a wide heading window (the sweep of the rotated scan matters) and at the lattice's
+// far corner (the top-level blocks read past +W).
+TEST(ScanMatcherTest, CroppingToTheSearchLeavesTheMatchUnchanged) {
+  const testing::World corridor = testing::CorridorWorld();
+  std::vector<PosedScan> scans;
+  std::vector<LaserScan> storage;
+  for (int i = -4; i <= 4; ++i) {
+    storage.push_back(
+        testing::SimulateScan(corridor, Pose2(3.0 * i, 1.0, 0.0), 361, 360.0 * kDeg, 8.0));
+  }
+  for (int i = 0; i < 9; ++i)
+    scans.push_back({&storage[static_cast<std::size_t>(i)], Pose2(3.0 * (i - 4), 1.0, 0.0)});
+  const std::vector<Eigen::Vector2d> reference = PointsInReference(scans, 0.03);
+  const LaserScan query =
+      testing::SimulateScan(corridor, Pose2(0.5, 1.1, 0.3), 91, 90.0 * kDeg, 8.0);
+  for (const Pose2& guess : {Pose2(0.3, 0.95, 0.1), Pose2(0.8, 1.4, 0.6)}) {
+    MatcherConfig config;
+    config.linear_window_m = 0.4;
+    config.angular_window_rad = 0.6;
+    config.resolution_m = 0.05;
+    std::vector<Eigen::Vector2d> cropped = reference;
+    CropToSearch(Points(query), guess, config, &cropped);
+    EXPECT_LT(cropped.size(), reference.size() / 2);
+    EXPECT_GT(cropped.size(), 0u);
+    const MatchResult full = Match(ReferenceGrid(reference, config), Points(query), guess, config);
+    const MatchResult crop = Match(ReferenceGrid(cropped, config), Points(query), guess, config);
+    EXPECT_EQ(crop.evaluations, full.evaluations);
+    EXPECT_EQ(crop.bound_evaluations, full.bound_evaluations);
+    EXPECT_NEAR(crop.T_ref_cur.x, full.T_ref_cur.x, 1e-9);
+    EXPECT_NEAR(crop.T_ref_cur.y, full.T_ref_cur.y, 1e-9);
+    EXPECT_NEAR(crop.T_ref_cur.theta, full.T_ref_cur.theta, 1e-9);
+    EXPECT_NEAR(crop.score, full.score, 1e-6);
+    EXPECT_NEAR(crop.ambiguity, full.ambiguity, 1e-6);
+    EXPECT_TRUE(crop.covariance.isApprox(full.covariance, 1e-5));
+  }
+  std::vector<Eigen::Vector2d> none = reference;
+  CropToSearch({}, Pose2(), MatcherConfig(), &none);
+  EXPECT_TRUE(none.empty());
+}
+
+// The crop's contract, lookup by lookup: with reference points everywhere, every query point
+// at every pose of the search lattice (any heading in the window, any translation a bound
+// may read: -W .. W + coarse_factor cells) reads the same likelihood from the cropped table.
+TEST(ScanMatcherTest, CroppedTableAgreesWhereverTheSearchLooks) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coord(-15.0, 15.0), unit(0.0, 1.0);
+  std::vector<Eigen::Vector2d> reference;
+  for (int i = 0; i < 60000; ++i) reference.emplace_back(coord(rng), coord(rng));
+  std::vector<Eigen::Vector2d> query;
+  for (int i = 0; i < 60; ++i) {
+    const double a = 0.1 * i, r = 0.5 + 7.5 * unit(rng);
+    query.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  query.emplace_back(8.0, 0.0);  // straight ahead: its arc bulges past its two ends
+  // A wide heading window (the arcs matter), then a narrow one (the translations do).
+  for (const double window_rad : {0.7, 0.004}) {
+    MatcherConfig config;
+    config.resolution_m = 0.05;
+    config.linear_window_m = 0.5;
+    config.angular_window_rad = window_rad;
+    config.angular_step_rad = 0.002;
+    const Pose2 guess(1.0, -2.0, 0.4);
+    std::vector<Eigen::Vector2d> cropped = reference;
+    CropToSearch(query, guess, config, &cropped);
+    ASSERT_LT(cropped.size(), reference.size() * 3 / 4);
+    const ReferenceGrid full(reference, config), crop(cropped, config);
+    const int W = static_cast<int>(std::ceil(config.linear_window_m / config.resolution_m));
+    for (int trial = 0; trial < 3000; ++trial) {
+      const double turn = (2.0 * unit(rng) - 1.0) * config.angular_window_rad;
+      const bool edge = trial % 2 == 0;  // half of the poses on the lattice's box edges
+      const auto offset = [&](double u) {
+        return (edge ? (u < 0.5 ? -W : W + config.coarse_factor - 1)
+                     : -W + u * (2 * W + config.coarse_factor - 1)) *
+               config.resolution_m;
+      };
+      const Eigen::Rotation2Dd R(guess.theta + turn);
+      const Eigen::Vector2d t(guess.x + offset(unit(rng)), guess.y + offset(unit(rng)));
+      for (const Eigen::Vector2d& q : query) {
+        const Eigen::Vector2d p = R * q + t;
+        const Eigen::Vector2i a = full.CellOf(p), b = crop.CellOf(p);
+        ASSERT_NEAR(full.Likelihood(a.x(), a.y()), crop.Likelihood(b.x(), b.y()), 1e-6)
+            << "window " << window_rad << ", turn " << turn << " at " << p.transpose();
+      }
+    }
+  }
+}
+
+// A table rebuilt in place (its memory reused) must equal one built afresh, whatever it held
+// before: a larger table, another coarse factor and resolution, or nothing.
+TEST(ScanMatcherTest, RebuildingInPlaceEqualsBuildingAfresh) {
+  std::mt19937 rng(11);
+  const auto random_points = [&](int n, double lo, double hi) {
+    std::uniform_real_distribution<double> coord(lo, hi);
+    std::vector<Eigen::Vector2d> points;
+    for (int i = 0; i < n; ++i) points.emplace_back(coord(rng), coord(rng));
+    return points;
+  };
+  MatcherConfig wide;
+  wide.resolution_m = 0.02;
+  wide.coarse_factor = 32;
+  MatcherConfig config;
+  config.resolution_m = 0.05;
+  config.sigma_m = 0.04;
+  config.coarse_factor = 8;
+  const std::vector<Eigen::Vector2d> small = random_points(30, 0.5, 1.5);
+  const ReferenceGrid fresh(small, config);
+  ReferenceGrid reused;
+  EXPECT_EQ(reused.Likelihood(0, 0), 0.0f);
+  reused.Build(random_points(200, -4.0, 4.0), wide);
+  reused.Build({}, config);
+  EXPECT_EQ(reused.width(), 0);
+  reused.Build(small, config);
+  ASSERT_EQ(reused.width(), fresh.width());
+  ASSERT_EQ(reused.height(), fresh.height());
+  ASSERT_EQ(reused.num_levels(), fresh.num_levels());
+  EXPECT_EQ(reused.CellOf(small[0]), fresh.CellOf(small[0]));
+  for (int level = 0; level < fresh.num_levels(); ++level) {
+    for (int y = -1; y <= fresh.height(); ++y) {
+      for (int x = -1; x <= fresh.width(); ++x) {
+        ASSERT_EQ(reused.Bound(level, x, y), fresh.Bound(level, x, y)) << level << " " << x;
+        ASSERT_EQ(reused.LogLikelihood(x, y), fresh.LogLikelihood(x, y));
       }
     }
   }

@@ -50,27 +50,51 @@ struct Beam {
   bool hit;
 };
 
-// Sums the beams' increments per cell, each cell once, ordered by (y, x). A dense scratch
-// box is used when the scan's bounding box is small, a sort otherwise.
+// Sums the beams' increments per cell, each cell once, ordered by (y, x). When the scan's
+// bounding box is small, counts go into a dense scratch box kept per thread (a fresh one
+// costs more in page faults and zeroing than the scan itself); each row is read back over
+// the span of columns its beams touched, and zeroed for the next call. A sort otherwise.
 std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& beams, CellIndex lo,
                                    CellIndex hi) {
   constexpr std::int64_t kMaxDenseCells = std::int64_t{1} << 21;
   const std::int64_t w = hi.x - lo.x + 1, h = hi.y - lo.y + 1;
   std::vector<CellUpdate> out;
   if (w * h <= kMaxDenseCells) {
-    std::vector<CellCounts> box(static_cast<std::size_t>(w * h));
+    thread_local std::vector<CellCounts> box;  // all zero between calls
+    thread_local std::vector<int> row_first, row_last;
+    if (box.size() < static_cast<std::size_t>(w * h)) box.resize(static_cast<std::size_t>(w * h));
+    row_first.assign(static_cast<std::size_t>(h), static_cast<int>(w));
+    row_last.assign(static_cast<std::size_t>(h), -1);
+    std::size_t distinct = 0;
     for (const Beam& b : beams) {
       Bresenham(origin, b.end, [&](int x, int y) {
-        CellCounts& c = box[static_cast<std::size_t>((y - lo.y) * w + (x - lo.x))];
+        const int bx = x - lo.x;
+        const auto by = static_cast<std::size_t>(y - lo.y);
+        CellCounts& c = box[by * static_cast<std::size_t>(w) + static_cast<std::size_t>(bx)];
+        if (c.hits == 0 && c.misses == 0) ++distinct;
         ++(b.hit && x == b.end.x && y == b.end.y ? c.hits : c.misses);
+        row_first[by] = std::min(row_first[by], bx);
+        row_last[by] = std::max(row_last[by], bx);
       });
     }
-    for (std::int64_t i = 0; i < w * h; ++i) {
-      const CellCounts& c = box[static_cast<std::size_t>(i)];
-      if (c.hits != 0 || c.misses != 0) {
-        out.push_back({{lo.x + static_cast<int>(i % w), lo.y + static_cast<int>(i / w)}, c});
+    const auto drain = [&](bool keep) {
+      for (std::size_t by = 0; by < static_cast<std::size_t>(h); ++by) {
+        CellCounts* row = box.data() + by * static_cast<std::size_t>(w);
+        for (int bx = row_first[by]; bx <= row_last[by]; ++bx) {
+          CellCounts& c = row[bx];
+          if (c.hits == 0 && c.misses == 0) continue;
+          if (keep) out.push_back({{lo.x + bx, lo.y + static_cast<int>(by)}, c});
+          c = CellCounts{};
+        }
       }
+    };
+    try {
+      out.reserve(distinct);  // the only step that can throw: the box must end all zero
+    } catch (...) {
+      drain(false);
+      throw;
     }
+    drain(true);
     return out;
   }
   for (const Beam& b : beams) {
@@ -179,25 +203,51 @@ CellCounts* GridMap::FindOrCreate(CellIndex c, Cursor* cursor) {
   return &cursor->chunks[slot]->cells[static_cast<std::size_t>(Offset(c))];
 }
 
-void GridMap::Add(const std::vector<CellUpdate>& updates) {
-  Cursor cursor;
-  for (const CellUpdate& u : updates) {
-    CellCounts* c = FindOrCreate(u.cell, &cursor);
-    c->hits += u.delta.hits;
-    c->misses += u.delta.misses;
+namespace {
+
+// Calls f(update, counts) for every update, counts pointing at its cell (or null where
+// lookup(cell) found no chunk). A run of consecutive updates in one row of one chunk (an
+// increment list, ordered by row, is mostly such runs) looks its chunk up once: the cells
+// of a chunk row are contiguous.
+template <typename Lookup, typename F>
+void ForEachInRuns(const std::vector<CellUpdate>& updates, Lookup&& lookup, F&& f) {
+  const std::size_t n = updates.size();
+  for (std::size_t i = 0; i < n;) {
+    const CellIndex first = updates[i].cell;
+    CellCounts* base = lookup(first);
+    const int chunk_x = ChunkOf(first.x);
+    for (; i < n && updates[i].cell.y == first.y && ChunkOf(updates[i].cell.x) == chunk_x; ++i) {
+      f(updates[i], base ? base + (updates[i].cell.x - first.x) : nullptr);
+    }
   }
 }
 
-void GridMap::Remove(const std::vector<CellUpdate>& updates) {
+}  // namespace
+
+void GridMap::Add(const std::vector<CellUpdate>& updates) {
   Cursor cursor;
-  for (const CellUpdate& u : updates) {
-    CellCounts* c = Find(u.cell, &cursor);
+  ForEachInRuns(
+      updates, [&](CellIndex c) { return FindOrCreate(c, &cursor); },
+      [](const CellUpdate& u, CellCounts* c) {
+        c->hits += u.delta.hits;
+        c->misses += u.delta.misses;
+      });
+}
+
+void GridMap::Remove(const std::vector<CellUpdate>& updates) {
+  // All or nothing: check every cell before changing any, so a bad list leaves the map as it
+  // was (the check costs a pass of lookups, a fraction of the rasterization behind a list).
+  Cursor cursor;
+  const auto find = [&](CellIndex c) { return Find(c, &cursor); };
+  ForEachInRuns(updates, find, [](const CellUpdate& u, const CellCounts* c) {
     if (c == nullptr || c->hits < u.delta.hits || c->misses < u.delta.misses) {
       throw std::logic_error("GridMap::Remove: removing counts that were never added");
     }
+  });
+  ForEachInRuns(updates, find, [](const CellUpdate& u, CellCounts* c) {
     c->hits -= u.delta.hits;
     c->misses -= u.delta.misses;
-  }
+  });
 }
 
 void GridMap::AddScan(const LaserScan& scan, const Pose2& T_world_robot) {
@@ -274,15 +324,16 @@ double GridMap::EntropyBits(const CellBounds& region) const {
 double GridMap::InformationGain(const std::vector<CellUpdate>& updates) const {
   double gain = 0.0;
   Cursor cursor;
-  for (const CellUpdate& u : updates) {
-    const CellCounts* found = Find(u.cell, &cursor);
-    const CellCounts now = found ? *found : CellCounts{};
-    if (now.hits < u.delta.hits || now.misses < u.delta.misses) {
-      throw std::logic_error("GridMap::InformationGain: the scan is not in the map");
-    }
-    const CellCounts without{now.hits - u.delta.hits, now.misses - u.delta.misses};
-    gain += CellEntropyBits(without) - CellEntropyBits(now);
-  }
+  ForEachInRuns(
+      updates, [&](CellIndex c) { return Find(c, &cursor); },
+      [&gain](const CellUpdate& u, const CellCounts* found) {
+        const CellCounts now = found ? *found : CellCounts{};
+        if (now.hits < u.delta.hits || now.misses < u.delta.misses) {
+          throw std::logic_error("GridMap::InformationGain: the scan is not in the map");
+        }
+        const CellCounts without{now.hits - u.delta.hits, now.misses - u.delta.misses};
+        gain += CellEntropyBits(without) - CellEntropyBits(now);
+      });
   return gain;
 }
 

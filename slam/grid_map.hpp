@@ -78,7 +78,8 @@ class GridMap {
   void RemoveScan(const LaserScan& scan, const Pose2& T_world_robot);
   void MoveScan(const LaserScan& scan, const Pose2& T_world_old, const Pose2& T_world_new);
   void Add(const std::vector<CellUpdate>& updates);
-  /// Throws std::logic_error when a count would go negative (the updates were never added).
+  /// Throws std::logic_error when a count would go negative (the updates were never added),
+  /// leaving the map unchanged.
   void Remove(const std::vector<CellUpdate>& updates);
 
   CellCounts Counts(CellIndex c) const;

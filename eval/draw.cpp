@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "eval/map_quality.hpp"
+#include "render/palette.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -68,16 +69,8 @@ cv::Mat DrawCells(const View& v) {
 }
 
 cv::Scalar EdgeColour(slam::EdgeKind k) {
-  switch (k) {
-    case slam::EdgeKind::kOdometry:
-      return {0, 140, 255};  // orange (BGR)
-    case slam::EdgeKind::kLoop:
-      return {200, 0, 200};  // magenta
-    case slam::EdgeKind::kMarginal:
-      return {200, 170, 0};  // teal
-    default:
-      return {128, 128, 128};
-  }
+  const render::Rgb c = render::EdgeColour(k);
+  return {static_cast<double>(c.b), static_cast<double>(c.g), static_cast<double>(c.r)};  // BGR
 }
 
 cv::Scalar TrajectoryColour(TrajectoryKind k) {

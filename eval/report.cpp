@@ -85,20 +85,7 @@ json ModeJson(const ModeSummary& m) {
 std::map<std::string, std::int64_t> EdgesByKind(const slam::PoseGraph& graph) {
   std::map<std::string, std::int64_t> out;
   for (const slam::PoseEdge& e : graph.edges()) {
-    switch (e.kind) {
-      case slam::EdgeKind::kOdometry:
-        ++out["odometry"];
-        break;
-      case slam::EdgeKind::kLoop:
-        ++out["loop"];
-        break;
-      case slam::EdgeKind::kMarginal:
-        ++out["marginal"];
-        break;
-      case slam::EdgeKind::kPrior:
-        ++out["prior"];
-        break;
-    }
+    ++out[slam::EdgeKindName(e.kind)];
   }
   for (const slam::CliqueFactor& c : graph.cliques()) {
     out["clique_pairs"] += static_cast<std::int64_t>(c.nodes.size() * (c.nodes.size() - 1) / 2);

@@ -18,20 +18,6 @@ constexpr Rgb kRayEnd{230, 90, 0};
 constexpr Rgb kRobot{210, 0, 0};
 constexpr Rgb kNode{20, 40, 160};
 
-Rgb EdgeColour(slam::EdgeKind kind) {
-  switch (kind) {
-    case slam::EdgeKind::kOdometry:
-      return {60, 110, 230};
-    case slam::EdgeKind::kLoop:
-      return {0, 170, 0};
-    case slam::EdgeKind::kMarginal:
-      return {200, 0, 200};
-    case slam::EdgeKind::kPrior:
-      return {120, 120, 120};
-  }
-  return {0, 0, 0};
-}
-
 std::unique_ptr<GlContext> MakeContext(int width, int height, BackendChoice choice) {
   std::string egl_error, osmesa_error;
   if (choice != BackendChoice::kOsMesaOnly) {

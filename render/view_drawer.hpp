@@ -10,13 +10,10 @@
 #include "io/occupancy_grid.hpp"
 #include "render/gl_api.hpp"
 #include "render/layout.hpp"
+#include "render/palette.hpp"
 #include "sensor/pose2.hpp"
 
 namespace lifelong::render {
-
-struct Rgb {
-  std::uint8_t r = 0, g = 0, b = 0;
-};
 
 class ViewDrawer {
  public:

@@ -26,6 +26,9 @@ enum class EdgeKind : std::uint8_t {
   kPrior,     ///< unary-like edge, unused by the standard front-end
 };
 
+/// "odometry", "loop", "marginal" or "prior" (the names in summary.json's edges_by_kind).
+const char* EdgeKindName(EdgeKind kind);
+
 /// Relative-pose constraint Z = T_from_to with information Omega (3x3, order x, y, theta).
 /// Error (DESIGN.md):  e = t2v(Z^-1 * (X_from^-1 * X_to)).
 struct PoseEdge {

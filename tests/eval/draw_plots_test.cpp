@@ -7,6 +7,7 @@
 #include "eval/draw.hpp"
 #include "eval/plots.hpp"
 #include "eval/resources.hpp"
+#include "render/palette.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -66,6 +67,25 @@ TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
   EXPECT_GT(p[0], 150);                 // blue dominates
   EXPECT_LT(p[2], 100);
   EXPECT_EQ(Pixel(im, 2, 6), cv::Vec3b(205, 205, 205));  // untouched
+}
+
+// Edge kinds take the one palette the video frames use too (render/palette.hpp).
+TEST(DrawTest, EdgesAreDrawnInTheSharedPalette) {
+  GraphOverlay graph;
+  graph.edges.push_back({0.05, 0.75, 0.95, 0.75, slam::EdgeKind::kLoop});
+  graph.edges.push_back({0.05, 0.25, 0.95, 0.25, slam::EdgeKind::kMarginal});
+  DrawConfig config = Plain();
+  config.pixels_per_cell = 4;
+  const Image im = RenderMap(SmallGrid(), graph, {}, config);
+  for (const auto& [row, kind] : {std::pair{10, slam::EdgeKind::kLoop},  // 40 - 0.75 * 40
+                                  std::pair{30, slam::EdgeKind::kMarginal}}) {
+    const render::Rgb c = render::EdgeColour(kind);
+    const cv::Vec3b p = Pixel(im, 20, row);
+    // Anti-aliased: within a tenth of full scale of the palette colour, channel by channel.
+    EXPECT_NEAR(p[0], c.b, 25) << slam::EdgeKindName(kind);
+    EXPECT_NEAR(p[1], c.g, 25) << slam::EdgeKindName(kind);
+    EXPECT_NEAR(p[2], c.r, 25) << slam::EdgeKindName(kind);
+  }
 }
 
 TEST(DrawTest, WritesAReadablePngAndNoTemporary) {

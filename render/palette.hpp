@@ -1,0 +1,30 @@
+// The colours of the graph's edge kinds, one palette for the video frames (render) and the
+// map PNGs (eval/draw.cpp), so that a figure reads the same in both.
+#pragma once
+
+#include <cstdint>
+
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::render {
+
+struct Rgb {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+
+/// Odometry orange, loop closures magenta, marginal edges teal, priors grey.
+constexpr Rgb EdgeColour(slam::EdgeKind kind) {
+  switch (kind) {
+    case slam::EdgeKind::kOdometry:
+      return {255, 140, 0};
+    case slam::EdgeKind::kLoop:
+      return {200, 0, 200};
+    case slam::EdgeKind::kMarginal:
+      return {0, 170, 200};
+    case slam::EdgeKind::kPrior:
+      return {128, 128, 128};
+  }
+  return {0, 0, 0};
+}
+
+}  // namespace lifelong::render

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "slam/scratch_table.hpp"
+
 namespace lifelong::slam {
 
 namespace {
@@ -62,7 +64,9 @@ std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& be
   if (w * h <= kMaxDenseCells) {
     thread_local std::vector<CellCounts> box;  // all zero between calls
     thread_local std::vector<int> row_first, row_last;
-    if (box.size() < static_cast<std::size_t>(w * h)) box.resize(static_cast<std::size_t>(w * h));
+    if (box.size() < static_cast<std::size_t>(w * h)) {
+      ResizeTable(&box, static_cast<std::size_t>(w * h));  // still all zero
+    }
     row_first.assign(static_cast<std::size_t>(h), static_cast<int>(w));
     row_last.assign(static_cast<std::size_t>(h), -1);
     std::size_t distinct = 0;

@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "slam/scan_matcher.hpp"
+#include "slam/scratch_table.hpp"
 
 namespace lifelong::slam {
 
@@ -93,7 +94,8 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
   width_ = static_cast<int>(std::ceil((hi.x() - origin_m_.x()) / r)) + margin + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - origin_m_.y()) / r)) + margin + 1;
   std::vector<float>& fine = levels_[0];
-  fine.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
+  ResizeTable(&fine, static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+  std::fill(fine.begin(), fine.end(), 0.0f);
   const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
   // The Gaussian is separable: exp(-(dx^2 + dy^2) / 2s^2) = gx(dx) * gy(dy), so each point
   // costs 2 (2k + 1) exponentials instead of (2k + 1)^2.
@@ -120,43 +122,37 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
       }
     }
   }
-  log_fine_.resize(fine.size());
+  ResizeTable(&log_fine_, fine.size());
   for (std::size_t i = 0; i < fine.size(); ++i) {
     log_fine_[i] = fine[i] > 0.0f ? std::max(std::log(fine[i]), kLogFloor) : kLogFloor;
   }
 }
 
 // Step 2: level l holds the max of level 0 over [x, x + 2^l)^2, from level l - 1 as the max
-// of four shifted copies, taken separably (first along x, then along y) so that the inner
-// loops are branch-free and vectorize. Cells past the table's edge count as 0.
+// of four shifted copies, taken separably (along x into the new level, then along y in
+// place: row y reads row y + h before that row is rewritten) so that the inner loops are
+// branch-free and vectorize. Cells past the table's edge count as 0.
 void ReferenceGrid::BuildLevels() {
   const auto w = static_cast<std::size_t>(width_);
+  const auto rows = static_cast<std::size_t>(height_);
   const std::size_t cells = levels_[0].size();
-  along_x_.resize(cells);
-  float* const along_x = along_x_.data();
   for (int half = 1; half < coarse_factor_; half *= 2) {
     if (levels_.size() <= static_cast<std::size_t>(num_levels_)) levels_.emplace_back();
     std::vector<float>& next = levels_[static_cast<std::size_t>(num_levels_)];
     const std::vector<float>& prev = levels_[static_cast<std::size_t>(num_levels_ - 1)];
-    next.resize(cells);  // every cell is written below
+    ResizeTable(&next, cells);  // every cell is written below
     const auto h = static_cast<std::size_t>(std::min(half, width_));
-    for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y) {
+    for (std::size_t y = 0; y < rows; ++y) {
       const float* in = prev.data() + y * w;
-      float* out = along_x + y * w;
+      float* out = next.data() + y * w;
       for (std::size_t x = 0; x + h < w; ++x) out[x] = std::max(in[x], in[x + h]);
       for (std::size_t x = w - h; x < w; ++x) out[x] = in[x];
     }
-    const auto rows = static_cast<std::size_t>(height_);
     const auto hy = static_cast<std::size_t>(std::min(half, height_));
-    for (std::size_t y = 0; y < rows; ++y) {
-      const float* a = along_x + y * w;
-      float* out = next.data() + y * w;
-      if (y + hy < rows) {
-        const float* b = a + hy * w;
-        for (std::size_t x = 0; x < w; ++x) out[x] = std::max(a[x], b[x]);
-      } else {
-        std::copy(a, a + w, out);
-      }
+    for (std::size_t y = 0; y + hy < rows; ++y) {
+      float* a = next.data() + y * w;
+      const float* b = a + hy * w;
+      for (std::size_t x = 0; x < w; ++x) a[x] = std::max(a[x], b[x]);
     }
     ++num_levels_;
   }

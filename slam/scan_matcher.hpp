@@ -88,7 +88,6 @@ class ReferenceGrid {
   /// levels_[0]: v per cell; levels past num_levels_ are spare capacity.
   std::vector<std::vector<float>> levels_ = {{}};
   std::vector<float> log_fine_;
-  std::vector<float> along_x_;  ///< BuildLevels' scratch
 };
 
 struct MatchResult {

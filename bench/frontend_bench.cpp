@@ -92,6 +92,22 @@ void BM_BuildLocalReferenceGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_BuildLocalReferenceGrid)->Unit(benchmark::kMicrosecond);
 
+// The mapper's case: one table rebuilt in place for every scan (its memory reused).
+void BM_RebuildLocalReferenceGrid(benchmark::State& state) {
+  const Scene s;
+  const MatcherConfig config;
+  ReferenceGrid grid;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const std::vector<Eigen::Vector2d> pts = PointsInReference(s.Local(), 0.03);
+    points = pts.size();
+    grid.Build(pts, config);
+    benchmark::DoNotOptimize(grid.width());
+  }
+  state.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_RebuildLocalReferenceGrid)->Unit(benchmark::kMicrosecond);
+
 void RunMatch(benchmark::State& state, const ReferenceGrid& ref, const Scene& s, const Pose2& guess,
               const MatcherConfig& config) {
   const std::vector<Eigen::Vector2d> pts = ScanToPoints(s.scan, 0.03);

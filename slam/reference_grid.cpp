@@ -94,8 +94,9 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
   width_ = static_cast<int>(std::ceil((hi.x() - origin_m_.x()) / r)) + margin + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - origin_m_.y()) / r)) + margin + 1;
   std::vector<float>& fine = levels_[0];
-  ResizeTable(&fine, static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
-  std::fill(fine.begin(), fine.end(), 0.0f);
+  const bool zeroed =
+      ResizeTable(&fine, static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+  if (!zeroed) std::fill(fine.begin(), fine.end(), 0.0f);
   const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
   // The Gaussian is separable: exp(-(dx^2 + dy^2) / 2s^2) = gx(dx) * gy(dy), so each point
   // costs 2 (2k + 1) exponentials instead of (2k + 1)^2.

@@ -11,15 +11,17 @@ namespace lifelong::slam {
 /// its memory (fresh multi-megabyte tables cost page faults). When it must grow, its
 /// capacity becomes the new size plus an eighth, not the doubling std::vector::resize may
 /// choose: memory past the largest table would only be dead weight. Contents are not kept
-/// across a growth (elements are value-initialized then).
+/// across a growth: the elements are then value-initialized, and the call returns true.
 template <typename T>
-void ResizeTable(std::vector<T>* table, std::size_t size) {
-  if (size > table->capacity()) {
+bool ResizeTable(std::vector<T>* table, std::size_t size) {
+  const bool grow = size > table->capacity();
+  if (grow) {
     std::vector<T> fresh;
     fresh.reserve(size + size / 8);
     table->swap(fresh);
   }
   table->resize(size);
+  return grow;
 }
 
 }  // namespace lifelong::slam

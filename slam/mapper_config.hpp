@@ -52,10 +52,10 @@ struct LoopClosingConfig {
   double min_score = 0.6;            ///< a good match...
   double max_ambiguity = 0.85;       ///< ...and an unambiguous one
   double consistency_chi2 = 16.27;   ///< 99.9 % gate (3 dof) of the correction
-  int min_reference_points = 60;
-  MatcherConfig matcher;            ///< windows are set per attempt
-  double optimize_edge_chi2 = 9.0;  ///< optimize at once when the new edge's chi2 exceeds
-  int optimize_every = 10;          ///< ...and at least every this many closures
+  int min_reference_points = 60;     ///< submap points the search can reach, fewer: no match
+  MatcherConfig matcher;             ///< windows are set per attempt
+  double optimize_edge_chi2 = 9.0;   ///< optimize at once when the new edge's chi2 exceeds
+  int optimize_every = 10;           ///< ...and at least every this many closures
 };
 
 struct PruningConfig {

@@ -248,10 +248,22 @@ void GridMap::Remove(const std::vector<CellUpdate>& updates) {
       throw std::logic_error("GridMap::Remove: removing counts that were never added");
     }
   });
-  ForEachInRuns(updates, find, [](const CellUpdate& u, CellCounts* c) {
-    c->hits -= u.delta.hits;
-    c->misses -= u.delta.misses;
-  });
+  // A cell listed twice can pass the check and still go negative: undo and throw.
+  std::size_t done = 0;
+  try {
+    ForEachInRuns(updates, find, [&done](const CellUpdate& u, CellCounts* c) {
+      if (c->hits < u.delta.hits || c->misses < u.delta.misses) {
+        throw std::logic_error("GridMap::Remove: a cell is listed more than once");
+      }
+      c->hits -= u.delta.hits;
+      c->misses -= u.delta.misses;
+      ++done;
+    });
+  } catch (const std::logic_error&) {
+    Add(std::vector<CellUpdate>(updates.begin(),
+                                updates.begin() + static_cast<std::ptrdiff_t>(done)));
+    throw;
+  }
 }
 
 void GridMap::AddScan(const LaserScan& scan, const Pose2& T_world_robot) {

@@ -117,6 +117,13 @@ TEST(GridMapTest, AddThenRemoveRestoresCountsExactly) {
   // Removing it again fails, and leaves every count as it was (all or nothing).
   EXPECT_THROW(map.RemoveScan(scan_c, c), std::logic_error);
   EXPECT_EQ(Snapshot(map), before);
+  // A list naming a cell twice, each entry within the counts but not both together.
+  const CellIndex cell{40, 60};
+  map.Add({{cell, {0, 1}}});
+  const CountMap with_one = Snapshot(map);
+  const CellCounts n = map.Counts(cell);
+  EXPECT_THROW(map.Remove({{cell, {0, 1}}, {cell, n}}), std::logic_error);
+  EXPECT_EQ(Snapshot(map), with_one);
 }
 
 // Add, Remove and InformationGain look chunks up once per run of cells in one chunk row;

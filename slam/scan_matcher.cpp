@@ -213,9 +213,11 @@ void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2
   const double W = std::ceil(config.linear_window_m / res);
   int side = 1;
   while (side < config.coarse_factor) side *= 2;
-  // Each point sweeps an arc of half-angle max_turn about the guess; the box of its two ends
-  // grown by r (1 - cos max_turn) holds it (by the whole radius past a quarter turn).
-  const double sweep = max_turn < 1.5 ? 1.0 - std::cos(max_turn) : 1.0;
+  // Each point sweeps an arc of half-angle max_turn about the guess. Along any axis, the arc
+  // passes its extreme within max_turn of one of its ends, so the box of the two ends grown
+  // by r (1 - cos max_turn) holds it; past a half turn the arc is the whole circle (2 r).
+  constexpr double kPi = 3.14159265358979323846;
+  const double sweep = max_turn < kPi ? 1.0 - std::cos(max_turn) : 2.0;
   const Eigen::Rotation2Dd R_lo(T_ref_cur_guess.theta - max_turn),
       R_hi(T_ref_cur_guess.theta + max_turn);
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());

@@ -191,11 +191,46 @@ TEST(ScanMatcherTest, CroppingToTheSearchLeavesTheMatchUnchanged) {
 // The crop's contract, lookup by lookup: with reference points everywhere, every query point
 // at every pose of the search lattice (any heading in the window, any translation a bound
 // may read: -W .. W + coarse_factor cells) reads the same likelihood from the cropped table.
-TEST(ScanMatcherTest, CroppedTableAgreesWhereverTheSearchLooks) {
-  std::mt19937 rng(5);
+void ExpectCropAgreesWhereverTheSearchLooks(const std::vector<Eigen::Vector2d>& query,
+                                            const Pose2& guess, double window_rad,
+                                            std::mt19937* rng) {
   std::uniform_real_distribution<double> coord(-15.0, 15.0), unit(0.0, 1.0);
   std::vector<Eigen::Vector2d> reference;
-  for (int i = 0; i < 60000; ++i) reference.emplace_back(coord(rng), coord(rng));
+  for (int i = 0; i < 60000; ++i) reference.emplace_back(coord(*rng), coord(*rng));
+  MatcherConfig config;
+  config.resolution_m = 0.05;
+  config.linear_window_m = 0.5;
+  config.angular_window_rad = window_rad;
+  config.angular_step_rad = 0.002;
+  std::vector<Eigen::Vector2d> cropped = reference;
+  CropToSearch(query, guess, config, &cropped);
+  if (window_rad < 1.0) {
+    ASSERT_LT(cropped.size(), reference.size() * 3 / 4);
+  }
+  const ReferenceGrid full(reference, config), crop(cropped, config);
+  const int W = static_cast<int>(std::ceil(config.linear_window_m / config.resolution_m));
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double turn = (2.0 * unit(*rng) - 1.0) * config.angular_window_rad;
+    const bool edge = trial % 2 == 0;  // half of the poses on the lattice's box edges
+    const auto offset = [&](double u) {
+      return (edge ? (u < 0.5 ? -W : W + config.coarse_factor - 1)
+                   : -W + u * (2 * W + config.coarse_factor - 1)) *
+             config.resolution_m;
+    };
+    const Eigen::Rotation2Dd R(guess.theta + turn);
+    const Eigen::Vector2d t(guess.x + offset(unit(*rng)), guess.y + offset(unit(*rng)));
+    for (const Eigen::Vector2d& q : query) {
+      const Eigen::Vector2d p = R * q + t;
+      const Eigen::Vector2i a = full.CellOf(p), b = crop.CellOf(p);
+      ASSERT_NEAR(full.Likelihood(a.x(), a.y()), crop.Likelihood(b.x(), b.y()), 1e-6)
+          << "window " << window_rad << ", turn " << turn << " at " << p.transpose();
+    }
+  }
+}
+
+TEST(ScanMatcherTest, CroppedTableAgreesWhereverTheSearchLooks) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Eigen::Vector2d> query;
   for (int i = 0; i < 60; ++i) {
     const double a = 0.1 * i, r = 0.5 + 7.5 * unit(rng);
@@ -204,34 +239,13 @@ TEST(ScanMatcherTest, CroppedTableAgreesWhereverTheSearchLooks) {
   query.emplace_back(8.0, 0.0);  // straight ahead: its arc bulges past its two ends
   // A wide heading window (the arcs matter), then a narrow one (the translations do).
   for (const double window_rad : {0.7, 0.004}) {
-    MatcherConfig config;
-    config.resolution_m = 0.05;
-    config.linear_window_m = 0.5;
-    config.angular_window_rad = window_rad;
-    config.angular_step_rad = 0.002;
-    const Pose2 guess(1.0, -2.0, 0.4);
-    std::vector<Eigen::Vector2d> cropped = reference;
-    CropToSearch(query, guess, config, &cropped);
-    ASSERT_LT(cropped.size(), reference.size() * 3 / 4);
-    const ReferenceGrid full(reference, config), crop(cropped, config);
-    const int W = static_cast<int>(std::ceil(config.linear_window_m / config.resolution_m));
-    for (int trial = 0; trial < 3000; ++trial) {
-      const double turn = (2.0 * unit(rng) - 1.0) * config.angular_window_rad;
-      const bool edge = trial % 2 == 0;  // half of the poses on the lattice's box edges
-      const auto offset = [&](double u) {
-        return (edge ? (u < 0.5 ? -W : W + config.coarse_factor - 1)
-                     : -W + u * (2 * W + config.coarse_factor - 1)) *
-               config.resolution_m;
-      };
-      const Eigen::Rotation2Dd R(guess.theta + turn);
-      const Eigen::Vector2d t(guess.x + offset(unit(rng)), guess.y + offset(unit(rng)));
-      for (const Eigen::Vector2d& q : query) {
-        const Eigen::Vector2d p = R * q + t;
-        const Eigen::Vector2i a = full.CellOf(p), b = crop.CellOf(p);
-        ASSERT_NEAR(full.Likelihood(a.x(), a.y()), crop.Likelihood(b.x(), b.y()), 1e-6)
-            << "window " << window_rad << ", turn " << turn << " at " << p.transpose();
-      }
-    }
+    ExpectCropAgreesWhereverTheSearchLooks(query, Pose2(1.0, -2.0, 0.4), window_rad, &rng);
+  }
+  // One point alone, with windows past a quarter and past a half turn: its arc's far side
+  // is covered by no other point's.
+  for (const double window_rad : {2.0, 3.5}) {
+    ExpectCropAgreesWhereverTheSearchLooks({{5.0, 0.0}}, Pose2(1.0, -2.0, 3.14159), window_rad,
+                                           &rng);
   }
 }
 

@@ -239,26 +239,21 @@ void GridMap::Add(const std::vector<CellUpdate>& updates) {
 }
 
 void GridMap::Remove(const std::vector<CellUpdate>& updates) {
-  // All or nothing: check every cell before changing any, so a bad list leaves the map as it
-  // was (the check costs a pass of lookups, a fraction of the rasterization behind a list).
+  // All or nothing: a list that was never added (or names a cell twice, so that a count would
+  // go negative) has the part already removed added back before the throw.
   Cursor cursor;
-  const auto find = [&](CellIndex c) { return Find(c, &cursor); };
-  ForEachInRuns(updates, find, [](const CellUpdate& u, const CellCounts* c) {
-    if (c == nullptr || c->hits < u.delta.hits || c->misses < u.delta.misses) {
-      throw std::logic_error("GridMap::Remove: removing counts that were never added");
-    }
-  });
-  // A cell listed twice can pass the check and still go negative: undo and throw.
   std::size_t done = 0;
   try {
-    ForEachInRuns(updates, find, [&done](const CellUpdate& u, CellCounts* c) {
-      if (c->hits < u.delta.hits || c->misses < u.delta.misses) {
-        throw std::logic_error("GridMap::Remove: a cell is listed more than once");
-      }
-      c->hits -= u.delta.hits;
-      c->misses -= u.delta.misses;
-      ++done;
-    });
+    ForEachInRuns(
+        updates, [&](CellIndex c) { return Find(c, &cursor); },
+        [&done](const CellUpdate& u, CellCounts* c) {
+          if (c == nullptr || c->hits < u.delta.hits || c->misses < u.delta.misses) {
+            throw std::logic_error("GridMap::Remove: removing counts that were never added");
+          }
+          c->hits -= u.delta.hits;
+          c->misses -= u.delta.misses;
+          ++done;
+        });
   } catch (const std::logic_error&) {
     Add(std::vector<CellUpdate>(updates.begin(),
                                 updates.begin() + static_cast<std::ptrdiff_t>(done)));

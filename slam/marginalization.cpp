@@ -244,7 +244,6 @@ std::vector<PoseEdge> EdgesFromSigma(const std::vector<NodeId>& nodes, const Val
   return edges;
 }
 
-/// Steps 3-4: Chow-Liu tree edges over `nodes` (oriented away from nodes[0]).
 // Step 5 for an approximation given as edges over `nodes`: KL(lambda_p || their Hessian).
 double EdgesKl(const MatrixXd& lambda_p, const std::vector<PoseEdge>& edges, const Values& values,
                const std::vector<NodeId>& nodes) {
@@ -253,6 +252,7 @@ double EdgesKl(const MatrixXd& lambda_p, const std::vector<PoseEdge>& edges, con
   return GaugeFixedKl(lambda_p, lambda_q);
 }
 
+/// Steps 3-4: Chow-Liu tree edges over `nodes` (oriented away from nodes[0]).
 std::vector<PoseEdge> ChowLiuEdges(const std::vector<NodeId>& nodes, const Values& values,
                                    const MatrixXd& lambda_N, bool* regularized) {
   const MatrixXd sigma = AnchoredCovariance(lambda_N, regularized);

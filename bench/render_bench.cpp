@@ -19,7 +19,7 @@ using namespace lifelong;
 render::Scene CorridorScene(int panels) {
   const sim::Scenario scenario =
       sim::LoadScenario(std::string(LIFELONG_SOURCE_DIR) + "/scenarios/corridor_3.yaml");
-  const std::vector<eval::Segment> walls = eval::TrueWalls(scenario.world);
+  const std::vector<eval::Segment> walls = eval::TrueWalls(scenario.world, scenario.duration_s);
   render::Scene scene;
   for (const auto& w : walls) scene.walls.push_back({w.x0, w.y0, w.x1, w.y1});
   const render::Bounds b = render::ViewBounds(scene)[0];

@@ -5,25 +5,27 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <ostream>
 #include <sstream>
 
 #include "eval/draw.hpp"
+#include "eval/interrupt.hpp"
 #include "eval/map_quality.hpp"
 #include "eval/mapper_config_file.hpp"
 #include "eval/metrics.hpp"
 #include "eval/plots.hpp"
+#include "eval/progress.hpp"
 #include "eval/report.hpp"
 #include "eval/resources.hpp"
+#include "eval/staged_output.hpp"
 #include "eval/video.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
 #include "io/relations.hpp"
 #include "io/tum.hpp"
 #include "slam/mapper.hpp"
-
-#include <nlohmann/json.hpp>
 
 namespace lifelong::eval {
 namespace {
@@ -64,13 +66,11 @@ class ModeRunner {
     seconds_ += Seconds(start);
   }
 
-  std::string ProgressLine(std::size_t done, std::size_t total) const {
+  /// Counts for the progress line.
+  std::string ProgressDetail() const {
     std::ostringstream line;
-    line << "\r  " << std::setw(13) << std::left << name_ << std::right << std::setw(4)
-         << (100 * done / total) << " %  scans " << done << "/" << total << "  nodes "
-         << mapper_->graph().NumNodes() << "  edges " << mapper_->graph().NumEdgesForGamma()
-         << "  loops " << mapper_->loop_closures().size() << "  " << std::fixed
-         << std::setprecision(1) << seconds_ << " s   ";
+    line << "nodes " << mapper_->graph().NumNodes() << "  edges "
+         << mapper_->graph().NumEdgesForGamma() << "  loops " << mapper_->loop_closures().size();
     return line.str();
   }
 
@@ -271,40 +271,7 @@ void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
   WriteFileAtomically(path, text);
 }
 
-std::string Cell(const nlohmann::json& j, std::initializer_list<const char*> keys, double scale,
-                 int precision) {
-  const nlohmann::json* v = &j;
-  for (const char* k : keys) {
-    if (!v->contains(k)) return "-";
-    v = &(*v)[k];
-  }
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(precision) << v->get<double>() * scale;
-  return out.str();
-}
-
 }  // namespace
-
-std::string SummaryTable(const std::string& summary_json) {
-  const nlohmann::json s = nlohmann::json::parse(summary_json);
-  std::ostringstream out;
-  const char* header[] = {"mode",      "obs",    "nodes",  "edges",   "kept %", "ms/obs",
-                          "last10 ms", "wall s", "ATE cm", "blur cm", "rel. m", "KL mean"};
-  for (const char* h : header) out << std::setw(h == header[0] ? 13 : 10) << h;
-  out << "\n";
-  for (const auto& [mode, m] : s["modes"].items()) {
-    out << std::setw(13) << mode << std::setw(10) << Cell(m, {"observations"}, 1, 0)
-        << std::setw(10) << Cell(m, {"nodes_final"}, 1, 0) << std::setw(10)
-        << Cell(m, {"edges_final"}, 1, 0) << std::setw(10) << Cell(m, {"scans_kept_pct"}, 1, 1)
-        << std::setw(10) << Cell(m, {"time_per_obs_ms", "mean"}, 1, 2) << std::setw(10)
-        << Cell(m, {"time_per_obs_ms", "last10_mean"}, 1, 2) << std::setw(10)
-        << Cell(m, {"wall_time_s"}, 1, 1) << std::setw(10) << Cell(m, {"ate_rmse_m"}, 100, 1)
-        << std::setw(10) << Cell(m, {"blur", "mean_cm"}, 1, 2) << std::setw(10)
-        << Cell(m, {"relations", "trans_mean_m"}, 1, 4) << std::setw(10)
-        << Cell(m, {"kld", "mean"}, 1, 3) << "\n";
-  }
-  return out.str();
-}
 
 io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   io::OccupancyGrid grid;
@@ -326,19 +293,49 @@ io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   return grid;
 }
 
-std::string RunExperiment(const std::vector<Observation>& stream,
-                          const std::optional<GroundTruth>& truth, const ExperimentConfig& config) {
+namespace {
+
+// Robot time from the first observation to the latest one so far (stamps may run
+// backwards in real logs; the span never does).
+class StreamSpan {
+ public:
+  explicit StreamSpan(const std::vector<Observation>& stream) : stream_(stream) {}
+  double Covered(std::size_t done) {
+    for (; seen_ < done; ++seen_) {
+      lo_ = std::min(lo_, stream_[seen_].stamp_s);
+      hi_ = std::max(hi_, stream_[seen_].stamp_s);
+    }
+    return seen_ == 0 ? 0.0 : hi_ - lo_;
+  }
+
+ private:
+  const std::vector<Observation>& stream_;
+  std::size_t seen_ = 0;
+  double lo_ = std::numeric_limits<double>::infinity();
+  double hi_ = -std::numeric_limits<double>::infinity();
+};
+
+ProgressOptions MeterOptions(const ExperimentConfig& c, const std::string& label) {
+  ProgressOptions o;
+  o.label = label;
+  o.unit = "scans";
+  o.terminal = c.progress_terminal;
+  return o;
+}
+
+}  // namespace
+
+RunSummary RunExperiment(const std::vector<Observation>& stream,
+                         const std::optional<GroundTruth>& truth,
+                         const ExperimentConfig& final_config) {
   const auto start = Clock::now();
-  fs::create_directories(config.out_dir);
-  // A summary from an earlier run must not make a failed run look complete.
-  fs::remove(fs::path(config.out_dir) / "summary.json");
+  StagedOutput output(final_config.out_dir);
+  ExperimentConfig config = final_config;
+  config.out_dir = output.path();
   WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
                       "# Mapper settings of this run (lifelong --config format)\n" +
                           MapperConfigToYaml(config.mapper));
-  std::vector<io::Relation> relations;
-  if (config.relations_path) {
-    relations = io::ReadRelations(*config.relations_path, config.relations_offset_s);
-  }
+  const std::vector<io::Relation>& relations = config.relations;
   std::unique_ptr<VideoSink> sink;
   if (!config.video_path.empty() || !config.frames_dir.empty()) {
     VideoOptions options;
@@ -353,11 +350,13 @@ std::string RunExperiment(const std::vector<Observation>& stream,
     runners.push_back(std::make_unique<ModeRunner>(mode, config));
   }
   const std::size_t n = stream.size();
-  const std::size_t report_every = std::max<std::size_t>(1, n / 20);
   RunSummary summary;
   summary.source = config.source;
   summary.seed = config.seed;
-  if (!stream.empty()) summary.log_duration_s = stream.back().stamp_s - stream.front().stamp_s;
+  summary.log = config.log;
+  StreamSpan span(stream);
+  if (!stream.empty()) summary.log_duration_s = span.Covered(n);
+  for (const auto& r : runners) summary.mode_order.push_back(r->name());
   ModeTimelines timelines;
   std::map<std::string, std::vector<double>> kld;
   ReportPage page;
@@ -372,27 +371,31 @@ std::string RunExperiment(const std::vector<Observation>& stream,
     r->Release();
   };
   if (sink) {  // lockstep: every mode sees scan i before any sees scan i + 1
+    ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, "all modes"));
     for (std::size_t i = 0; i < n; ++i) {
+      ThrowIfInterrupted();
       for (auto& r : runners) r->Step(stream[i]);
       if (sink->Wants(static_cast<int>(i))) AddVideoFrame(sink.get(), stream[i], truth, runners);
-      if ((i + 1) % report_every == 0 || i + 1 == n) {
-        Progress(config, runners.front()->ProgressLine(i + 1, n));
-      }
+      meter.Update(static_cast<double>(i + 1), span.Covered(i + 1),
+                   runners.front()->ProgressDetail());
     }
     sink->Close();
-    Progress(config, "\n");
+    meter.Finish(span.Covered(n), runners.front()->ProgressDetail());
     for (auto& r : runners) finish(r.get());
   } else {  // one mode after the other, each with its own peak RSS
     for (auto& r : runners) {
       ResetPeakRss();
+      ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, r->name()));
       for (std::size_t i = 0; i < n; ++i) {
+        ThrowIfInterrupted();
         r->Step(stream[i]);
-        if ((i + 1) % report_every == 0 || i + 1 == n) Progress(config, r->ProgressLine(i + 1, n));
+        meter.Update(static_cast<double>(i + 1), span.Covered(i + 1), r->ProgressDetail());
       }
-      Progress(config, "\n");
+      meter.Finish(span.Covered(n), r->ProgressDetail());
       finish(r.get());
     }
   }
+  ThrowIfInterrupted();
   if (truth) {
     WriteTruth(stream, *truth, config);
     page.maps["ground truth"] = "truth/map.png";
@@ -406,12 +409,14 @@ std::string RunExperiment(const std::vector<Observation>& stream,
     for (const std::string& f : kp.files) page.figures.push_back(fs::path(f).filename().string());
   }
   if (!plots.ok) Progress(config, "warning: no figures: " + plots.error + "\n");
+  ThrowIfInterrupted();
   summary.wall_time_s = Seconds(start);
   page.summary = summary;
   page.command_line = config.command_line;
   WriteReportHtml((fs::path(config.out_dir) / "report.html").string(), page);
   WriteSummaryJson((fs::path(config.out_dir) / "summary.json").string(), summary);
-  return SummaryJsonText(summary);
+  output.Commit();
+  return summary;
 }
 
 }  // namespace lifelong::eval

@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "eval/report.hpp"
 #include "eval/types.hpp"
 #include "io/occupancy_grid.hpp"
+#include "io/relations.hpp"
 #include "sensor/observation.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
@@ -26,11 +28,13 @@ struct ExperimentConfig {
   std::string out_dir;
   std::string source;                ///< scenario or log path, for the summary
   std::optional<std::int64_t> seed;  ///< simulation seed
-  std::optional<std::string> relations_path;
-  double relations_offset_s = 0.0;     ///< relation time = log time + this
+  /// Relations in log time (io::ShiftRelations already applied); empty: none.
+  std::vector<io::Relation> relations;
+  std::optional<LogInfo> log;          ///< replay: what was read from the log
   std::optional<double> first_pass_s;  ///< observations before this time form the first pass
   std::string command_line;
   std::ostream* progress = nullptr;  ///< progress lines; nullptr: quiet
+  bool progress_terminal = false;    ///< progress goes to a terminal: redraw one line
   /// Video (--video FILE.mp4) and/or PNG frames (--frames DIR): the modes then run in
   /// lockstep, scan by scan, so that each frame shows every mode side by side.
   std::string video_path;
@@ -38,15 +42,14 @@ struct ExperimentConfig {
   int video_stride = 20;  ///< render every this many scans
 };
 
-/// A short table of the key figures per mode, from RunExperiment's JSON, for the console.
-std::string SummaryTable(const std::string& summary_json);
-
 /// The mapper's counting grid as an io::OccupancyGrid (p = hits / (hits + misses)).
 io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
 
 /// Runs every mode over `stream` and writes DIR/summary.json, DIR/<mode>/..., figures and
-/// report.html. `truth` enables the ground-truth metrics. Returns the summary's JSON text.
-std::string RunExperiment(const std::vector<Observation>& stream,
-                          const std::optional<GroundTruth>& truth, const ExperimentConfig& config);
+/// report.html, all or nothing: into a staging directory beside DIR that replaces DIR only
+/// once everything is written (eval/staged_output.hpp). `truth` enables the ground-truth
+/// metrics. Throws Interrupted (eval/interrupt.hpp) after Ctrl-C, leaving DIR as it was.
+RunSummary RunExperiment(const std::vector<Observation>& stream,
+                         const std::optional<GroundTruth>& truth, const ExperimentConfig& config);
 
 }  // namespace lifelong::eval

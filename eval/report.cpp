@@ -149,6 +149,14 @@ std::string SummaryJsonText(const RunSummary& s) {
   json j = {{"source", s.source}, {"wall_time_s", s.wall_time_s}};
   Put(j, "seed", s.seed);
   Put(j, "log_duration_s", s.log_duration_s);
+  if (s.log) {
+    json log = {{"scans", s.log->scans}, {"backward_stamps", s.log->backward_stamps}};
+    Put(log, "relations_offset_s", s.log->relations_offset_s);
+    Put(log, "relations_offset_detected", s.log->relations_offset_detected);
+    Put(log, "relations_in_file", s.log->relations_in_file);
+    j["log"] = log;
+  }
+  if (!s.mode_order.empty()) j["mode_order"] = s.mode_order;
   json modes = json::object();
   for (const auto& [name, mode] : s.modes) modes[name] = ModeJson(mode);
   j["modes"] = modes;

@@ -59,12 +59,24 @@ struct ModeSummary {
   std::optional<double> occupied_share;
 };
 
+/// What was read from a real log (replay only): summary.json's "log" object.
+struct LogInfo {
+  std::int64_t scans = 0;
+  std::int64_t backward_stamps = 0;          ///< scans stamped earlier than the scan before them
+  std::optional<double> relations_offset_s;  ///< s, relation time = log time + this
+  std::optional<bool> relations_offset_detected;  ///< false: given with --relations-offset
+  std::optional<std::int64_t> relations_in_file;  ///< relations read from the file
+};
+
 struct RunSummary {
   std::string source;                    ///< scenario or log path
   std::optional<std::int64_t> seed;      ///< simulation only
   double wall_time_s = 0.0;              ///< s, whole command
-  std::optional<double> log_duration_s;  ///< s, simulated or recorded time covered
+  std::optional<double> log_duration_s;  ///< s, simulated or recorded time covered (>= 0)
+  std::optional<LogInfo> log;            ///< replay only
   std::map<std::string, ModeSummary> modes;
+  /// The modes in --modes order; the first is the baseline that ratios are taken against.
+  std::vector<std::string> mode_order;
 };
 
 /// The graph's factors counted by origin (ModeSummary::edges_by_kind); kinds with no factor

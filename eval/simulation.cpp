@@ -1,5 +1,6 @@
 #include "eval/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -7,7 +8,9 @@
 #include <set>
 
 #include "eval/draw.hpp"
+#include "eval/interrupt.hpp"
 #include "eval/map_quality.hpp"
+#include "eval/progress.hpp"
 #include "io/carmen_log.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
@@ -28,42 +31,57 @@ std::string Stem(const std::string& log_path) {
 
 }  // namespace
 
-SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress) {
+SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress,
+                              bool terminal) {
   sim::Simulator simulator(scenario);
   SimulatedRun run;
   Observation obs;
   std::vector<Odometry> odometry;
-  int last_percent = -1;
+  ProgressOptions options;
+  options.label = "simulate";
+  options.unit = "sim s";
+  options.terminal = terminal;
+  ProgressMeter meter(progress, scenario.duration_s, options);
   while (simulator.Next(&obs, &odometry)) {
+    ThrowIfInterrupted();
     run.odometry.insert(run.odometry.end(), odometry.begin(), odometry.end());
     run.observations.push_back(obs);
-    const int percent = static_cast<int>(100.0 * simulator.progress());
-    if (progress && percent != last_percent && percent % 5 == 0) {
-      *progress << "\r  simulate     " << std::setw(4) << percent << " %  t = " << std::fixed
-                << std::setprecision(0) << simulator.time_s() << " s  scans "
-                << run.observations.size() << "   " << std::flush;
-      last_percent = percent;
-    }
+    // progress() is the share of the route done; time_s() the simulated time.
+    meter.Update(simulator.progress() * scenario.duration_s, simulator.time_s(),
+                 "scans " + std::to_string(run.observations.size()));
   }
   run.odometry.insert(run.odometry.end(), odometry.begin(), odometry.end());
-  if (progress) *progress << "\n";
+  meter.Finish(simulator.time_s(), "scans " + std::to_string(run.observations.size()));
   run.collisions = simulator.collisions();
   run.timed_out = simulator.timed_out();
   run.duration_s = simulator.time_s();
   return run;
 }
 
-std::vector<Segment> TrueWalls(const sim::World& world) {
+namespace {
+
+/// True when the door is closed at some time in [0, end_s].
+bool ClosedDuring(const sim::Door& door, double end_s) {
+  return std::any_of(door.closed_intervals_s.begin(), door.closed_intervals_s.end(),
+                     [end_s](const auto& iv) { return iv.first <= end_s && iv.second > 0.0; });
+}
+
+}  // namespace
+
+std::vector<Segment> TrueWalls(const sim::World& world, double end_s) {
   std::vector<Segment> out;
   for (const auto& s : sim::WallSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
-  for (const auto& s : sim::DoorSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+  for (const sim::Door& d : world.doors) {
+    if (!ClosedDuring(d, end_s)) continue;  // open all run long: never a wall to see
+    out.push_back({d.segment.x0, d.segment.y0, d.segment.x1, d.segment.y1});
+  }
   // Boxes at every pose they take during the run: a map may show any of them.
   sim::World moved = world;
   for (std::size_t step = 0;; ++step) {
     for (const auto& s : sim::BoxSegments(moved)) out.push_back({s.x0, s.y0, s.x1, s.y1});
     bool any = false;
     for (std::size_t b = 0; b < world.boxes.size(); ++b) {
-      if (step < world.boxes[b].moves.size()) {
+      if (step < world.boxes[b].moves.size() && world.boxes[b].moves[step].t_s <= end_s) {
         moved.boxes[b].center = world.boxes[b].moves[step].center;
         moved.boxes[b].yaw_rad = world.boxes[b].moves[step].yaw_rad;
         any = true;
@@ -74,7 +92,7 @@ std::vector<Segment> TrueWalls(const sim::World& world) {
   return out;
 }
 
-double FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run) {
+std::optional<double> FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run) {
   const double end = run.observations.empty() ? 0.0 : run.observations.back().stamp_s;
   if (scenario.route.kind == sim::RouteConfig::Kind::kBackAndForth) {
     return end / std::max(1, scenario.route.repetitions);
@@ -88,7 +106,7 @@ double FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run) {
     }
     if (pending.empty()) return o.stamp_s;
   }
-  return end / 6.0;
+  return std::nullopt;  // some destination never visited: no first pass
 }
 
 void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,
@@ -121,7 +139,7 @@ void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,
     odom_path.poses.push_back(T_world_odom * o.T_odom_robot);
   }
   io::WriteTum(stem + ".truth.tum", truth);
-  const std::vector<Segment> walls = TrueWalls(scenario.world);
+  const std::vector<Segment> walls = TrueWalls(scenario.world, run.duration_s);
   io::WritePgmMap(stem + ".truth.pgm", RasterizeWalls(walls, resolution_m));
   DrawConfig draw;
   draw.world_resolution_m = resolution_m;

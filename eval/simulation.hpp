@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,17 +22,21 @@ struct SimulatedRun {
   double duration_s = 0.0;
 };
 
-/// Simulates the whole scenario; progress lines go to `progress` when given.
-SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress);
+/// Simulates the whole scenario; progress goes to `progress` when given (`terminal`: one
+/// line redrawn in 1 % steps; else a plain line per 10 %). Throws Interrupted after Ctrl-C.
+SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress,
+                              bool terminal = false);
 
-/// The ground truth for map metrics: static walls, doors (as closed) and the boxes at each
-/// pose they take.
-std::vector<Segment> TrueWalls(const sim::World& world);
+/// The ground truth for map metrics over a run that ends at `end_s`: static walls, the
+/// doors that are closed at some time in [0, end_s] (a door open all run long is no wall
+/// the robot could see), and the boxes at each pose they take by end_s.
+std::vector<Segment> TrueWalls(const sim::World& world, double end_s);
 
 /// The time at which the first pass over the space ends: the first forth-and-back cycle of a
 /// back-and-forth route; for a tour, the first time every destination has been visited (from
-/// the true trajectory) or, failing that, a sixth of the run.
-double FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run);
+/// the true trajectory). Absent when a tour never visits every destination: the run then has
+/// no first pass, and nodes_after_first_pass / first_pass_mean are left out of the summary.
+std::optional<double> FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run);
 
 /// Writes LOG (CARMEN, ODOM + ROBOTLASER1 + TRUEPOS), LOG-stem.truth.tum, LOG-stem.truth.pgm/.yaml
 /// and LOG-stem.png (the world with the true and odometry trajectories).

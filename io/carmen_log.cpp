@@ -146,6 +146,7 @@ FlaserMessage ParseFlaser(Fields& f) {
   FlaserMessage m;
   LaserScan& scan = m.observation.scan;
   const int n = f.Count("num_readings");
+  if (n == 0) f.Fail("num_readings", "a scan with 0 beams");
   if (f.size() != static_cast<std::size_t>(n) + 11) {
     f.Fail("num_readings", "announces " + std::to_string(n) + " beams but the line has " +
                                std::to_string(f.size()) + " fields, expected " +
@@ -174,6 +175,7 @@ Observation ParseRobotLaser(Fields& f) {
   f.Number("accuracy");
   f.Number("remission_mode");
   const int n = f.Count("num_readings");
+  if (n == 0) f.Fail("num_readings", "a scan with 0 beams");
   scan.ranges_m = f.Ranges(n);
   const int n_rem = f.Count("num_remissions");
   for (int i = 0; i < n_rem; ++i) f.Number("remissions");
@@ -287,6 +289,14 @@ int CountBackward(const std::vector<T>& v) {
   return n;
 }
 
+/// The file line of the first scan stamped earlier than the scan before it; 0: none.
+int FirstBackwardLine(const std::vector<Observation>& scans, const std::vector<int>& lines) {
+  for (std::size_t i = 1; i < scans.size(); ++i) {
+    if (scans[i].stamp_s < scans[i - 1].stamp_s) return lines[i];
+  }
+  return 0;
+}
+
 }  // namespace
 
 CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
@@ -294,6 +304,7 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
   GzLines lines(path);
   std::vector<Event> events;
   std::vector<std::size_t> flasers;
+  std::vector<int> scan_lines;  // file line of each observation
   float flaser_max = 0.0f;
   bool previous_was_scan = false;
   std::string line;
@@ -312,10 +323,12 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
       FlaserMessage m = ParseFlaser(f);
       for (float r : m.observation.scan.ranges_m) flaser_max = std::max(flaser_max, r);
       flasers.push_back(log.observations.size());
+      scan_lines.push_back(lines.line_number());
       events.push_back({true, log.observations.size(), lines.line_number(), m.T_world_robot});
       log.observations.push_back(std::move(m.observation));
     } else if (type == "ROBOTLASER1") {
       log.observations.push_back(ParseRobotLaser(f));  // never GMapping-corrected
+      scan_lines.push_back(lines.line_number());
     } else if (type == "ODOM") {
       events.push_back({false, log.odometry.size(), lines.line_number(), Pose2()});
       log.odometry.push_back(ParseOdom(f));
@@ -342,6 +355,7 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
   }
   if (recover) RecoverOdometry(events, path, &log);
   log.backward_scan_stamps = CountBackward(log.observations);
+  log.first_backward_scan_line = FirstBackwardLine(log.observations, scan_lines);
   log.backward_odom_stamps = CountBackward(log.odometry);
   return log;
 }

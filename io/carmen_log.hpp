@@ -48,10 +48,11 @@ struct CarmenLog {
   std::vector<CarmenParam> params;
   std::map<std::string, int> skipped;  ///< message type -> count (NEFF, SYNC, RLASER, ...)
   int comment_lines = 0;
-  int backward_scan_stamps = 0;     ///< scans stamped earlier than the scan before them
-  int backward_odom_stamps = 0;     ///< ODOMs stamped earlier than the ODOM before them
-  bool odometry_recovered = false;  ///< FLASER poses were corrected; raw odometry rebuilt
-  int dropped_odometry = 0;         ///< ODOM lines dropped by the recovery (after FLASER)
+  int backward_scan_stamps = 0;      ///< scans stamped earlier than the scan before them
+  int first_backward_scan_line = 0;  ///< file line of the first such scan; 0: none
+  int backward_odom_stamps = 0;      ///< ODOMs stamped earlier than the ODOM before them
+  bool odometry_recovered = false;   ///< FLASER poses were corrected; raw odometry rebuilt
+  int dropped_odometry = 0;          ///< ODOM lines dropped by the recovery (after FLASER)
 };
 
 /// Reads a CARMEN log; throws lifelong::InputError(path, line, field, ...) on a missing

@@ -37,13 +37,13 @@ nlohmann::json RunScenario(const std::string& name) {
   fs::remove_all(config.out_dir);
   config.source = name;
   config.first_pass_s = FirstPassEnd(scenario, run);
-  const std::string text =
-      RunExperiment(run.observations, GroundTruth{TrueWalls(scenario.world)}, config);
+  const RunSummary summary = RunExperiment(
+      run.observations, GroundTruth{TrueWalls(scenario.world, run.duration_s)}, config);
   for (const char* file : {"summary.json", "config.yaml", "standard/trajectory.tum",
                            "pruned/trajectory.tum", "pruned/map.pgm", "truth/map.pgm"}) {
     EXPECT_TRUE(fs::exists(fs::path(config.out_dir) / file)) << file;
   }
-  return nlohmann::json::parse(text);
+  return nlohmann::json::parse(SummaryJsonText(summary));
 }
 
 void Check(const nlohmann::json& mode, const Bounds& b, bool pruned) {

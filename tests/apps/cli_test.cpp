@@ -1,0 +1,277 @@
+// The `lifelong` command as a user meets it (issue #13): results all or nothing, input
+// checked before any work, no zero figure that looks right, help and errors.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBin = LIFELONG_BIN;
+const std::string kSource = LIFELONG_SOURCE_DIR;
+const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";
+
+struct Result {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result Lifelong(const std::string& args) {
+  const std::string cmd = kBin + " " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof(buf), p)) > 0;) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+fs::path Fresh(const std::string& name) {
+  const fs::path p = fs::path(::testing::TempDir()) / ("cli_" + name);
+  fs::remove_all(p);
+  return p;
+}
+
+std::string Read(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// No DIR.partial-* is left beside DIR.
+bool NoStaging(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir.parent_path())) {
+    if (e.path().filename().string().rfind(dir.filename().string() + ".partial", 0) == 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// A simulated corridor_3 log, made once per test process (CTest runs tests in parallel
+// processes, so each has its own).
+const fs::path& CorridorLog() {
+  static const fs::path log = [] {
+    const fs::path p = Fresh("log_" + std::to_string(getpid())) / "corridor_3.clf";
+    fs::create_directories(p.parent_path());
+    const Result r = Lifelong("simulate " + kScenario + " -o " + p.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return p;
+  }();
+  return log;
+}
+
+TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
+  const fs::path dir = Fresh("rerun");
+  Result r = Lifelong("run " + kScenario + " -o " + dir.string() +
+                      " --modes 'standard, pruned, pruned-exact'");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "pruned-exact" / "timeline.csv"));
+  EXPECT_TRUE(fs::exists(dir / "kld.png"));
+  // The table: modes in --modes order, the baseline first, units in the headers.
+  const auto standard_row = r.output.find("\nstandard (base)");
+  const auto pruned_row = r.output.find("\npruned ");
+  EXPECT_NE(standard_row, std::string::npos) << r.output;
+  EXPECT_LT(standard_row, pruned_row);
+  EXPECT_NE(r.output.find("last 10 % [ms/obs]"), std::string::npos);
+  EXPECT_EQ(r.output.find('\r'), std::string::npos) << "not a terminal: no carriage returns";
+
+  r = Lifelong("run " + kScenario + " -o " + dir.string() + " --modes standard");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "pruned"));
+  EXPECT_FALSE(fs::exists(dir / "pruned-exact"));
+  EXPECT_FALSE(fs::exists(dir / "kld.png"));
+  EXPECT_FALSE(fs::exists(dir / "plot_data" / "kld_pruned.dat"));
+  const auto summary = nlohmann::json::parse(Read(dir / "summary.json"));
+  EXPECT_EQ(summary["modes"].size(), 1u);
+  EXPECT_TRUE(NoStaging(dir));
+}
+
+TEST(Cli, AFailedReplayLeavesTheEarlierResultUntouched) {
+  const fs::path dir = Fresh("failed");
+  ASSERT_EQ(
+      Lifelong("replay " + CorridorLog().string() + " --modes standard -o " + dir.string()).code,
+      0);
+  const std::string before = Read(dir / "summary.json");
+  const fs::path bad = Fresh("bad.relations");
+  std::ofstream(bad) << "1 2 0 0 0 0 0 x\n";
+  const Result r = Lifelong("replay " + CorridorLog().string() + " --modes standard -o " +
+                            dir.string() + " --relations " + bad.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(bad.string() + ":1"), std::string::npos) << r.output;
+  EXPECT_EQ(Read(dir / "summary.json"), before);
+  EXPECT_TRUE(fs::exists(dir / "report.html"));
+  EXPECT_TRUE(NoStaging(dir));
+}
+
+TEST(Cli, CtrlCLeavesTheEarlierResultUntouched) {
+  const fs::path dir = Fresh("interrupt");
+  ASSERT_EQ(Lifelong("run " + kScenario + " --modes standard -o " + dir.string()).code, 0);
+  const std::string before = Read(dir / "summary.json");
+  // corridor_100 takes minutes: the signal surely lands mid-run.
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(kBin.c_str(), kBin.c_str(), "run", (kSource + "/scenarios/corridor_100.yaml").c_str(),
+          "-o", dir.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(Read(dir / "summary.json"), before);
+  EXPECT_TRUE(NoStaging(dir));
+}
+
+TEST(Cli, ADirectoryThatIsNoOutputIsNeverReplaced) {
+  const fs::path dir = Fresh("foreign");
+  fs::create_directories(dir);
+  std::ofstream(dir / "notes.txt") << "precious";
+  const Result r = Lifelong("run " + kScenario + " --modes standard -o " + dir.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.output.find("simulating"), std::string::npos) << "checked before any work";
+  EXPECT_EQ(Read(dir / "notes.txt"), "precious");
+}
+
+TEST(Cli, SimulateChecksItsOutputBeforeSimulating) {
+  const Result r = Lifelong("simulate " + kScenario + " -o /proc/no/such/dir/x.clf");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.output.find("simulating"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RelationsThatMatchNoScanAreAnInputErrorNotAZero) {
+  const fs::path rel = Fresh("offset.relations");
+  // Relations between true poses of the log's scans, in a clock 1000 s ahead.
+  std::vector<double> stamps;
+  {
+    std::ifstream in(CorridorLog().string().substr(0, CorridorLog().string().size() - 4) +
+                     ".truth.tum");
+    for (std::string line; std::getline(in, line);) {
+      if (!line.empty() && line[0] != '#') stamps.push_back(std::stod(line));
+    }
+  }
+  ASSERT_GT(stamps.size(), 40u);
+  {
+    std::ofstream out(rel);
+    out.precision(17);
+    for (std::size_t i = 0; i + 5 < 40; i += 5) {
+      out << stamps[i] + 1000.0 << " " << stamps[i + 5] + 1000.0 << " 0 0 0 0 0 0\n";
+    }
+  }
+  const fs::path dir = Fresh("offset");
+  Result r = Lifelong("replay " + CorridorLog().string() + " --modes standard -o " + dir.string() +
+                      " --relations " + rel.string() + " --relations-offset 7");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("7 relations"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(stamps.size()) + " scans"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir));
+
+  // The simulator stamps scans at a regular rate, so shifts by whole periods fit as well:
+  // detection must say so rather than pick one.
+  r = Lifelong("replay " + CorridorLog().string() + " --modes standard -o " + dir.string() +
+               " --relations " + rel.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("give --relations-offset"), std::string::npos) << r.output;
+
+  r = Lifelong("replay " + CorridorLog().string() + " --modes standard -o " + dir.string() +
+               " --relations " + rel.string() + " --relations-offset 1000");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("7 of 7"), std::string::npos) << r.output;
+  const auto summary = nlohmann::json::parse(Read(dir / "summary.json"));
+  EXPECT_NEAR(summary["log"]["relations_offset_s"].get<double>(), 1000.0, 1e-6);
+  EXPECT_FALSE(summary["log"]["relations_offset_detected"].get<bool>());
+  EXPECT_EQ(summary["modes"]["standard"]["relations"]["count"].get<int>(), 7);
+}
+
+TEST(Cli, BackwardStampsAreReportedAndTheDurationNeverNegative) {
+  // The corridor log with its last scan stamped before the first.
+  std::string text = Read(CorridorLog());
+  const auto last = text.rfind("ROBOTLASER1");
+  ASSERT_NE(last, std::string::npos);
+  const auto eol = text.find('\n', last);
+  std::string line = text.substr(last, eol - last);
+  // ROBOTLASER1 ... ipc_timestamp host logger_timestamp: the last three fields.
+  std::istringstream fields(line);
+  std::vector<std::string> f;
+  for (std::string w; fields >> w;) f.push_back(w);
+  f[f.size() - 3] = "-50.0";
+  f[f.size() - 1] = "-50.0";
+  std::string changed;
+  for (const auto& w : f) changed += (changed.empty() ? "" : " ") + w;
+  text.replace(last, eol - last, changed);
+  const fs::path log = Fresh("backward.clf");
+  std::ofstream(log) << text;
+  const fs::path dir = Fresh("backward");
+  const Result r = Lifelong("replay " + log.string() + " --modes standard -o " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 scans are stamped earlier"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(log.string() + ":"), std::string::npos) << r.output;
+  const auto summary = nlohmann::json::parse(Read(dir / "summary.json"));
+  EXPECT_EQ(summary["log"]["backward_stamps"].get<int>(), 1);
+  EXPECT_GT(summary["log_duration_s"].get<double>(), 0.0);
+}
+
+TEST(Cli, AScanWithNoBeamsIsAnInputErrorNamingTheLine) {
+  const fs::path log = Fresh("zero.clf");
+  std::ofstream(log) << "FLASER 3 1 1 1 0 0 0 0 0 0 1.0 h 1.0\nFLASER 0 0 0 0 0 0 0 2.0 h 2.0\n";
+  const Result r = Lifelong("replay " + log.string() + " -o " + Fresh("zero").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(log.string() + ":2"), std::string::npos) << r.output;
+}
+
+TEST(Cli, AnEmptyGraphIsAnInputError) {
+  const fs::path g = Fresh("empty.g2o");
+  std::ofstream(g) << "";
+  const fs::path out = Fresh("empty_out.g2o");
+  const Result r = Lifelong("optimize " + g.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_EQ(r.output.find("converged"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, HelpShowsEveryDefault) {
+  Result r = Lifelong("run --help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* d : {"runs/latest", "standard,pruned", "corridor_100.yaml", "20"}) {
+    EXPECT_NE(r.output.find(d), std::string::npos) << d << "\n" << r.output;
+  }
+  r = Lifelong("replay --help");
+  EXPECT_NE(r.output.find("runs/replay"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("standard,pruned"), std::string::npos) << r.output;
+  r = Lifelong("optimize --help");
+  EXPECT_NE(r.output.find("lm"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnknownCommandsAndBadValuesAreNamedReadably) {
+  Result r = Lifelong("foo");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("unknown command foo"), std::string::npos) << r.output;
+  r = Lifelong("run " + kScenario + " --stride 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("from 1 to 1000000"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::regex_search(r.output, std::regex("[0-9]{20}"))) << r.output;
+  r = Lifelong("run " + kScenario + " --modes 'standard, bogus'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("bogus"), std::string::npos) << r.output;
+}
+
+}  // namespace

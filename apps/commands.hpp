@@ -1,0 +1,39 @@
+// The commands that need the whole testbed (simulator, mapper, evaluation, OpenCV,
+// offscreen OpenGL): run, replay and simulate. They live in the module
+// liblifelong_commands.so, which `lifelong` loads only when one of them is asked for, so
+// that `lifelong optimize` and `--help` start without OpenCV, EGL or OSMesa.
+#pragma once
+
+#include <string>
+
+namespace lifelong::apps {
+
+struct RunArgs {
+  std::string scenario, out, modes, config;
+  std::string video, frames;  ///< optional outputs; empty: none
+  int stride = 20;            ///< render every this many scans
+  std::string command_line;
+};
+
+struct SimulateArgs {
+  std::string scenario, out;
+};
+
+struct ReplayArgs {
+  std::string log, out, modes, config, relations;
+  bool offset_given = false;  ///< --relations-offset was given: use offset_s, detect nothing
+  double offset_s = 0.0;
+  std::string command_line;
+};
+
+/// Each returns the process exit code (0, 1, 2 or 130) after printing any error.
+struct CommandTable {
+  int (*run)(const RunArgs&);
+  int (*simulate)(const SimulateArgs&);
+  int (*replay)(const ReplayArgs&);
+};
+
+/// The module's one exported symbol: `extern "C" const CommandTable* <this>()`.
+inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v1";
+
+}  // namespace lifelong::apps

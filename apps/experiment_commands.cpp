@@ -1,0 +1,249 @@
+// liblifelong_commands.so: `lifelong run`, `replay` and `simulate` (apps/commands.hpp).
+// Loaded by the `lifelong` program on demand; it brings the simulator, the evaluation,
+// OpenCV and offscreen OpenGL with it.
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "apps/commands.hpp"
+#include "apps/exit_codes.hpp"
+#include "eval/console_table.hpp"
+#include "eval/experiment.hpp"
+#include "eval/interrupt.hpp"
+#include "eval/mapper_config_file.hpp"
+#include "eval/simulation.hpp"
+#include "eval/staged_output.hpp"
+#include "io/carmen_log.hpp"
+#include "io/relations.hpp"
+#include "io/relations_offset.hpp"
+#include "sensor/input_error.hpp"
+#include "sim/scenario.hpp"
+
+namespace lifelong::apps {
+namespace {
+
+namespace fs = std::filesystem;
+using lifelong::InputError;
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+// "standard, pruned" and "standard,pruned" alike; a mode named twice is an error.
+std::vector<lifelong::slam::PruningMode> ParseModes(const std::string& list) {
+  std::vector<lifelong::slam::PruningMode> modes;
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const std::string name = Trim(item);
+    lifelong::slam::PruningMode mode;
+    if (!lifelong::slam::ParsePruningMode(name, &mode)) {
+      throw InputError("--modes", 0, name,
+                       "unknown mode (known: standard, pruned, pruned-exact, pruned-naive)");
+    }
+    if (std::find(modes.begin(), modes.end(), mode) != modes.end()) {
+      throw InputError("--modes", 0, name, "mode named twice");
+    }
+    modes.push_back(mode);
+  }
+  if (modes.empty()) throw InputError("--modes", 0, "", "no mode given");
+  return modes;
+}
+
+// Fails early (exit 2) when a file cannot be written at `path`: checked before a long
+// simulation, not after it.
+void CheckWritableFile(const std::string& path) {
+  const fs::path p(path);
+  if (p.filename().empty()) throw InputError(path, 0, "-o", "names a directory, not a file");
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) throw InputError(path, 0, "-o", "is a directory");
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  fs::create_directories(dir, ec);
+  const fs::path probe = dir / (".lifelong-write-test-" + std::to_string(::getpid()));
+  std::FILE* f = ec ? nullptr : std::fopen(probe.c_str(), "w");
+  if (!f) throw InputError(path, 0, "-o", "cannot write in " + dir.string());
+  std::fclose(f);
+  fs::remove(probe, ec);
+}
+
+bool StderrIsTerminal() { return ::isatty(STDERR_FILENO) == 1; }
+
+void PrintResult(const lifelong::eval::RunSummary& summary, const std::string& out) {
+  std::cout << lifelong::eval::ConsoleTable(summary) << "wrote " << out
+            << "/summary.json and report.html\n";
+}
+
+int Simulate(const std::string& scenario_path, const std::string& out) {
+  const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  CheckWritableFile(out);
+  std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
+  const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, StderrIsTerminal());
+  lifelong::eval::WriteSimulation(out, scenario, run, 0.05);
+  std::cout << "scans " << run.observations.size() << "  odometry " << run.odometry.size()
+            << "  simulated " << run.duration_s << " s  collisions " << run.collisions.size()
+            << (run.timed_out ? "  (timed out)" : "") << "\n";
+  for (const auto& c : run.collisions) {
+    std::cout << "collision at t = " << c.stamp_s << " s with " << c.what << " at ("
+              << c.T_world_robot.x << ", " << c.T_world_robot.y << ")\n";
+  }
+  std::cout << "wrote " << out << " and its .truth.tum, .truth.pgm/.yaml and .png\n";
+  return run.collisions.empty() && !run.timed_out ? 0 : 1;
+}
+
+struct VideoArgs {
+  std::string video, frames;
+  int stride = 20;
+};
+
+// Mapper settings: the defaults, or a YAML file over them (configs/default.yaml).
+lifelong::slam::MapperConfig MapperSettings(const std::string& config_path) {
+  return config_path.empty() ? lifelong::slam::DefaultMapperConfig()
+                             : lifelong::eval::LoadMapperConfig(config_path);
+}
+
+// Settings every experiment shares; inputs are all checked here, before any work.
+lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
+                                                    const std::string& modes,
+                                                    const std::string& config_path,
+                                                    const std::string& command_line) {
+  lifelong::eval::ExperimentConfig config;
+  config.mapper = MapperSettings(config_path);
+  config.modes = ParseModes(modes);
+  lifelong::eval::CheckReplaceableOutput(out);
+  config.out_dir = out;
+  config.command_line = command_line;
+  config.progress = &std::cerr;
+  config.progress_terminal = StderrIsTerminal();
+  return config;
+}
+
+int Run(const std::string& scenario_path, const std::string& out, const std::string& modes,
+        const std::string& config_path, const VideoArgs& video, const std::string& command_line) {
+  lifelong::eval::ExperimentConfig config =
+      ExperimentSettings(out, modes, config_path, command_line);
+  config.video_path = video.video;
+  config.frames_dir = video.frames;
+  config.video_stride = video.stride;
+  if (!video.video.empty()) CheckWritableFile(video.video);
+  const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
+  const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, config.progress_terminal);
+  for (const auto& c : run.collisions) {
+    std::cerr << "warning: collision at t = " << c.stamp_s << " s with " << c.what << "\n";
+  }
+  config.source = scenario_path;
+  config.seed = static_cast<std::int64_t>(scenario.seed);
+  config.first_pass_s = lifelong::eval::FirstPassEnd(scenario, run);
+  if (!config.first_pass_s) {
+    std::cerr << "note: the tour never visits every destination: no first pass is reported\n";
+  }
+  const lifelong::eval::GroundTruth truth{
+      lifelong::eval::TrueWalls(scenario.world, run.duration_s)};
+  PrintResult(lifelong::eval::RunExperiment(run.observations, truth, config), out);
+  return 0;
+}
+
+// Reads the relations and puts them in log time: with the given offset, or the one that
+// puts relation stamps on scan stamps. No matching relation is an input error, never a
+// zero error figure.
+std::vector<lifelong::io::Relation> LoadRelations(const std::string& path, bool given,
+                                                  double given_s,
+                                                  const lifelong::io::CarmenLog& data,
+                                                  lifelong::eval::LogInfo* info) {
+  const auto file_time = lifelong::io::ReadRelations(path, 0.0);
+  std::vector<double> stamps;
+  for (const auto& o : data.observations) stamps.push_back(o.stamp_s);
+  std::sort(stamps.begin(), stamps.end());
+  const lifelong::io::OffsetDetection d =
+      given ? lifelong::io::OffsetDetection{given_s,
+                                            lifelong::io::CountMatchedRelations(file_time, stamps,
+                                                                                given_s),
+                                            {}}
+            : lifelong::io::DetectRelationsOffset(file_time, stamps);
+  std::ostringstream what;
+  what << std::setprecision(16) << "no relation has both stamps on a scan of the log ("
+       << file_time.size() << " relations, " << stamps.size() << " scans"
+       << (given ? ", --relations-offset " + std::to_string(given_s) + " s" : "") << ")";
+  if (d.matched == 0) throw InputError(path, 0, "--relations-offset", what.str());
+  if (d.also_fits_s) {
+    std::ostringstream both;
+    both << std::setprecision(16) << "the clock cannot be told from the stamps: offsets "
+         << d.offset_s << " s and " << *d.also_fits_s << " s both put " << d.matched
+         << " relations on scans (scans at a regular rate); give --relations-offset";
+    throw InputError(path, 0, "--relations-offset", both.str());
+  }
+  std::cerr << std::setprecision(16) << "relations: " << d.matched << " of " << file_time.size()
+            << " on scans of the log, offset " << d.offset_s << " s ("
+            << (given ? "given" : "detected") << ")\n";
+  info->relations_offset_s = d.offset_s;
+  info->relations_offset_detected = !given;
+  info->relations_in_file = static_cast<std::int64_t>(file_time.size());
+  return lifelong::io::ShiftRelations(file_time, d.offset_s);
+}
+
+int Replay(const std::string& log, const std::string& out, const std::string& modes,
+           const std::string& config_path, const std::string& relations, bool offset_given,
+           double offset, const std::string& command_line) {
+  lifelong::eval::ExperimentConfig config =
+      ExperimentSettings(out, modes, config_path, command_line);
+  const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
+  std::cerr << "read " << data.observations.size() << " scans from " << log
+            << (data.odometry_recovered ? " (raw odometry recovered from a corrected log)" : "")
+            << "\n";
+  if (data.observations.empty()) throw InputError(log, 0, "", "the log holds no laser scans");
+  lifelong::eval::LogInfo info;
+  info.scans = static_cast<std::int64_t>(data.observations.size());
+  info.backward_stamps = data.backward_scan_stamps;
+  if (data.backward_scan_stamps > 0) {
+    std::cerr << "warning: " << data.backward_scan_stamps
+              << " scans are stamped earlier than the scan before them (first: " << log << ":"
+              << data.first_backward_scan_line << "); they are replayed in file order\n";
+  }
+  if (!relations.empty())
+    config.relations = LoadRelations(relations, offset_given, offset, data, &info);
+  config.source = log;
+  config.log = info;
+  PrintResult(lifelong::eval::RunExperiment(data.observations, std::nullopt, config), out);
+  return 0;
+}
+
+template <typename F>
+int Command(F&& f) {
+  eval::InstallInterruptHandler();
+  return Guarded(std::forward<F>(f), [](const std::exception& e) {
+    return dynamic_cast<const eval::Interrupted*>(&e) != nullptr;
+  });
+}
+
+int RunCommand(const RunArgs& a) {
+  return Command([&] {
+    return Run(a.scenario, a.out, a.modes, a.config, VideoArgs{a.video, a.frames, a.stride},
+               a.command_line);
+  });
+}
+int SimulateCommand(const SimulateArgs& a) {
+  return Command([&] { return Simulate(a.scenario, a.out); });
+}
+int ReplayCommand(const ReplayArgs& a) {
+  return Command([&] {
+    return Replay(a.log, a.out, a.modes, a.config, a.relations, a.offset_given, a.offset_s,
+                  a.command_line);
+  });
+}
+
+const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand};
+
+}  // namespace
+}  // namespace lifelong::apps
+
+extern "C" __attribute__((visibility("default"))) const lifelong::apps::CommandTable*
+lifelong_command_table_v1() {
+  return &lifelong::apps::kTable;
+}

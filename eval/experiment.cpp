@@ -98,6 +98,10 @@ class ModeRunner {
     if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
   }
 
+  /// Writes <mode>/loops.csv (one row per accepted closure, with its truth when known)
+  /// and the precision over the last hour of runs longer than one.
+  void WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* summary) const;
+
   void TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
                     const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
                     ModeSummary* summary, std::vector<TrajectoryOverlay>* overlays) const;
@@ -113,6 +117,30 @@ class ModeRunner {
  public:
   const std::vector<TimelineRow>& timeline() const { return timeline_; }
 };
+
+void ModeRunner::WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* summary) const {
+  std::string text = "stamp_current_s,stamp_old_s,injected,correct\n";
+  const auto& loops = mapper_->loop_closures();
+  const double end = timeline_.empty() ? 0.0 : timeline_.back().t_s;
+  const double start = timeline_.empty() ? 0.0 : timeline_.front().t_s;
+  int last_hour = 0, last_hour_correct = 0;
+  char line[160];
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    const bool known = k < correct.size();
+    std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%s\n", loops[k].stamp_current_s,
+                  loops[k].stamp_old_s, loops[k].injected ? 1 : 0,
+                  known ? (correct[k] ? "1" : "0") : "");
+    text += line;
+    if (known && loops[k].stamp_current_s >= end - 3600.0) {
+      ++last_hour;
+      last_hour_correct += correct[k] ? 1 : 0;
+    }
+  }
+  if (summary && end - start > 3600.0 && last_hour > 0) {
+    summary->loop_precision_last_hour = static_cast<double>(last_hour_correct) / last_hour;
+  }
+  WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
+}
 
 void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
                               const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
@@ -150,6 +178,7 @@ void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Grou
   const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
   if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
   if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
+  WriteLoopsCsv(lcr.correct_each, summary);
   overlays->push_back({TrajectoryKind::kTrue, {}});
   for (const Pose2& p : true_poses) overlays->back().poses.push_back(T_truth_est.Inverse() * p);
 }
@@ -192,8 +221,15 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
 
+  const slam::LoopVerifierStats& lv = m.loop_verification();
+  summary.loop_verification = LoopVerificationSummary{
+      lv.proposed, lv.accepted, lv.rejected, lv.expired, lv.injected, lv.injected_accepted};
   std::vector<TrajectoryOverlay> overlays;
-  if (truth) TruthMetrics(stream, *truth, estimate, grid, &summary, &overlays);
+  if (truth) {
+    TruthMetrics(stream, *truth, estimate, grid, &summary, &overlays);
+  } else {
+    WriteLoopsCsv({}, nullptr);
+  }
   if (!relations.empty()) {
     std::vector<Relation> rel;
     for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});

@@ -92,6 +92,19 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
 }
 
 template <class V>
+void VisitVerify(V& v, slam::LoopVerifierConfig& c) {
+  v.Bool("enabled", c.enabled);
+  v.Int("min_group", c.min_group, 1);
+  v.Number("consistency_chi2", c.consistency_chi2, kPositive);
+  v.Number("window_m", c.window_m, kNonNegative);
+  v.Number("expiry_m", c.expiry_m, kNonNegative);
+  v.Number("base_var_xy_m2", c.base_var_xy_m2, kPositive);
+  v.Number("var_xy_per_m", c.var_xy_per_m, kNonNegative);
+  v.Number("base_var_rad2", c.base_var_rad2, kPositive);
+  v.Number("var_rad_per_m", c.var_rad_per_m, kNonNegative);
+}
+
+template <class V>
 void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Bool("enabled", c.enabled);
   v.Number("min_path_separation_m", c.min_path_separation_m, kNonNegative);
@@ -112,6 +125,11 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, false); });
   v.Number("optimize_edge_chi2", c.optimize_edge_chi2, kNonNegative);
   v.Int("optimize_every", c.optimize_every, 1);
+  v.Section("verify", [&](auto& s) { VisitVerify(s, c.verify); });
+  v.Number("suspect_chi2", c.suspect_chi2, kPositive);
+  v.Number("inject_false_share", c.inject_false_share, kUnit);
+  v.Number("inject_false_dx_m", c.inject_false_dx_m, kAnyNumber);
+  v.Number("inject_false_dy_m", c.inject_false_dy_m, kAnyNumber);
 }
 
 template <class V>

@@ -207,7 +207,9 @@ LoopClosureResult ComputeLoopClosureStats(const std::vector<LoopClosure>& closur
     ++r.accepted;
     const Pose2 true_rel = Between(true_nodes[static_cast<std::size_t>(lc.i)],
                                    true_nodes[static_cast<std::size_t>(lc.j)]);
-    if (!Within(true_rel, lc.T_i_j, config.correct_trans_m, config.correct_rot_deg)) continue;
+    const bool correct = Within(true_rel, lc.T_i_j, config.correct_trans_m, config.correct_rot_deg);
+    r.correct_each.push_back(correct);
+    if (!correct) continue;
     ++r.correct;
     const int newer = std::max(lc.i, lc.j), older = std::min(lc.i, lc.j);
     if (newer - older >= config.min_index_gap) recalled[static_cast<std::size_t>(newer)] = true;

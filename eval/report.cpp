@@ -66,6 +66,13 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "ate_rmse_m", m.ate_rmse_m);
   Put(j, "loop_precision", m.loop_precision);
   Put(j, "loop_recall", m.loop_recall);
+  Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
+  if (m.loop_verification) {
+    const LoopVerificationSummary& v = *m.loop_verification;
+    j["loop_verification"] = {{"proposed", v.proposed}, {"accepted", v.accepted},
+                              {"rejected", v.rejected}, {"expired", v.expired},
+                              {"injected", v.injected}, {"injected_accepted", v.injected_accepted}};
+  }
   if (m.relations) {
     const RelationsSummary& r = *m.relations;
     j["relations"] = {{"count", r.count},

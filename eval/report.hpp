@@ -30,6 +30,12 @@ struct RelationsSummary {
   std::int64_t count = 0;
   double trans_mean_m = 0.0, trans_std_m = 0.0, rot_mean_deg = 0.0, rot_std_deg = 0.0;
 };
+/// Loop-closure verification counts (slam/loop_verifier.hpp); summary.json's
+/// "loop_verification".
+struct LoopVerificationSummary {
+  std::int64_t proposed = 0, accepted = 0, rejected = 0, expired = 0;
+  std::int64_t injected = 0, injected_accepted = 0;
+};
 struct KldSummary {
   std::int64_t count = 0;
   double mean = 0.0, max = 0.0;
@@ -49,10 +55,13 @@ struct ModeSummary {
   std::optional<double> scans_kept_pct;
   std::optional<double> peak_rss_mb;
   std::optional<std::int64_t> graph_bytes_final;
-  std::optional<BlurSummary> blur;            ///< ground truth only
-  std::optional<double> ate_rmse_m;           ///< ground truth only
-  std::optional<double> loop_precision;       ///< ground truth only, >= 1 closure accepted
-  std::optional<double> loop_recall;          ///< ground truth only, >= 1 revisit
+  std::optional<BlurSummary> blur;       ///< ground truth only
+  std::optional<double> ate_rmse_m;      ///< ground truth only
+  std::optional<double> loop_precision;  ///< ground truth only, >= 1 closure accepted
+  std::optional<double> loop_recall;     ///< ground truth only, >= 1 revisit
+  /// Ground truth, runs over an hour: precision of the closures accepted in the last hour.
+  std::optional<double> loop_precision_last_hour;
+  std::optional<LoopVerificationSummary> loop_verification;
   std::optional<RelationsSummary> relations;  ///< with --relations
   std::optional<KldSummary> kld;              ///< marginalizing modes
   std::optional<double> map_entropy_bits;

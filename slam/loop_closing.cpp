@@ -105,24 +105,76 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
       old = c.id;
     }
   }
+  LoopHypothesis h;
+  h.old = old;
+  h.current = current;
+  h.T_old_current = Between(values.at(old), match.T_ref_cur);
+  h.information = RotateIntoFrame(match.information, match.T_ref_cur.theta);
+  h.covariance = h.information.inverse();
+  h.travelled_m = nodes.at(current).travelled_m;
+  MaybeInjectFalse(&h);
+  bool closed = false;
+  for (const LoopHypothesis& accepted : verifier.Add(h, values)) {
+    AddLoopEdge(accepted);
+    closed = true;
+  }
+  return closed;
+}
+
+void Mapper::State::MaybeInjectFalse(LoopHypothesis* h) {
+  const LoopClosingConfig& lc = config.loops;
+  const int n = loop_hypotheses++;
+  if (lc.inject_false_share <= 0.0) return;
+  // Every 1/share-th hypothesis, deterministically: when floor(k * share) steps up.
+  if (std::floor((n + 1) * lc.inject_false_share) == std::floor(n * lc.inject_false_share)) {
+    return;
+  }
+  const Pose2 matched = values.at(h->old) * h->T_old_current;
+  const Pose2 moved(matched.x + lc.inject_false_dx_m, matched.y + lc.inject_false_dy_m,
+                    matched.theta);
+  h->T_old_current = Between(values.at(h->old), moved);
+  h->injected = true;
+}
+
+void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
+  const LoopClosingConfig& lc = config.loops;
   PoseEdge edge;
-  edge.from = old;
-  edge.to = current;
+  edge.from = h.old;
+  edge.to = h.current;
   edge.kind = EdgeKind::kLoop;
   edge.robust = true;
-  edge.T_from_to = Between(values.at(old), match.T_ref_cur);
-  edge.information = RotateIntoFrame(match.information, match.T_ref_cur.theta);
+  edge.T_from_to = h.T_old_current;
+  edge.information = h.information;
   graph.AddEdge(edge);
-  loops.push_back(
-      {current, old, scans[static_cast<std::size_t>(nodes.at(current).scan_index)].stamp_s,
-       scans[static_cast<std::size_t>(nodes.at(old).scan_index)].stamp_s, edge.T_from_to});
+  loops.push_back({h.current, h.old,
+                   scans[static_cast<std::size_t>(nodes.at(h.current).scan_index)].stamp_s,
+                   scans[static_cast<std::size_t>(nodes.at(h.old).scan_index)].stamp_s,
+                   edge.T_from_to, h.injected});
   ++closures_since_optimize;
-  const Eigen::Vector3d e = RelativeError(values.at(old), X_cur, edge.T_from_to);
+  const Eigen::Vector3d e = RelativeError(values.at(h.old), values.at(h.current), edge.T_from_to);
   if (e.dot(edge.information * e) > lc.optimize_edge_chi2 ||
       closures_since_optimize >= lc.optimize_every) {
     OptimizeAndSyncMap();
   }
-  return true;
+}
+
+std::set<NodeId> Mapper::State::UnsettledNodes() const {
+  std::set<NodeId> out;
+  for (const LoopHypothesis& h : verifier.pending()) {
+    out.insert(h.old);
+    out.insert(h.current);
+  }
+  for (const PoseEdge& edge : graph.edges()) {
+    if (edge.kind != EdgeKind::kLoop) continue;
+    const auto a = values.find(edge.from), b = values.find(edge.to);
+    if (a == values.end() || b == values.end()) continue;
+    const Eigen::Vector3d e = RelativeError(a->second, b->second, edge.T_from_to);
+    if (e.dot(edge.information * e) > config.loops.suspect_chi2) {
+      out.insert(edge.from);
+      out.insert(edge.to);
+    }
+  }
+  return out;
 }
 
 }  // namespace lifelong::slam

@@ -136,6 +136,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   } else {
     const Pose2& X_last = values.at(last_node);
     const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
+    data.travelled_m = nodes.at(last_node).travelled_m + std::hypot(delta.x, delta.y);
     const Pose2 guess = X_last * delta;
     std::vector<Eigen::Vector2d> reference;
     const std::size_t n = recent.size();
@@ -278,6 +279,7 @@ double Mapper::NodeStamp(NodeId id) const {
   return state_->scans.at(static_cast<std::size_t>(state_->nodes.at(id).scan_index)).stamp_s;
 }
 const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return state_->loops; }
+const LoopVerifierStats& Mapper::loop_verification() const { return state_->verifier.stats(); }
 const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
   return state_->marginalizations;
 }

@@ -49,6 +49,7 @@ struct LoopClosureRecord {
   double stamp_current_s = 0.0;
   double stamp_old_s = 0.0;
   Pose2 T_old_current;
+  bool injected = false;  ///< a deliberately wrong closure (loops.inject_false_share)
 };
 
 /// One marginalization: which node, its clique size and the KL divergence (nats).
@@ -98,6 +99,8 @@ class Mapper {
   /// The pose of the latest scan (as Trajectory().back(), without building the whole list).
   ScanPose LastScanPose() const;
   const std::vector<LoopClosureRecord>& loop_closures() const;
+  /// Counts of the loop-closure verification (proposed, accepted, rejected, ...).
+  const LoopVerifierStats& loop_verification() const;
   const std::vector<MarginalizationRecord>& marginalizations() const;
   const std::vector<SparsificationRecord>& sparsifications() const;
   int observations() const;

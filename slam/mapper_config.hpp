@@ -5,6 +5,7 @@
 #include <string>
 
 #include "slam/grid_map.hpp"
+#include "slam/loop_verifier.hpp"
 #include "slam/marginalization.hpp"
 #include "slam/optimizer.hpp"
 #include "slam/scan_matcher.hpp"
@@ -56,6 +57,19 @@ struct LoopClosingConfig {
   MatcherConfig matcher;             ///< windows are set per attempt
   double optimize_edge_chi2 = 9.0;   ///< optimize at once when the new edge's chi2 exceeds
   int optimize_every = 10;           ///< ...and at least every this many closures
+  /// Group verification: a closure enters the graph only once enough others confirm it
+  /// (slam/loop_verifier.hpp).
+  LoopVerifierConfig verify;
+  /// A loop edge whose chi2 at the estimate exceeds this is suspect (its robust kernel is
+  /// switching it off): its nodes are neither removed nor sparsified, so that no
+  /// marginal bakes it in.
+  double suspect_chi2 = 16.27;
+  /// False-closure test: this share of the matcher's closures is moved by (dx, dy) in the
+  /// world frame before verification, as a closure into the neighbouring aisle would be.
+  /// 0: off.
+  double inject_false_share = 0.0;
+  double inject_false_dx_m = 0.0;  ///< m, world frame
+  double inject_false_dy_m = 3.0;  ///< m, world frame
 };
 
 struct PruningConfig {

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "slam/grid_map.hpp"
+#include "slam/loop_verifier.hpp"
 #include "slam/mapper.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/scan_matcher.hpp"
@@ -38,6 +39,7 @@ struct NodeData {
   Pose2 T_world_map;                    ///< pose at which the scan is rendered in the map
   Pose2 T_odom_robot;                   ///< odometry at the scan
   int scan_index = 0;
+  double travelled_m = 0.0;         ///< robot path length (odometry) at this scan
   std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
   double gain_bits = 0.0;           ///< information gain when last computed...
   bool gain_valid = false;          ///< ...still exact unless a map change shares a block
@@ -53,7 +55,7 @@ struct ScanAnchor {
 };
 
 struct Mapper::State {
-  explicit State(const MapperConfig& c) : config(c), map(c.grid) {}
+  explicit State(const MapperConfig& c) : config(c), map(c.grid), verifier(c.loops.verify) {}
 
   MapperConfig config;
   PoseGraph graph;
@@ -74,11 +76,20 @@ struct Mapper::State {
   bool have_last = false;
   NodeId last_node = 0;
   ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
+  LoopVerifier verifier;     ///< loop closures wait here until a group confirms them
+  int loop_hypotheses = 0;   ///< closures proposed by the matcher so far
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);
   void Reanchor(std::size_t scan, NodeId anchor);
   bool TryCloseLoop(NodeId current);
+  /// The false-closure test: moves every 1/share-th hypothesis by the configured offset.
+  void MaybeInjectFalse(LoopHypothesis* h);
+  /// Puts a verified closure into the graph (and optimizes when it is far off).
+  void AddLoopEdge(const LoopHypothesis& h);
+  /// Nodes that must neither be removed nor sparsified: those of pending hypotheses and of
+  /// loop edges whose chi2 at the estimate exceeds loops.suspect_chi2.
+  std::set<NodeId> UnsettledNodes() const;
   void OptimizeAndSyncMap();
   void SyncMap();
   /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.

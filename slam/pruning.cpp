@@ -93,6 +93,10 @@ void Mapper::State::Prune(NodeId current) {
   if (closures_since_optimize > 0) OptimizeAndSyncMap();
   const NodeId anchor = graph.NodeIds().front();
   std::set<NodeId> protected_ids{current, anchor};
+  // Never marginalize a closure that is not settled: a pending hypothesis would lose its
+  // nodes, and a suspect loop edge would be baked into factors no kernel can switch off.
+  const std::set<NodeId> unsettled = UnsettledNodes();
+  protected_ids.insert(unsettled.begin(), unsettled.end());
   for (int i = 0; i < pc.keep_recent_nodes && i < static_cast<int>(recent.size()); ++i) {
     protected_ids.insert(recent[recent.size() - 1 - static_cast<std::size_t>(i)]);
   }
@@ -185,9 +189,14 @@ void Mapper::State::KeepEdgeBudget() {
     std::vector<NodeId> best;
     std::size_t most = 0;
     NodeId centre = 0;
+    const std::set<NodeId> unsettled = UnsettledNodes();
+    const auto settled = [&](const std::vector<NodeId>& set) {
+      return std::none_of(set.begin(), set.end(), [&](NodeId n) { return unsettled.count(n); });
+    };
     for (int hops = 1; hops <= 2 && most == 0; ++hops) {
       for (const auto& [id, unused] : nodes) {
         std::vector<NodeId> set = ball(id, hops);
+        if (!settled(set)) continue;
         const std::size_t e = excess(set);
         if (e > most) {
           most = e;
@@ -206,6 +215,7 @@ void Mapper::State::KeepEdgeBudget() {
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
+  verifier.ForgetNode(id);
   const MarginalizationResult result =
       Marginalize(graph, values, id, MethodOf(config.pruning.mode), config.pruning.blanket);
   // The removed node's scans are held relative to its nearest surviving neighbour.

@@ -122,18 +122,33 @@ TEST(Cli, CtrlCLeavesTheEarlierResultUntouched) {
   const fs::path dir = Fresh("interrupt");
   ASSERT_EQ(Lifelong("run " + kScenario + " --modes standard -o " + dir.string()).code, 0);
   const std::string before = Read(dir / "summary.json");
-  // corridor_100 takes minutes: the signal surely lands mid-run.
+  // corridor_100 takes minutes: the signal lands mid-run. It is sent once the program
+  // says it is simulating (its handler is in place by then), not after a fixed delay
+  // that a loaded machine could outlast.
+  int err[2];
+  ASSERT_EQ(pipe(err), 0);
   const pid_t pid = fork();
   if (pid == 0) {
     const int null = ::open("/dev/null", O_WRONLY);
     dup2(null, 1);
-    dup2(null, 2);
+    dup2(err[1], 2);
+    close(err[0]);
     execl(kBin.c_str(), kBin.c_str(), "run", (kSource + "/scenarios/corridor_100.yaml").c_str(),
           "-o", dir.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  close(err[1]);
+  std::string said;
+  char buf[256];
+  for (ssize_t n;
+       said.find("simulating") == std::string::npos && (n = read(err[0], buf, sizeof(buf))) > 0;) {
+    said.append(buf, static_cast<std::size_t>(n));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, SIGINT);
+  while (read(err[0], buf, sizeof(buf)) > 0) {
+  }
+  close(err[0]);
   int status = 0;
   waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));

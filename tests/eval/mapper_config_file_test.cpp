@@ -43,6 +43,19 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   ExpectSameMatcher(a.matcher, b.matcher);
   EXPECT_EQ(a.optimize_edge_chi2, b.optimize_edge_chi2);
   EXPECT_EQ(a.optimize_every, b.optimize_every);
+  EXPECT_EQ(a.verify.enabled, b.verify.enabled);
+  EXPECT_EQ(a.verify.min_group, b.verify.min_group);
+  EXPECT_EQ(a.verify.consistency_chi2, b.verify.consistency_chi2);
+  EXPECT_EQ(a.verify.window_m, b.verify.window_m);
+  EXPECT_EQ(a.verify.expiry_m, b.verify.expiry_m);
+  EXPECT_EQ(a.verify.base_var_xy_m2, b.verify.base_var_xy_m2);
+  EXPECT_EQ(a.verify.var_xy_per_m, b.verify.var_xy_per_m);
+  EXPECT_EQ(a.verify.base_var_rad2, b.verify.base_var_rad2);
+  EXPECT_EQ(a.verify.var_rad_per_m, b.verify.var_rad_per_m);
+  EXPECT_EQ(a.suspect_chi2, b.suspect_chi2);
+  EXPECT_EQ(a.inject_false_share, b.inject_false_share);
+  EXPECT_EQ(a.inject_false_dx_m, b.inject_false_dx_m);
+  EXPECT_EQ(a.inject_false_dy_m, b.inject_false_dy_m);
 }
 
 void ExpectSameOptimizer(const slam::OptimizerParams& a, const slam::OptimizerParams& b) {
@@ -135,6 +148,11 @@ MapperConfig AllChanged() {
   ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
+  l.verify = {false, 2, 9.0, 30.0, 20.0, 0.004, 0.002, 0.0005, 0.0001};
+  l.suspect_chi2 = 12.0;
+  l.inject_false_share = 0.05;
+  l.inject_false_dx_m = 1.0;
+  l.inject_false_dy_m = -2.5;
   c.pruning = {slam::PruningMode::kNone, -0.5, 4.5, 2, 300, 1.5, slam::BlanketPolicy::kFactorsAtK};
   c.grid = {0.1, 6.0, 9.5};
   slam::OptimizerParams& o = c.optimizer;

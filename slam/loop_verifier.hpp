@@ -1,0 +1,105 @@
+// Group verification of loop closures (issue #16), after pairwise consistency maximization
+// (Mangelson et al., ICRA 2018) and Olson's single-cluster test (2009), online: a closure
+// is a *hypothesis* until enough others confirm it through the odometry between them.
+//
+// Two closures a = (i -> j, Z_a) and b = (k -> l, Z_b), with i, k old nodes and j, l
+// current ones, close a cycle with the estimate's relative poses between j and l (recent
+// incremental odometry) and between k and i (the map already built):
+//
+//   e_ab = t2v( Z_a * T_j_l * Z_b^-1 * T_k_i ),   T_x_y = X_x^-1 X_y at the current estimate,
+//
+// which is zero for two correct closures up to their noise and the drift of the two
+// chains. They are *consistent* when e^T S^-1 e <= consistency_chi2 with
+// S = Sigma_a + Sigma_b + drift(d_jl + d_ki), drift(d) = diag(var_xy_per_m d, var_xy_per_m d,
+// var_rad_per_m d) + the base variances (Sigma rotated into the frame of i; the drift is
+// isotropic in translation, so it needs no rotation). A wrong closure into a look-alike place
+// (the neighbouring aisle) is off by that place's offset and fails the test against correct
+// ones, while a run of wrong closures along one aliased traversal is consistent among
+// itself: that is why recently accepted closures count as evidence too.
+//
+// Rule, for each new hypothesis h:
+//  1. If recently accepted closures (current node within window_m of travel before h's)
+//     exist, and h is consistent with none of them while conflicting with at least one, h is
+//     rejected: the map there is already anchored elsewhere.
+//  2. Otherwise h joins the pending pool, and the largest mutually consistent set (greedy
+//     maximum clique) among h, the pending hypotheses and the recent accepted closures that
+//     contains h is found. When it holds at least min_group members, its pending members
+//     are accepted together.
+//  3. Pending hypotheses older than expiry_m of travel are dropped unconfirmed.
+// Pending hypotheses never enter the graph, so no optimization or marginalization ever sees
+// an unverified closure.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sensor/pose2.hpp"
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::slam {
+
+struct LoopVerifierConfig {
+  bool enabled = true;              ///< false: every hypothesis is accepted at once
+  int min_group = 3;                ///< mutually consistent closures needed (h included)
+  double consistency_chi2 = 11.34;  ///< 99 % gate, 3 dof, of the cycle error
+  double window_m = 40.0;           ///< m of travel: accepted closures that count as evidence
+  double expiry_m = 40.0;           ///< m of travel: a pending hypothesis waits this long
+  double base_var_xy_m2 = 0.0025;   ///< m^2, chain variance at zero length (0.05 m)
+  double var_xy_per_m = 0.001;      ///< m^2 per m of chain (0.2 m after 40 m)
+  double base_var_rad2 = 3e-4;      ///< rad^2 (1 deg)
+  double var_rad_per_m = 2e-4;      ///< rad^2 per m of chain (5 deg after 40 m)
+};
+
+struct LoopHypothesis {
+  NodeId old = 0;
+  NodeId current = 0;
+  Pose2 T_old_current;          ///< measured
+  Eigen::Matrix3d information;  ///< of the edge error (right perturbation of T_old_current)
+  Eigen::Matrix3d covariance;   ///< its inverse
+  double travelled_m = 0.0;     ///< robot path length at `current`
+  bool injected = false;        ///< a deliberately wrong closure (false-closure test)
+};
+
+/// Counts over the run; summary.json's loop_verification.
+struct LoopVerifierStats {
+  int proposed = 0;  ///< hypotheses from the matcher
+  int accepted = 0;
+  int rejected = 0;  ///< conflicting with the accepted closures around them
+  int expired = 0;   ///< never confirmed
+  int injected = 0;  ///< wrong closures injected (false-closure test)
+  int injected_accepted = 0;
+};
+
+class LoopVerifier {
+ public:
+  explicit LoopVerifier(const LoopVerifierConfig& config) : config_(config) {}
+
+  /// Considers `h`; returns the hypotheses accepted now (h and pending ones it confirms),
+  /// in the order they were proposed. `values` is the current estimate.
+  std::vector<LoopHypothesis> Add(const LoopHypothesis& h, const Values& values);
+  /// Drops pending hypotheses older than expiry_m before `travelled_m`.
+  void Expire(double travelled_m);
+  /// Forgets accepted closures involving a removed node (they no longer count as evidence).
+  void ForgetNode(NodeId id);
+  /// True when a pending hypothesis involves the node (pruning must keep it).
+  bool IsPending(NodeId id) const;
+
+  /// Whether two closures are consistent at the current estimate (the header's test).
+  bool Consistent(const LoopHypothesis& a, const LoopHypothesis& b, const Values& values) const;
+
+  const std::vector<LoopHypothesis>& pending() const { return pending_; }
+  const LoopVerifierStats& stats() const { return stats_; }
+
+ private:
+  void Accept(const LoopHypothesis& h, std::vector<LoopHypothesis>* out);
+
+  LoopVerifierConfig config_;
+  std::vector<LoopHypothesis> pending_;
+  std::vector<LoopHypothesis> accepted_;  ///< within window_m of the newest, as evidence
+  LoopVerifierStats stats_;
+};
+
+}  // namespace lifelong::slam

@@ -16,6 +16,7 @@
 #include "eval/plots.hpp"
 #include "eval/report.hpp"
 #include "eval/resources.hpp"
+#include "eval/run_maps.hpp"
 #include "eval/video.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -98,9 +99,10 @@ class ModeRunner {
     if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
   }
 
-  void TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                    const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
-                    ModeSummary* summary, std::vector<TrajectoryOverlay>* overlays) const;
+  /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame).
+  Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                     const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                     ModeSummary* summary) const;
 
   slam::PruningMode mode_;
   std::string name_;
@@ -114,10 +116,9 @@ class ModeRunner {
   const std::vector<TimelineRow>& timeline() const { return timeline_; }
 };
 
-void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                              const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
-                              ModeSummary* summary,
-                              std::vector<TrajectoryOverlay>* overlays) const {
+Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                               const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                               ModeSummary* summary) const {
   std::vector<Pose2> true_poses;
   std::map<double, Pose2> true_at;
   for (const Observation& o : stream) {
@@ -150,8 +151,7 @@ void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Grou
   const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
   if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
   if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
-  overlays->push_back({TrajectoryKind::kTrue, {}});
-  for (const Pose2& p : true_poses) overlays->back().poses.push_back(T_truth_est.Inverse() * p);
+  return T_truth_est;
 }
 
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
@@ -192,8 +192,8 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
 
-  std::vector<TrajectoryOverlay> overlays;
-  if (truth) TruthMetrics(stream, *truth, estimate, grid, &summary, &overlays);
+  std::optional<Pose2> T_truth_est;
+  if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!relations.empty()) {
     std::vector<Relation> rel;
     for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});
@@ -206,10 +206,9 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     WriteMarginalizations((dir / "marginalizations.csv").string(), m);
     WriteSparsifications((dir / "sparsifications.csv").string(), m);
   }
-  DrawConfig draw;
-  draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
-  WriteMapPng((dir / "map.png").string(), grid, MakeGraphOverlay(m.graph(), m.values()), overlays,
-              draw);
+  WriteModeFigures(config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()),
+                   T_truth_est,
+                   MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
   *map_png = name_ + "/map.png";
   return summary;
 }
@@ -236,15 +235,11 @@ void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth
   io::WritePgmMap((dir / "map.pgm").string(),
                   RasterizeWalls(truth.walls, config.mapper.grid.resolution_m));
   std::vector<io::StampedPose> poses;
-  TrajectoryOverlay path{TrajectoryKind::kTrue, {}};
-  for (const Observation& o : stream) {
-    poses.push_back({o.stamp_s, *o.T_world_robot_true});
-    path.poses.push_back(*o.T_world_robot_true);
-  }
+  for (const Observation& o : stream) poses.push_back({o.stamp_s, *o.T_world_robot_true});
   io::WriteTum((dir / "trajectory.tum").string(), poses);
-  DrawConfig draw;
-  draw.world_resolution_m = config.mapper.grid.resolution_m;
-  WriteWorldPng((dir / "map.png").string(), truth.walls, {path}, draw);
+  const double res = config.mapper.grid.resolution_m;  // the mode maps' figure frame
+  WriteTruthFigure((dir / "map.png").string(), truth.walls, res,
+                   MakeRunMapFrame(stream, &truth.walls, res));
 }
 
 // Writes DIR/<mode>/marginalizations.csv: one row per removed node.

@@ -63,7 +63,7 @@ TEST(DrawTest, CropsToKnownCellsWithMarginAndUpscales) {
 TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
   TrajectoryOverlay est{TrajectoryKind::kEstimate, {{0.05, 0.75, 0}, {0.95, 0.75, 0}}};
   const Image im = RenderMap(SmallGrid(), {}, {est}, Plain());
-  const cv::Vec3b p = Pixel(im, 2, 2);  // y = 0.75 m -> image row 10 - 7.5 = 2.5
+  const cv::Vec3b p = Pixel(im, 2, 2);  // y = 0.75 m -> 7.5 px from the bottom: row 2
   EXPECT_GT(p[0], 150);                 // blue dominates
   EXPECT_LT(p[2], 100);
   EXPECT_EQ(Pixel(im, 2, 6), cv::Vec3b(205, 205, 205));  // untouched
@@ -72,13 +72,14 @@ TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
 // Edge kinds take the one palette the video frames use too (render/palette.hpp).
 TEST(DrawTest, EdgesAreDrawnInTheSharedPalette) {
   GraphOverlay graph;
-  graph.edges.push_back({0.05, 0.75, 0.95, 0.75, slam::EdgeKind::kLoop});
-  graph.edges.push_back({0.05, 0.25, 0.95, 0.25, slam::EdgeKind::kMarginal});
+  // Through pixel centres: y = 0.7375 m is 29.5 px from the bottom of 40, image row 10.
+  graph.edges.push_back({0.05, 0.7375, 0.95, 0.7375, slam::EdgeKind::kLoop});
+  graph.edges.push_back({0.05, 0.2375, 0.95, 0.2375, slam::EdgeKind::kMarginal});
   DrawConfig config = Plain();
   config.pixels_per_cell = 4;
   const Image im = RenderMap(SmallGrid(), graph, {}, config);
-  for (const auto& [row, kind] : {std::pair{10, slam::EdgeKind::kLoop},  // 40 - 0.75 * 40
-                                  std::pair{30, slam::EdgeKind::kMarginal}}) {
+  for (const auto& [row, kind] :
+       {std::pair{10, slam::EdgeKind::kLoop}, std::pair{30, slam::EdgeKind::kMarginal}}) {
     const render::Rgb c = render::EdgeColour(kind);
     const cv::Vec3b p = Pixel(im, 20, row);
     // Anti-aliased: within a tenth of full scale of the palette colour, channel by channel.

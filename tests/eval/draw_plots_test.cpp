@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "eval/draw.hpp"
+#include "eval/mode_colors.hpp"
 #include "eval/plots.hpp"
 #include "eval/resources.hpp"
 #include "render/palette.hpp"
@@ -107,8 +108,9 @@ TEST(DrawTest, WritesAReadablePngAndNoTemporary) {
 std::vector<TimelineRow> Timeline(int n, int growth) {
   std::vector<TimelineRow> rows(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    rows[i].obs = i, rows[i].time_ms = 1.0 + 0.1 * i, rows[i].nodes = 1 + i * growth / 10;
+    rows[i].obs = i, rows[i].time_ms = 1.0 + 0.01 * growth * i, rows[i].nodes = 1 + i * growth / 10;
     rows[i].edges = rows[i].nodes * 2, rows[i].gamma = 0.5 / (1 + i);
+    rows[i].rss_mb = 100.0 + i, rows[i].graph_bytes = 1000u * static_cast<unsigned>(rows[i].nodes);
   }
   return rows;
 }
@@ -126,13 +128,46 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
   const PlotResult r =
       PlotTimelines({{"standard", Timeline(50, 10)}, {"chow_liu", Timeline(50, 3)}}, dir.string());
   EXPECT_TRUE(r.ok) << r.error;
-  ASSERT_EQ(r.files.size(), 4u);
-  for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png"}) {
+  ASSERT_EQ(r.files.size(), 6u);
+  for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png",
+                           "cumulative_time.png", "memory.png"}) {
     EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
   }
+  EXPECT_GT(cv::imread((dir / "memory.png").string()).rows, 500);  // two panels
   const PlotResult k = PlotKld({{"chow_liu", {0.1, 0.3, 0.2}}}, dir.string());
   EXPECT_TRUE(k.ok) << k.error;
   EXPECT_FALSE(cv::imread((dir / "kld.png").string()).empty());
+}
+
+/// Pixels of the image within 30 per channel of the colour.
+int CountColour(const cv::Mat& img, const render::Rgb& c) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r)
+    for (int col = 0; col < img.cols; ++col) {
+      const cv::Vec3b p = img.at<cv::Vec3b>(r, col);
+      n += std::abs(p[0] - c.b) < 30 && std::abs(p[1] - c.g) < 30 && std::abs(p[2] - c.r) < 30;
+    }
+  return n;
+}
+
+// A mode keeps its colour whatever else ran: standard is blue alone, first or second.
+TEST(PlotsTest, EachModeKeepsItsColourInEveryRun) {
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_plot_colours";
+  const render::Rgb blue = ModeColour("standard"), red = ModeColour("pruned");
+  for (const ModeTimelines& modes :
+       {ModeTimelines{{"standard", Timeline(50, 10)}},
+        ModeTimelines{{"standard", Timeline(50, 10)}, {"pruned", Timeline(50, 3)}},
+        ModeTimelines{{"pruned", Timeline(50, 3)}, {"a-new-mode", Timeline(50, 5)}}}) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    ASSERT_TRUE(PlotTimelines(modes, dir.string()).ok);
+    for (const char* name : {"nodes.png", "cumulative_time.png", "memory.png"}) {
+      const cv::Mat img = cv::imread((dir / name).string());
+      EXPECT_EQ(CountColour(img, blue) > 50, modes.count("standard") == 1) << name;
+      EXPECT_EQ(CountColour(img, red) > 50, modes.count("pruned") == 1) << name;
+    }
+  }
 }
 
 TEST(ResourcesTest, RssIsPositiveAndPeakAtLeastCurrent) {

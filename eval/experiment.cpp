@@ -15,6 +15,7 @@
 #include "eval/metrics.hpp"
 #include "eval/plots.hpp"
 #include "eval/report.hpp"
+#include "eval/report_files.hpp"
 #include "eval/resources.hpp"
 #include "eval/run_maps.hpp"
 #include "eval/video.hpp"
@@ -388,22 +389,16 @@ std::string RunExperiment(const std::vector<Observation>& stream,
       finish(r.get());
     }
   }
-  if (truth) {
-    WriteTruth(stream, *truth, config);
-    page.maps["ground truth"] = "truth/map.png";
-  }
+  if (truth) WriteTruth(stream, *truth, config);
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   const PlotResult plots = PlotTimelines(timelines, config.out_dir, plot_config);
-  for (const std::string& f : plots.files) page.figures.push_back(fs::path(f).filename().string());
-  if (!kld.empty()) {
-    const PlotResult kp = PlotKld(kld, config.out_dir);
-    for (const std::string& f : kp.files) page.figures.push_back(fs::path(f).filename().string());
-  }
+  if (!kld.empty()) PlotKld(kld, config.out_dir);
   if (!plots.ok) Progress(config, "warning: no figures: " + plots.error + "\n");
   summary.wall_time_s = Seconds(start);
   page.summary = summary;
   page.command_line = config.command_line;
+  CompleteReportPage(MakeReportContext(config, stream, truth, plot_config), &page);
   WriteReportHtml((fs::path(config.out_dir) / "report.html").string(), page);
   WriteSummaryJson((fs::path(config.out_dir) / "summary.json").string(), summary);
   return SummaryJsonText(summary);

@@ -79,6 +79,9 @@ void DrawScaleBar(cv::Mat& img, double m_per_px) {
     if (base * f <= target_m) len = base * f;
   const int px = static_cast<int>(std::lround(len / m_per_px));
   const cv::Point a(10, img.rows - 10), b(10 + px, img.rows - 10);
+  // A white box behind bar and label keeps them readable over walls and edges.
+  cv::rectangle(img, cv::Point(4, img.rows - 32), cv::Point(16 + px, img.rows - 4),
+                cv::Scalar(255, 255, 255), cv::FILLED);
   cv::line(img, a, b, cv::Scalar(0, 0, 0), 3);
   char text[32];
   std::snprintf(text, sizeof(text), "%g m", len);

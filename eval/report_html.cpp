@@ -17,8 +17,9 @@ const char kCss[] =
     "line-height:1.4}h1{margin-bottom:.2em}h2{border-bottom:1px solid #ddd;padding-bottom:.2em;"
     "margin-top:1.6em}nav a{margin-right:1em}.lead{color:#555;margin-top:0}"
     "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:2px 8px}"
-    "table.summary td{text-align:right}table.summary td:first-child,td.unit,td.def{"
-    "text-align:left}td.def{color:#555;font-size:92%}td.unit{color:#555}td.na{color:#aaa;"
+    "table.summary td{text-align:right}table.summary td:first-child,table.summary td.unit,"
+    "table.summary "
+    "td.def{text-align:left}td.def{color:#555;font-size:92%}td.unit{color:#555}td.na{color:#aaa;"
     "text-align:center}tr.group th{background:#eef2f6;text-align:left}.ratio{color:#888;"
     "font-size:85%}.swatch{display:inline-block;width:.9em;height:.9em;margin-right:.35em;"
     "vertical-align:-.1em;border-radius:2px}.note{color:#555;font-size:90%}"
@@ -86,7 +87,10 @@ std::string Num(double v, const char* fmt = "%.3g") {
   return buf;
 }
 
-std::string PlusMinus(double mean, double std) { return Num(mean) + " &plusmn; " + Num(std); }
+/// "mean ± std"; published figures keep their digits ("%g"), ours get three.
+std::string PlusMinus(double mean, double std, const char* fmt = "%.3g") {
+  return Num(mean, fmt) + " &plusmn; " + Num(std, fmt);
+}
 
 /// Published relation errors next to this run's, and the other published notes.
 std::string Reference(const ReportPage& page) {
@@ -99,8 +103,9 @@ std::string Reference(const ReportPage& page) {
          "<th>relations</th><th>source</th></tr>\n";
     for (const PublishedRelationError& e : r.relation_errors) {
       h << "<tr><td>" << HtmlEscape(e.method) << "</td><td>"
-        << PlusMinus(e.trans_mean_m, e.trans_std_m) << "</td><td>"
-        << (e.rot_mean_deg ? PlusMinus(*e.rot_mean_deg, e.rot_std_deg.value_or(0.0)) : "&ndash;")
+        << PlusMinus(e.trans_mean_m, e.trans_std_m, "%g") << "</td><td>"
+        << (e.rot_mean_deg ? PlusMinus(*e.rot_mean_deg, e.rot_std_deg.value_or(0.0), "%g")
+                           : "&ndash;")
         << "</td><td>whole log</td><td>" << HtmlEscape(e.citation) << "</td></tr>\n";
     }
     for (const std::string& m : OrderedModes(page.summary, page.mode_order)) {
@@ -186,12 +191,11 @@ std::string ReportHtmlText(const ReportPage& page) {
     << Figures(page.figures) << "</div>\n";
   h << "<h2 id=\"maps\">Maps</h2>\n";
   if (!page.maps_note.empty()) h << "<p class=\"note\">" << HtmlEscape(page.maps_note) << "</p>\n";
-  h << "<div class=\"with-legend\"><div class=\"row maps\">\n"
-    << Figures(page.map_figures) << "</div>\n"
-    << Legend(page) << "</div>\n";
-  h << "<h2 id=\"graphs\">Graphs</h2>\n<div class=\"with-legend\"><div class=\"row maps\">\n"
-    << Figures(page.graph_figures) << "</div>\n"
-    << Legend(page) << "</div>\n";
+  h << "<div class=\"with-legend\">" << Legend(page) << "<div class=\"row maps\">\n"
+    << Figures(page.map_figures) << "</div></div>\n";
+  h << "<h2 id=\"graphs\">Graphs</h2>\n<div class=\"with-legend\">" << Legend(page)
+    << "<div class=\"row maps\">\n"
+    << Figures(page.graph_figures) << "</div></div>\n";
   h << Files(page) << Provenance(page) << "</body></html>\n";
   return h.str();
 }

@@ -231,16 +231,8 @@ void AddVideoFrame(VideoSink* sink, const Observation& obs, const std::optional<
 
 void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth,
                 const ExperimentConfig& config) {
-  const fs::path dir = fs::path(config.out_dir) / "truth";
-  fs::create_directories(dir);
-  io::WritePgmMap((dir / "map.pgm").string(),
-                  RasterizeWalls(truth.walls, config.mapper.grid.resolution_m));
-  std::vector<io::StampedPose> poses;
-  for (const Observation& o : stream) poses.push_back({o.stamp_s, *o.T_world_robot_true});
-  io::WriteTum((dir / "trajectory.tum").string(), poses);
-  const double res = config.mapper.grid.resolution_m;  // the mode maps' figure frame
-  WriteTruthFigure((dir / "map.png").string(), truth.walls, res,
-                   MakeRunMapFrame(stream, &truth.walls, res));
+  WriteTruthFiles((fs::path(config.out_dir) / "truth").string(), stream, truth.walls,
+                  config.mapper.grid.resolution_m);
 }
 
 // Writes DIR/<mode>/marginalizations.csv: one row per removed node.

@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "eval/map_quality.hpp"
+#include "io/map_file.hpp"
+#include "io/tum.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -77,6 +79,19 @@ void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls
   layers.trajectories.push_back({TrajectoryKind::kTrue, frame.true_path});
   const Canvas canvas = frame.truth_frame ? frame.canvas : CanvasOfGrid(truth, frame.m_per_px);
   WritePng(path, RenderFigure(canvas, layers));
+}
+
+void WriteTruthFiles(const std::string& dir, const std::vector<Observation>& stream,
+                     const std::vector<Segment>& walls, double resolution_m) {
+  fs::create_directories(dir);
+  io::WritePgmMap((fs::path(dir) / "map.pgm").string(), RasterizeWalls(walls, resolution_m));
+  std::vector<io::StampedPose> poses;
+  for (const Observation& o : stream) {
+    if (o.T_world_robot_true) poses.push_back({o.stamp_s, *o.T_world_robot_true});
+  }
+  io::WriteTum((fs::path(dir) / "trajectory.tum").string(), poses);
+  WriteTruthFigure((fs::path(dir) / "map.png").string(), walls, resolution_m,
+                   MakeRunMapFrame(stream, &walls, resolution_m));
 }
 
 }  // namespace lifelong::eval

@@ -3,7 +3,7 @@
 // alone on white, as the seed's Fig. 6.6), and truth/map.png. With ground truth every
 // figure covers the truth map's bounds in the world frame, the estimates moved there by
 // their ATE alignment T_truth_est; without it (replays) each mode keeps its own frame and
-// bounds but all share one scale.
+// bounds but all share one scale. The truth's other files are written here too.
 #pragma once
 
 #include <optional>
@@ -45,5 +45,11 @@ void WriteModeFigures(const std::string& out_dir, const std::string& mode,
 /// frame's canvas to `path`.
 void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls,
                       double resolution_m, const RunMapFrame& frame);
+
+/// Writes the truth's files into `dir` (created): map.pgm + map.yaml (the walls rasterized
+/// at resolution_m), trajectory.tum (the true pose of every scan) and map.png (the truth
+/// figure on the run's canvas, MakeRunMapFrame(stream, &walls, resolution_m)).
+void WriteTruthFiles(const std::string& dir, const std::vector<Observation>& stream,
+                     const std::vector<Segment>& walls, double resolution_m);
 
 }  // namespace lifelong::eval

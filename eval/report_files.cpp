@@ -138,8 +138,9 @@ ReportLinkGroup Links(const std::string& out_dir, const std::string& name, const
 std::vector<ReportLinkGroup> FileLinks(const ReportContext& c, const ReportPage& page) {
   std::vector<ReportLinkGroup> out;
   ReportLinkGroup run = Links(c.out_dir, "run", "", {"config.yaml"});
-  // summary.json is written right after this page, by the same run (a failed run leaves
-  // neither), so it is the one link made before its file exists.
+  // summary.json is written right after this page and is the one link made before its
+  // file exists: it is the run's main output, and a run that fails in between leaves no
+  // summary.json (README), which marks the whole directory as incomplete anyway.
   run.links.insert(run.links.begin(), {"summary.json", "summary.json"});
   out.push_back(run);
   for (const std::string& mode : OrderedModes(page.summary, page.mode_order)) {

@@ -9,7 +9,7 @@ html="$1" out="$2" scale="${3:-0.6}" height="${4:-2240}"
 profile="$(mktemp -d)"  # a new, empty profile: nothing of the user's is read or kept
 trap 'rm -rf "$profile"' EXIT
 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
-  --disable-background-networking --disable-component-update --disable-sync \
+  --disable-background-networking --disable-component-update --disable-sync --disable-dev-shm-usage \
   --user-data-dir="$profile" --hide-scrollbars --force-device-scale-factor="$scale" \
   --window-size="1400,$height" --screenshot="$(realpath -m "$out")" \
   "file://$(realpath "$html")" >/dev/null 2>&1

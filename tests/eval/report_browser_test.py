@@ -93,7 +93,8 @@ def browser_verdict(chromium, root, report_rel, tmp):
         url = "http://127.0.0.1:%d/check.html" % server.server_address[1]
         cmd = [chromium, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                "--no-first-run", "--disable-background-networking",
-               "--disable-component-update", "--disable-sync", "--user-data-dir=" + profile,
+               "--disable-component-update", "--disable-sync", "--disable-dev-shm-usage",
+               "--user-data-dir=" + profile,
                "--dump-dom", "--virtual-time-budget=10000", url]
         out = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
     finally:

@@ -134,12 +134,14 @@ def main():
     failures = []
     try:
         if args.report_dir:
-            root, rel = os.path.abspath(args.report_dir), "report.html"
-            verdict = browser_verdict(chromium, root, rel, tmp)
+            root = os.path.abspath(args.report_dir)
+            try:
+                verdict = browser_verdict(chromium, root, "report.html", tmp)
+            finally:
+                os.remove(os.path.join(root, "check.html"))
             print(json.dumps(verdict, indent=1))
             expect(not verdict.get("error") and not verdict.get("problems"),
                    "every image and link of %s loads" % root, failures)
-            os.remove(os.path.join(root, "check.html"))
             return 1 if failures else 0
         run_dir = os.path.join(tmp, "run")
         run_lifelong(args.lifelong, args.scenario, run_dir)

@@ -8,31 +8,20 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
+#include "eval/map_figure.hpp"
 #include "eval/map_quality.hpp"
-#include "render/palette.hpp"
 
 namespace lifelong::eval {
 namespace {
 
-constexpr int kShift = 4;  // sub-pixel bits for cv drawing
-constexpr double kSub = 16.0;
-
 /// The drawn window of the grid: cells [col0, col0 + cols) x [row0, row0 + rows).
 struct View {
-  const io::OccupancyGrid* grid = nullptr;
-  int col0 = 0, row0 = 0, cols = 0, rows = 0, scale = 1;
-  cv::Point Px(double x, double y) const {
-    const double c = (x - grid->origin_x_m) / grid->resolution_m - col0;
-    const double r = (y - grid->origin_y_m) / grid->resolution_m - row0;
-    return {static_cast<int>(std::lround(c * scale * kSub)),
-            static_cast<int>(std::lround((rows - r) * scale * kSub))};
-  }
+  int col0 = 0, row0 = 0, cols = 0, rows = 0;
 };
 
 View MakeView(const io::OccupancyGrid& g, const DrawConfig& c) {
-  View v{&g, 0, 0, g.width, g.height, std::max(c.pixels_per_cell, 1)};
+  View v{0, 0, g.width, g.height};
   if (!c.crop_to_known) return v;
   int c0 = g.width, r0 = g.height, c1 = -1, r1 = -1;
   for (int r = 0; r < g.height; ++r)
@@ -45,58 +34,6 @@ View MakeView(const io::OccupancyGrid& g, const DrawConfig& c) {
   v.cols = std::min(c1 + m + 1, g.width) - v.col0;
   v.rows = std::min(r1 + m + 1, g.height) - v.row0;
   return v;
-}
-
-cv::Mat DrawCells(const View& v) {
-  cv::Mat small(v.rows, v.cols, CV_8UC3);
-  for (int r = 0; r < v.rows; ++r) {
-    for (int c = 0; c < v.cols; ++c) {
-      const float p = v.grid->At(v.col0 + c, v.row0 + r);
-      // Reflection probabilities of walls are often well below 1 (grazing beams pass
-      // through them), so the grey ramp saturates at p = 0.5: black = at least as often hit
-      // as passed.
-      const int grey = p < 0.0f ? 205
-                                : static_cast<int>(std::lround(
-                                      255.0 * (1.0 - std::min(2.0 * static_cast<double>(p), 1.0))));
-      const auto u = static_cast<uchar>(grey);
-      small.at<cv::Vec3b>(v.rows - 1 - r, c) = cv::Vec3b(u, u, u);
-    }
-  }
-  if (v.scale == 1) return small;
-  cv::Mat big;
-  cv::resize(small, big, cv::Size(), v.scale, v.scale, cv::INTER_NEAREST);
-  return big;
-}
-
-cv::Scalar EdgeColour(slam::EdgeKind k) {
-  const render::Rgb c = render::EdgeColour(k);
-  return {static_cast<double>(c.b), static_cast<double>(c.g), static_cast<double>(c.r)};  // BGR
-}
-
-cv::Scalar TrajectoryColour(TrajectoryKind k) {
-  switch (k) {
-    case TrajectoryKind::kTrue:
-      return {0, 160, 0};
-    case TrajectoryKind::kOdometry:
-      return {0, 0, 220};
-    default:
-      return {220, 0, 0};
-  }
-}
-
-void DrawScaleBar(cv::Mat& img, double m_per_px) {
-  const double target_m = img.cols * m_per_px / 5.0;
-  const double base = std::pow(10.0, std::floor(std::log10(std::max(target_m, 1e-3))));
-  double len = base;  // the largest of 1, 2, 5 x 10^k not above a fifth of the width
-  for (double f : {2.0, 5.0})
-    if (base * f <= target_m) len = base * f;
-  const int px = static_cast<int>(std::lround(len / m_per_px));
-  const cv::Point a(10, img.rows - 10), b(10 + px, img.rows - 10);
-  cv::line(img, a, b, cv::Scalar(0, 0, 0), 3);
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g m", len);
-  cv::putText(img, text, a + cv::Point(0, -8), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0),
-              1, cv::LINE_AA);
 }
 
 }  // namespace
@@ -118,23 +55,21 @@ GraphOverlay MakeGraphOverlay(const slam::PoseGraph& graph, const slam::Values& 
 
 Image RenderMap(const io::OccupancyGrid& grid, const GraphOverlay& graph,
                 const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
-  Image out;
-  if (grid.width <= 0 || grid.height <= 0) return out;
+  if (grid.width <= 0 || grid.height <= 0) return {};
   const View v = MakeView(grid, config);
-  cv::Mat img = DrawCells(v);
-  for (const GraphOverlay::Edge& e : graph.edges)
-    cv::line(img, v.Px(e.x0, e.y0), v.Px(e.x1, e.y1), EdgeColour(e.kind), 1, cv::LINE_AA, kShift);
-  for (const Pose2& n : graph.nodes)
-    cv::circle(img, v.Px(n.x, n.y), static_cast<int>(1.5 * kSub), cv::Scalar(90, 40, 0), cv::FILLED,
-               cv::LINE_AA, kShift);
-  for (const TrajectoryOverlay& t : trajectories)
-    for (std::size_t i = 1; i < t.poses.size(); ++i)
-      cv::line(img, v.Px(t.poses[i - 1].x, t.poses[i - 1].y), v.Px(t.poses[i].x, t.poses[i].y),
-               TrajectoryColour(t.kind), 1, cv::LINE_AA, kShift);
-  if (config.scale_bar) DrawScaleBar(img, grid.resolution_m / v.scale);
-  out.width = img.cols, out.height = img.rows;
-  out.bgr.assign(img.data, img.data + img.total() * img.elemSize());
-  return out;
+  const int scale = std::max(config.pixels_per_cell, 1);
+  Canvas canvas;
+  canvas.x0_m = grid.origin_x_m + v.col0 * grid.resolution_m;
+  canvas.y0_m = grid.origin_y_m + v.row0 * grid.resolution_m;
+  canvas.m_per_px = grid.resolution_m / scale;
+  canvas.width_px = v.cols * scale;
+  canvas.height_px = v.rows * scale;
+  FigureLayers layers;
+  layers.grid = &grid;
+  layers.trajectories = trajectories;
+  layers.graph = graph;
+  layers.scale_bar = config.scale_bar;
+  return RenderFigure(canvas, layers);
 }
 
 void WritePng(const std::string& path, const Image& image) {

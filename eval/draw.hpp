@@ -1,7 +1,8 @@
 // Maps as images (OpenCV): an OccupancyGrid as a PNG with y up (grid row 0 is the image's
 // bottom row), unknown grey, free white, occupied black (grey level 255 * (1 - p)), with
 // optional overlays drawn in world coordinates: the pose graph (nodes as dots, edges
-// coloured by kind) and trajectories (true green, odometry red, estimate blue). Images are
+// coloured by kind) and trajectories (true green, odometry red, estimate blue; drawn thin and
+// under the graph). eval/map_figure.hpp draws the same in any frame and scale. Images are
 // written to "<stem>.tmp.png" and renamed, so a PNG that exists is whole.
 #pragma once
 

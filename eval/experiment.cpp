@@ -18,8 +18,10 @@
 #include "eval/plots.hpp"
 #include "eval/progress.hpp"
 #include "eval/report.hpp"
+#include "eval/report_files.hpp"
 #include "eval/resources.hpp"
 #include "eval/staged_output.hpp"
+#include "eval/run_maps.hpp"
 #include "eval/video.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -102,9 +104,10 @@ class ModeRunner {
   /// and the precision over the last hour of runs longer than one.
   void WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* summary) const;
 
-  void TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                    const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
-                    ModeSummary* summary, std::vector<TrajectoryOverlay>* overlays) const;
+  /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame).
+  Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                     const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                     ModeSummary* summary) const;
 
   slam::PruningMode mode_;
   std::string name_;
@@ -142,10 +145,9 @@ void ModeRunner::WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* su
   WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
 }
 
-void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                              const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
-                              ModeSummary* summary,
-                              std::vector<TrajectoryOverlay>* overlays) const {
+Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                               const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                               ModeSummary* summary) const {
   std::vector<Pose2> true_poses;
   std::map<double, Pose2> true_at;
   for (const Observation& o : stream) {
@@ -179,8 +181,7 @@ void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Grou
   if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
   if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
   WriteLoopsCsv(lcr.correct_each, summary);
-  overlays->push_back({TrajectoryKind::kTrue, {}});
-  for (const Pose2& p : true_poses) overlays->back().poses.push_back(T_truth_est.Inverse() * p);
+  return T_truth_est;
 }
 
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
@@ -224,12 +225,9 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   const slam::LoopVerifierStats& lv = m.loop_verification();
   summary.loop_verification = LoopVerificationSummary{
       lv.proposed, lv.accepted, lv.rejected, lv.expired, lv.injected, lv.injected_accepted};
-  std::vector<TrajectoryOverlay> overlays;
-  if (truth) {
-    TruthMetrics(stream, *truth, estimate, grid, &summary, &overlays);
-  } else {
-    WriteLoopsCsv({}, nullptr);
-  }
+  std::optional<Pose2> T_truth_est;
+  if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
+  if (!truth) WriteLoopsCsv({}, nullptr);
   if (!relations.empty()) {
     std::vector<Relation> rel;
     for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});
@@ -242,10 +240,9 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     WriteMarginalizations((dir / "marginalizations.csv").string(), m);
     WriteSparsifications((dir / "sparsifications.csv").string(), m);
   }
-  DrawConfig draw;
-  draw.pixels_per_cell = std::clamp(1600 / std::max({grid.width, grid.height, 1}), 1, 4);
-  WriteMapPng((dir / "map.png").string(), grid, MakeGraphOverlay(m.graph(), m.values()), overlays,
-              draw);
+  WriteModeFigures(config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()),
+                   T_truth_est,
+                   MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
   *map_png = name_ + "/map.png";
   return summary;
 }
@@ -267,20 +264,8 @@ void AddVideoFrame(VideoSink* sink, const Observation& obs, const std::optional<
 
 void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth,
                 const ExperimentConfig& config) {
-  const fs::path dir = fs::path(config.out_dir) / "truth";
-  fs::create_directories(dir);
-  io::WritePgmMap((dir / "map.pgm").string(),
-                  RasterizeWalls(truth.walls, config.mapper.grid.resolution_m));
-  std::vector<io::StampedPose> poses;
-  TrajectoryOverlay path{TrajectoryKind::kTrue, {}};
-  for (const Observation& o : stream) {
-    poses.push_back({o.stamp_s, *o.T_world_robot_true});
-    path.poses.push_back(*o.T_world_robot_true);
-  }
-  io::WriteTum((dir / "trajectory.tum").string(), poses);
-  DrawConfig draw;
-  draw.world_resolution_m = config.mapper.grid.resolution_m;
-  WriteWorldPng((dir / "map.png").string(), truth.walls, {path}, draw);
+  WriteTruthFiles((fs::path(config.out_dir) / "truth").string(), stream, truth.walls,
+                  config.mapper.grid.resolution_m);
 }
 
 // Writes DIR/<mode>/marginalizations.csv: one row per removed node.
@@ -432,23 +417,17 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     }
   }
   ThrowIfInterrupted();
-  if (truth) {
-    WriteTruth(stream, *truth, config);
-    page.maps["ground truth"] = "truth/map.png";
-  }
+  if (truth) WriteTruth(stream, *truth, config);
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   const PlotResult plots = PlotTimelines(timelines, config.out_dir, plot_config);
-  for (const std::string& f : plots.files) page.figures.push_back(fs::path(f).filename().string());
-  if (!kld.empty()) {
-    const PlotResult kp = PlotKld(kld, config.out_dir);
-    for (const std::string& f : kp.files) page.figures.push_back(fs::path(f).filename().string());
-  }
+  if (!kld.empty()) PlotKld(kld, config.out_dir);
   if (!plots.ok) Progress(config, "warning: no figures: " + plots.error + "\n");
   ThrowIfInterrupted();
   summary.wall_time_s = Seconds(start);
   page.summary = summary;
   page.command_line = config.command_line;
+  CompleteReportPage(MakeReportContext(config, stream, truth, plot_config), &page);
   WriteReportHtml((fs::path(config.out_dir) / "report.html").string(), page);
   WriteSummaryJson((fs::path(config.out_dir) / "summary.json").string(), summary);
   output.Commit();

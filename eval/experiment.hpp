@@ -30,6 +30,7 @@ struct ExperimentConfig {
   std::optional<std::int64_t> seed;  ///< simulation seed
   /// Relations in log time (io::ShiftRelations already applied); empty: none.
   std::vector<io::Relation> relations;
+  std::optional<std::string> relations_path;  ///< the file they came from (report, figures)
   std::optional<LogInfo> log;          ///< replay: what was read from the log
   std::optional<double> first_pass_s;  ///< observations before this time form the first pass
   std::string command_line;

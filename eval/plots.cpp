@@ -7,10 +7,14 @@
 #include <fstream>
 #include <functional>
 
+#include "eval/mode_colors.hpp"
+
 namespace lifelong::eval {
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr double kMiB = 1024.0 * 1024.0;  // bytes; rss_mb is in the same unit (resources.hpp)
 
 std::string ShellQuote(const std::string& s) {
   std::string out = "'";
@@ -43,13 +47,20 @@ std::vector<double> MovingAverage(const std::vector<double>& v, int window) {
   return out;
 }
 
+/// One gnuplot plot clause per (colour "#rrggbb", data file, title).
+using Clauses =
+    std::function<std::string(const std::string&, const std::string&, const std::string&)>;
+
+struct Panel {
+  std::string ylabel;
+  bool log_y = false;
+  Clauses clauses;
+};
+
 struct Figure {
   std::string name;  ///< file stem
-  std::string ylabel;
   std::string xlabel;
-  bool log_y = false;
-  /// One gnuplot plot clause per (mode index, data file, title).
-  std::function<std::string(int, const std::string&, const std::string&)> clauses;
+  std::vector<Panel> panels;  ///< stacked top to bottom, sharing the x axis
 };
 
 /// Writes the script, runs gnuplot, renames the PNG into place.
@@ -60,17 +71,22 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
   const fs::path script = fs::path(out_dir) / "plot_data" / (f.name + ".gp");
   {
     std::ofstream gp(script);
-    gp << "set terminal " << terminal << " noenhanced size " << c.width_px << "," << c.height_px
+    const int height = f.panels.size() > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
+    gp << "set terminal " << terminal << " noenhanced size " << c.width_px << "," << height
        << "\nset output " << GpQuote(png.string() + ".tmp") << "\n"
-       << "set xlabel " << GpQuote(f.xlabel) << "\nset ylabel " << GpQuote(f.ylabel) << "\n"
-       << "set grid\nset key top left\n"
-       << (f.log_y ? "set logscale y\n" : "") << "plot ";
-    int i = 0;
-    for (const auto& [mode, file] : data_files) {
-      gp << (i ? ", \\\n     " : "") << f.clauses(i + 1, GpQuote(file), GpQuote(mode));
-      ++i;
+       << "set xlabel " << GpQuote(f.xlabel) << "\nset grid\nset key top left\n";
+    if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
+    for (const Panel& panel : f.panels) {
+      gp << "set ylabel " << GpQuote(panel.ylabel) << "\n"
+         << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
+      int i = 0;
+      for (const auto& [mode, file] : data_files) {
+        gp << (i++ ? ", \\\n     " : "")
+           << panel.clauses(GpQuote(ModeColourHex(mode)), GpQuote(file), GpQuote(mode));
+      }
+      gp << "\n";
     }
-    gp << "\n";
+    if (f.panels.size() > 1) gp << "unset multiplot\n";
     if (!gp) {
       result->error = script.string() + ": cannot write";
       return false;
@@ -108,9 +124,19 @@ std::string Prepare(const std::string& out_dir, const PlotConfig& c, PlotResult*
   return ec ? "" : terminal;
 }
 
-std::string Lines(int i, const std::string& file, const std::string& title, int col) {
-  return file + " using 1:" + std::to_string(col) + " with lines lw 2 lc " + std::to_string(i) +
+std::string Lines(const std::string& colour, const std::string& file, const std::string& title,
+                  int col) {
+  return file + " using 1:" + std::to_string(col) + " with lines lw 2 lc rgb " + colour +
          " title " + title;
+}
+
+/// A single-panel figure drawing column `col` of every mode's data as lines.
+Figure LinesFigure(const std::string& name, const std::string& ylabel, int col, bool log_y) {
+  return {name,
+          "observation",
+          {{ylabel, log_y, [col](const std::string& c, const std::string& f, const std::string& t) {
+              return Lines(c, f, t, col);
+            }}}};
 }
 
 }  // namespace
@@ -145,27 +171,38 @@ PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_
     const std::vector<double> ma = MovingAverage(ms, config.moving_average);
     const fs::path p = fs::path(out_dir) / "plot_data" / ("timeline_" + SafeName(mode) + ".dat");
     std::ofstream out(p);
-    out << "# obs time_ms time_ms_moving_average nodes edges gamma\n";
+    out << "# obs time_ms time_ms_moving_average nodes edges gamma cumulative_s rss_mib "
+           "graph_mib\n";
+    double cumulative_ms = 0.0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
+      cumulative_ms += rows[i].time_ms;
       out << rows[i].obs << ' ' << rows[i].time_ms << ' ' << ma[i] << ' ' << rows[i].nodes << ' '
-          << rows[i].edges << ' ' << rows[i].gamma << '\n';
+          << rows[i].edges << ' ' << rows[i].gamma << ' ' << cumulative_ms / 1000.0 << ' '
+          << rows[i].rss_mb << ' ' << static_cast<double>(rows[i].graph_bytes) / kMiB << '\n';
     }
     files[mode] = p.string();
   }
+  bool any_graph_bytes = false;  // a log axis needs a positive value
+  for (const auto& [mode, rows] : timelines)
+    for (const TimelineRow& row : rows) any_graph_bytes = any_graph_bytes || row.graph_bytes > 0;
   const std::string ma_label = std::to_string(config.moving_average);
+  const Clauses dots_and_average = [](const std::string& c, const std::string& f,
+                                      const std::string& t) {
+    return f + " using 1:2 with dots lc rgb " + c + " notitle, " + Lines(c, f, t, 3);
+  };
   const std::vector<Figure> figures = {
-      {"time_per_obs", "time per observation [ms] (lines: moving average of " + ma_label + ")",
-       "observation", config.log_time,
-       [](int i, const std::string& f, const std::string& t) {
-         return f + " using 1:2 with dots lc " + std::to_string(i) + " notitle, " +
-                Lines(i, f, t, 3);
-       }},
-      {"nodes", "nodes", "observation", false,
-       [](int i, const std::string& f, const std::string& t) { return Lines(i, f, t, 4); }},
-      {"edges", "edges", "observation", false,
-       [](int i, const std::string& f, const std::string& t) { return Lines(i, f, t, 5); }},
-      {"gamma", "gamma index e / (v (v-1) / 2)", "observation", true,
-       [](int i, const std::string& f, const std::string& t) { return Lines(i, f, t, 6); }},
+      {"time_per_obs",
+       "observation",
+       {{"time per observation [ms] (lines: moving average of " + ma_label + ")", config.log_time,
+         dots_and_average}}},
+      LinesFigure("nodes", "nodes", 4, false),
+      LinesFigure("edges", "edges", 5, false),
+      LinesFigure("gamma", "gamma index e / (v (v-1) / 2)", 6, true),
+      LinesFigure("cumulative_time", "cumulative mapper time [s]", 7, false),
+      {"memory",
+       "observation",
+       {LinesFigure("", "resident memory of the process [MiB]", 8, false).panels[0],
+        LinesFigure("", "memory held by the graph [MiB]", 9, any_graph_bytes).panels[0]}},
   };
   r.ok = true;
   for (const Figure& f : figures) r.ok = Render(f, files, out_dir, terminal, config, &r) && r.ok;
@@ -189,11 +226,12 @@ PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode
     for (std::size_t i = 0; i < kl.size(); ++i) out << i << ' ' << kl[i] << '\n';
     files[mode] = p.string();
   }
-  const Figure f{"kld", "KL divergence of the approximate clique [nats]", "marginalization", false,
-                 [](int i, const std::string& file, const std::string& t) {
-                   return file + " using 1:2 with points pt 7 ps 0.5 lc " + std::to_string(i) +
-                          " title " + t;
-                 }};
+  const Figure f{"kld",
+                 "marginalization",
+                 {{"KL divergence of the approximate clique [nats]", false,
+                   [](const std::string& c, const std::string& file, const std::string& t) {
+                     return file + " using 1:2 with points pt 7 ps 0.5 lc rgb " + c + " title " + t;
+                   }}}};
   r.ok = Render(f, files, out_dir, terminal, config, &r);
   return r;
 }

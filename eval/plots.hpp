@@ -32,8 +32,10 @@ struct PlotResult {
 /// mode name -> its timeline.
 using ModeTimelines = std::map<std::string, std::vector<TimelineRow>>;
 
-/// Writes time_per_obs.png (raw as dots, moving average as lines), nodes.png, edges.png
-/// and gamma.png into out_dir (which must exist).
+/// Writes time_per_obs.png (raw as dots, moving average as lines), nodes.png, edges.png,
+/// gamma.png, cumulative_time.png (the sum of time_ms, s) and memory.png (two panels: the
+/// timeline's rss_mb and graph_bytes, both in MiB) into out_dir (which must exist). Each
+/// mode is drawn in its own colour (eval/mode_colors.hpp).
 PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
                          const PlotConfig& config = {});
 

@@ -4,13 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "eval/metrics.hpp"
-#include "eval/resources.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -201,133 +199,6 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
     text += line;
   }
   WriteFileAtomically(path, text);
-}
-
-namespace {
-
-/// The flattened summary keys in contract order: the rows of the HTML table.
-const char* const kTableRows[] = {"/observations",
-                                  "/wall_time_s",
-                                  "/time_per_obs_ms/mean",
-                                  "/time_per_obs_ms/p50",
-                                  "/time_per_obs_ms/p95",
-                                  "/time_per_obs_ms/max",
-                                  "/time_per_obs_ms/first_pass_mean",
-                                  "/time_per_obs_ms/last10_mean",
-                                  "/nodes_final",
-                                  "/edges_final",
-                                  "/nodes_max",
-                                  "/edges_max",
-                                  "/nodes_after_first_pass",
-                                  "/gamma_final",
-                                  "/scans_kept_pct",
-                                  "/peak_rss_mb",
-                                  "/graph_bytes_final",
-                                  "/blur/mean_cm",
-                                  "/blur/p95_cm",
-                                  "/blur/thickness",
-                                  "/blur/recall",
-                                  "/ate_rmse_m",
-                                  "/loop_precision",
-                                  "/loop_recall",
-                                  "/relations/count",
-                                  "/relations/trans_mean_m",
-                                  "/relations/trans_std_m",
-                                  "/relations/rot_mean_deg",
-                                  "/relations/rot_std_deg",
-                                  "/kld/count",
-                                  "/kld/mean",
-                                  "/kld/max",
-                                  "/map_entropy_bits",
-                                  "/occupied_share"};
-
-std::string Escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-std::string Cell(const json& flat, const char* key) {
-  if (!flat.contains(key)) return "&ndash;";
-  const json& v = flat[key];
-  if (v.is_number_float()) {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), "%.4g", v.get<double>());
-    return buf;
-  }
-  return Escape(v.dump());
-}
-
-std::string SummaryTable(const RunSummary& s) {
-  std::vector<json> flats;
-  std::string html = "<table>\n<tr><th>figure</th>";
-  for (const auto& [name, mode] : s.modes) {
-    html += "<th>" + Escape(name) + "</th>";
-    flats.push_back(ModeJson(mode).flatten());
-  }
-  html += "</tr>\n";
-  for (const char* key : kTableRows) {
-    html += "<tr><td>" + std::string(key + 1) + "</td>";
-    for (const json& f : flats) html += "<td>" + Cell(f, key) + "</td>";
-    html += "</tr>\n";
-  }
-  return html + "</table>\n";
-}
-
-const char kCss[] =
-    "body{font-family:sans-serif;margin:1.5em;color:#222}"
-    "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #bbb;"
-    "padding:2px 8px;text-align:right}td:first-child{text-align:left;font-family:monospace}"
-    ".row{display:flex;flex-wrap:wrap;gap:1em}.row figure{margin:0}"
-    ".row img{max-width:600px;border:1px solid #ccc}code{background:#f3f3f3;padding:2px}";
-
-}  // namespace
-
-std::string ReportHtmlText(const ReportPage& page) {
-  const RunSummary& s = page.summary;
-  const std::string machine = page.machine.empty() ? CpuModelName() : page.machine;
-  std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << Escape(page.title)
-    << "</title>\n<style>" << kCss << "</style></head><body>\n<h1>" << Escape(page.title)
-    << "</h1>\n<p>source: <code>" << Escape(s.source) << "</code>";
-  if (s.seed) h << ", seed " << *s.seed;
-  h << ", wall time " << s.wall_time_s << " s";
-  if (s.log_duration_s) h << ", log duration " << *s.log_duration_s << " s";
-  h << "</p>\n<p>command: <code>" << Escape(page.command_line)
-    << "</code></p>\n<p>machine: " << Escape(machine) << "</p>\n<h2>Summary</h2>\n"
-    << SummaryTable(s);
-  h << "<h2>Figures</h2>\n<div class=\"row\">\n";
-  for (const std::string& f : page.figures) {
-    h << "<figure><img src=\"" << Escape(f) << "\" alt=\"" << Escape(f) << "\"></figure>\n";
-  }
-  h << "</div>\n<h2>Maps</h2>\n<div class=\"row\">\n";
-  for (const auto& [mode, img] : page.maps) {
-    h << "<figure><img src=\"" << Escape(img) << "\" alt=\"" << Escape(mode) << "\"><figcaption>"
-      << Escape(mode) << "</figcaption></figure>\n";
-  }
-  h << "</div>\n</body></html>\n";
-  return h.str();
-}
-
-void WriteReportHtml(const std::string& path, const ReportPage& page) {
-  WriteFileAtomically(path, ReportHtmlText(page));
 }
 
 }  // namespace lifelong::eval

@@ -1,4 +1,5 @@
-// The output contract of DESIGN.md: summary.json, <mode>/timeline.csv and report.html.
+// The output contract of DESIGN.md: summary.json and <mode>/timeline.csv (report.html:
+// eval/report_html.hpp).
 // Every writer goes through `path + ".tmp"` and a rename, so a file that exists is whole.
 // A figure that does not apply is an empty std::optional and is absent from the JSON.
 #pragma once
@@ -118,19 +119,5 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
 
 /// Writes `text` to path + ".tmp" and renames it onto path. Throws on failure.
 void WriteFileAtomically(const std::string& path, const std::string& text);
-
-struct ReportPage {
-  std::string title = "lifelong report";
-  RunSummary summary;
-  std::string command_line;                 ///< as typed
-  std::string machine;                      ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
-  std::vector<std::string> figures;         ///< image paths relative to the page
-  std::map<std::string, std::string> maps;  ///< mode -> map image path relative to the page
-};
-
-/// One self-contained offline HTML page (inline CSS, no scripts): the summary table per
-/// mode, the figures, the maps side by side, the command line and the machine.
-std::string ReportHtmlText(const ReportPage& page);
-void WriteReportHtml(const std::string& path, const ReportPage& page);
 
 }  // namespace lifelong::eval

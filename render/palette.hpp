@@ -1,5 +1,5 @@
-// The colours of the graph's edge kinds, one palette for the video frames (render) and the
-// map PNGs (eval/draw.cpp), so that a figure reads the same in both.
+// The colours of the graph's edge kinds, one palette for the video frames (render), the
+// map PNGs (eval/draw.cpp) and the report's legend, so that a figure reads the same in all.
 #pragma once
 
 #include <cstdint>
@@ -26,5 +26,12 @@ constexpr Rgb EdgeColour(slam::EdgeKind kind) {
   }
   return {0, 0, 0};
 }
+
+/// Trajectories over the map PNGs: the true path green (drawn thin, under the graph),
+/// odometry red, an estimate blue; graph nodes dark blue.
+constexpr Rgb kTrueTrajectory{0, 160, 0};
+constexpr Rgb kOdometryTrajectory{220, 0, 0};
+constexpr Rgb kEstimateTrajectory{0, 0, 220};
+constexpr Rgb kGraphNode{0, 40, 90};
 
 }  // namespace lifelong::render

@@ -7,6 +7,8 @@ packages=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libyaml-cp
 # An optimized serial BLAS for CHOLMOD's supernodal factorization (the reference BLAS is
 # several times slower on large pose graphs).
 packages+=(libopenblas0-serial python3)
+# The report test (tests/eval/report_browser_test.py) opens report.html in a real browser.
+packages+=(chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "eval/draw.hpp"
+#include "eval/mode_colors.hpp"
 #include "eval/plots.hpp"
 #include "eval/resources.hpp"
 #include "render/palette.hpp"
@@ -63,7 +64,7 @@ TEST(DrawTest, CropsToKnownCellsWithMarginAndUpscales) {
 TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
   TrajectoryOverlay est{TrajectoryKind::kEstimate, {{0.05, 0.75, 0}, {0.95, 0.75, 0}}};
   const Image im = RenderMap(SmallGrid(), {}, {est}, Plain());
-  const cv::Vec3b p = Pixel(im, 2, 2);  // y = 0.75 m -> image row 10 - 7.5 = 2.5
+  const cv::Vec3b p = Pixel(im, 2, 2);  // y = 0.75 m -> 7.5 px from the bottom: row 2
   EXPECT_GT(p[0], 150);                 // blue dominates
   EXPECT_LT(p[2], 100);
   EXPECT_EQ(Pixel(im, 2, 6), cv::Vec3b(205, 205, 205));  // untouched
@@ -72,13 +73,14 @@ TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
 // Edge kinds take the one palette the video frames use too (render/palette.hpp).
 TEST(DrawTest, EdgesAreDrawnInTheSharedPalette) {
   GraphOverlay graph;
-  graph.edges.push_back({0.05, 0.75, 0.95, 0.75, slam::EdgeKind::kLoop});
-  graph.edges.push_back({0.05, 0.25, 0.95, 0.25, slam::EdgeKind::kMarginal});
+  // Through pixel centres: y = 0.7375 m is 29.5 px from the bottom of 40, image row 10.
+  graph.edges.push_back({0.05, 0.7375, 0.95, 0.7375, slam::EdgeKind::kLoop});
+  graph.edges.push_back({0.05, 0.2375, 0.95, 0.2375, slam::EdgeKind::kMarginal});
   DrawConfig config = Plain();
   config.pixels_per_cell = 4;
   const Image im = RenderMap(SmallGrid(), graph, {}, config);
-  for (const auto& [row, kind] : {std::pair{10, slam::EdgeKind::kLoop},  // 40 - 0.75 * 40
-                                  std::pair{30, slam::EdgeKind::kMarginal}}) {
+  for (const auto& [row, kind] :
+       {std::pair{10, slam::EdgeKind::kLoop}, std::pair{30, slam::EdgeKind::kMarginal}}) {
     const render::Rgb c = render::EdgeColour(kind);
     const cv::Vec3b p = Pixel(im, 20, row);
     // Anti-aliased: within a tenth of full scale of the palette colour, channel by channel.
@@ -106,8 +108,9 @@ TEST(DrawTest, WritesAReadablePngAndNoTemporary) {
 std::vector<TimelineRow> Timeline(int n, int growth) {
   std::vector<TimelineRow> rows(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    rows[i].obs = i, rows[i].time_ms = 1.0 + 0.1 * i, rows[i].nodes = 1 + i * growth / 10;
+    rows[i].obs = i, rows[i].time_ms = 1.0 + 0.01 * growth * i, rows[i].nodes = 1 + i * growth / 10;
     rows[i].edges = rows[i].nodes * 2, rows[i].gamma = 0.5 / (1 + i);
+    rows[i].rss_mb = 100.0 + i, rows[i].graph_bytes = 1000u * static_cast<unsigned>(rows[i].nodes);
   }
   return rows;
 }
@@ -125,13 +128,46 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
   const PlotResult r =
       PlotTimelines({{"standard", Timeline(50, 10)}, {"chow_liu", Timeline(50, 3)}}, dir.string());
   EXPECT_TRUE(r.ok) << r.error;
-  ASSERT_EQ(r.files.size(), 4u);
-  for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png"}) {
+  ASSERT_EQ(r.files.size(), 6u);
+  for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png",
+                           "cumulative_time.png", "memory.png"}) {
     EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
   }
+  EXPECT_GT(cv::imread((dir / "memory.png").string()).rows, 500);  // two panels
   const PlotResult k = PlotKld({{"chow_liu", {0.1, 0.3, 0.2}}}, dir.string());
   EXPECT_TRUE(k.ok) << k.error;
   EXPECT_FALSE(cv::imread((dir / "kld.png").string()).empty());
+}
+
+/// Pixels of the image within 30 per channel of the colour.
+int CountColour(const cv::Mat& img, const render::Rgb& c) {
+  int n = 0;
+  for (int r = 0; r < img.rows; ++r)
+    for (int col = 0; col < img.cols; ++col) {
+      const cv::Vec3b p = img.at<cv::Vec3b>(r, col);
+      n += std::abs(p[0] - c.b) < 30 && std::abs(p[1] - c.g) < 30 && std::abs(p[2] - c.r) < 30;
+    }
+  return n;
+}
+
+// A mode keeps its colour whatever else ran: standard is blue alone, first or second.
+TEST(PlotsTest, EachModeKeepsItsColourInEveryRun) {
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_plot_colours";
+  const render::Rgb blue = ModeColour("standard"), red = ModeColour("pruned");
+  for (const ModeTimelines& modes :
+       {ModeTimelines{{"standard", Timeline(50, 10)}},
+        ModeTimelines{{"standard", Timeline(50, 10)}, {"pruned", Timeline(50, 3)}},
+        ModeTimelines{{"pruned", Timeline(50, 3)}, {"a-new-mode", Timeline(50, 5)}}}) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    ASSERT_TRUE(PlotTimelines(modes, dir.string()).ok);
+    for (const char* name : {"nodes.png", "cumulative_time.png", "memory.png"}) {
+      const cv::Mat img = cv::imread((dir / name).string());
+      EXPECT_EQ(CountColour(img, blue) > 50, modes.count("standard") == 1) << name;
+      EXPECT_EQ(CountColour(img, red) > 50, modes.count("pruned") == 1) << name;
+    }
+  }
 }
 
 TEST(ResourcesTest, RssIsPositiveAndPeakAtLeastCurrent) {

@@ -1,4 +1,5 @@
-// The output contract: exact JSON keys, CSV header, absent figures, atomic writes.
+// The output contract: exact JSON keys, CSV header, absent figures, atomic writes
+// (report.html: report_html_test.cpp).
 #include "eval/report.hpp"
 
 #include <cstdio>
@@ -171,27 +172,6 @@ TEST(TimelineCsvTest, HeaderAndRows) {
 
 TEST(WriteFileTest, UnwritablePathThrows) {
   EXPECT_THROW(WriteTimelineCsv("/nonexistent_dir/x/timeline.csv", Rows(1)), std::runtime_error);
-}
-
-TEST(ReportHtmlTest, SelfContainedWithTableFiguresAndMaps) {
-  ReportPage page;
-  page.summary.source = "a<b>.yaml";
-  page.summary.modes["standard"] = SummarizeTimeline(Rows(4), std::nullopt);
-  page.summary.modes["chow_liu"].observations = 4;
-  page.command_line = "lifelong run x.yaml";
-  page.machine = "Test CPU";
-  page.figures = {"time_per_obs.png"};
-  page.maps = {{"standard", "standard/map.png"}};
-  const std::string html = ReportHtmlText(page);
-  EXPECT_NE(html.find("a&lt;b&gt;.yaml"), std::string::npos);
-  EXPECT_NE(html.find("<th>chow_liu</th><th>standard</th>"), std::string::npos);
-  EXPECT_NE(html.find("src=\"time_per_obs.png\""), std::string::npos);
-  EXPECT_NE(html.find("src=\"standard/map.png\""), std::string::npos);
-  EXPECT_NE(html.find("lifelong run x.yaml"), std::string::npos);
-  EXPECT_NE(html.find("Test CPU"), std::string::npos);
-  EXPECT_NE(html.find("time_per_obs_ms/p95"), std::string::npos);
-  EXPECT_EQ(html.find("<script"), std::string::npos);
-  EXPECT_EQ(html.find("http"), std::string::npos);
 }
 
 }  // namespace

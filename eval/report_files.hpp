@@ -1,0 +1,42 @@
+// Gathers what report.html shows from a finished output directory: the plots that were
+// written (in the seed's order, each with its caption), the maps and graphs (truth first,
+// then the modes in run order, all shown at one display scale), links to the output files
+// that exist, the published figures for the log and the provenance.
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include "eval/experiment.hpp"
+#include "eval/plots.hpp"
+#include "eval/report_html.hpp"
+
+namespace lifelong::eval {
+
+struct ReportContext {
+  std::string out_dir;  ///< the output directory; the page's links are relative to it
+  std::vector<std::string> mode_order;  ///< the run's --modes order; the first is the baseline
+  double map_m_per_px = 0.05;           ///< m per pixel of every map figure (eval/run_maps.hpp)
+  bool truth_frame = false;             ///< maps drawn in the truth frame (runs with ground truth)
+  int moving_average = 25;              ///< observations in time_per_obs.png's moving average
+  bool log_time = true;                 ///< time_per_obs.png has a log y axis
+  std::string relations_path;           ///< --relations file; empty without
+  int max_map_width_px = 900;           ///< display size of the largest map, at most ...
+  int max_map_height_px = 640;          ///< ... and this tall (full size on click)
+};
+
+/// The context of a run of RunExperiment.
+ReportContext MakeReportContext(const ExperimentConfig& config,
+                                const std::vector<Observation>& stream,
+                                const std::optional<GroundTruth>& truth,
+                                const PlotConfig& plot_config);
+
+/// Fills page->mode_order, figures, map_figures, graph_figures, maps_note,
+/// true_path_in_maps, files, reference, build, working_dir and written_utc. Needs
+/// page->summary and maps (mode -> map image, relative to out_dir) to be set.
+void CompleteReportPage(const ReportContext& context, ReportPage* page);
+
+/// Width and height of a PNG from its header; {0, 0} when it is not a readable PNG.
+std::pair<int, int> PngSize(const std::string& path);
+
+}  // namespace lifelong::eval

@@ -1,0 +1,207 @@
+#include "eval/report_html.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "eval/html.hpp"
+#include "eval/mode_colors.hpp"
+#include "eval/report_table.hpp"
+#include "eval/resources.hpp"
+#include "render/palette.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+const char kCss[] =
+    "body{font-family:sans-serif;margin:1.5em auto;max-width:1400px;padding:0 1em;color:#222;"
+    "line-height:1.4}h1{margin-bottom:.2em}h2{border-bottom:1px solid #ddd;padding-bottom:.2em;"
+    "margin-top:1.6em}nav a{margin-right:1em}.lead{color:#555;margin-top:0}"
+    "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:2px 8px}"
+    "table.summary td{text-align:right}table.summary td:first-child,table.summary td.unit,"
+    "table.summary "
+    "td.def{text-align:left}td.def{color:#555;font-size:92%}td.unit{color:#555}td.na{color:#aaa;"
+    "text-align:center}tr.group th{background:#eef2f6;text-align:left}.ratio{color:#888;"
+    "font-size:85%}.swatch{display:inline-block;width:.9em;height:.9em;margin-right:.35em;"
+    "vertical-align:-.1em;border-radius:2px}.note{color:#555;font-size:90%}"
+    ".row{display:flex;flex-wrap:wrap;gap:1.2em;align-items:flex-start}"
+    "figure{margin:0}figcaption{font-size:88%;color:#444;max-width:640px;margin-top:.3em}"
+    ".plots img{width:600px;max-width:100%;border:1px solid #ddd}"
+    ".maps img{border:1px solid #ccc}"  // no max-width: every map at one scale
+    ".with-legend{display:flex;gap:1.2em;align-items:flex-start}.with-legend>.row{flex:1}"
+    "aside.legend{position:sticky;top:1em;border:1px solid #ccc;padding:.5em .8em;"
+    "font-size:90%;width:13em;flex:none;background:#fafafa}aside.legend div{margin:.2em 0}"
+    "aside.legend p{color:#555;font-size:90%;margin:.4em 0 0}"
+    ".line{display:inline-block;width:2em;height:3px;vertical-align:middle;margin-right:.5em}"
+    ".dot{display:inline-block;width:7px;height:7px;border-radius:50%;margin:0 .85em 0 .75em}"
+    "code{background:#f3f3f3;padding:1px 3px}dl.prov{display:grid;grid-template-columns:"
+    "max-content auto;gap:.2em 1em}dl.prov dt{font-weight:bold}dl.prov dd{margin:0}"
+    "ul.files{list-style:none;padding:0}ul.files li{margin:.2em 0}ul.files a{margin-right:.8em}";
+
+std::string Hex(const render::Rgb& c) { return HexColour(c); }
+
+std::string Figure(const ReportFigure& f) {
+  std::ostringstream h;
+  const std::string src = HtmlEscape(f.path);
+  h << "<figure><a href=\"" << src << "\"><img src=\"" << src << "\" alt=\""
+    << HtmlEscape(f.caption) << "\"";
+  if (f.width_px > 0 && f.height_px > 0) {
+    h << " width=\"" << f.width_px << "\" height=\"" << f.height_px << "\"";
+  }
+  h << "></a><figcaption>" << HtmlEscape(f.caption) << "</figcaption></figure>\n";
+  return h.str();
+}
+
+std::string Figures(const std::vector<ReportFigure>& figures) {
+  std::string html;
+  for (const ReportFigure& f : figures) html += Figure(f);
+  return html;
+}
+
+std::string LegendLine(const render::Rgb& c, const std::string& label, const char* cls) {
+  return "<div><span class=\"" + std::string(cls) + "\" style=\"background:" + Hex(c) +
+         "\"></span>" + label + "</div>\n";
+}
+
+/// The colours of render/palette.hpp, as drawn in the maps and graphs.
+std::string Legend(const ReportPage& page) {
+  bool prior = false;
+  for (const auto& [name, mode] : page.summary.modes)
+    prior = prior || mode.edges_by_kind.count("prior");
+  std::string html = "<aside class=\"legend\"><b>Legend</b>\n";
+  html += LegendLine(render::EdgeColour(slam::EdgeKind::kOdometry), "odometry edge", "line");
+  html += LegendLine(render::EdgeColour(slam::EdgeKind::kLoop), "loop closure", "line");
+  html += LegendLine(render::EdgeColour(slam::EdgeKind::kMarginal), "marginal edge", "line");
+  if (prior) html += LegendLine(render::EdgeColour(slam::EdgeKind::kPrior), "prior", "line");
+  html += LegendLine(render::kGraphNode, "graph node", "dot");
+  if (page.true_path_in_maps) {
+    html += LegendLine(render::kTrueTrajectory, "true trajectory (thin, under the graph)", "line");
+  }
+  return html +
+         "<p>Marginal edges come from removed nodes: Chow-Liu tree or naive edges; an exact "
+         "clique is drawn from its first node to each other.</p></aside>\n";
+}
+
+std::string Num(double v, const char* fmt = "%.3g") {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), fmt, v);
+  return buf;
+}
+
+/// "mean ± std"; published figures keep their digits ("%g"), ours get three.
+std::string PlusMinus(double mean, double std, const char* fmt = "%.3g") {
+  return Num(mean, fmt) + " &plusmn; " + Num(std, fmt);
+}
+
+/// Published relation errors next to this run's, and the other published notes.
+std::string Reference(const ReportPage& page) {
+  if (!page.reference) return "";
+  const ReferenceFigures& r = *page.reference;
+  std::ostringstream h;
+  h << "<h2 id=\"published\">Published figures: " << HtmlEscape(r.dataset) << "</h2>\n";
+  if (!r.relation_errors.empty()) {
+    h << "<table><tr><th>method</th><th>translation [m]</th><th>rotation [deg]</th>"
+         "<th>relations</th><th>source</th></tr>\n";
+    for (const PublishedRelationError& e : r.relation_errors) {
+      h << "<tr><td>" << HtmlEscape(e.method) << "</td><td>"
+        << PlusMinus(e.trans_mean_m, e.trans_std_m, "%g") << "</td><td>"
+        << (e.rot_mean_deg ? PlusMinus(*e.rot_mean_deg, e.rot_std_deg.value_or(0.0), "%g")
+                           : "&ndash;")
+        << "</td><td>whole log</td><td>" << HtmlEscape(e.citation) << "</td></tr>\n";
+    }
+    for (const std::string& m : OrderedModes(page.summary, page.mode_order)) {
+      const auto& rel = page.summary.modes.at(m).relations;
+      if (!rel) continue;
+      h << "<tr><td><span class=\"swatch\" style=\"background:" << ModeColourHex(m)
+        << "\"></span><b>" << HtmlEscape(m) << "</b> (this run)</td><td>"
+        << PlusMinus(rel->trans_mean_m, rel->trans_std_m) << "</td><td>"
+        << PlusMinus(rel->rot_mean_deg, rel->rot_std_deg) << "</td><td>" << rel->count
+        << "</td><td>this report</td></tr>\n";
+    }
+    h << "</table>\n<p class=\"note\">Mean &plusmn; standard deviation of the relation error "
+         "(Kümmerle et al. 2009); "
+      << HtmlEscape(r.scope) << ".</p>\n";
+  }
+  if (!r.notes.empty()) {
+    h << "<ul>\n";
+    for (const std::string& n : r.notes) h << "<li>" << HtmlEscape(n) << "</li>\n";
+    h << "</ul>\n";
+  }
+  return h.str();
+}
+
+std::string Files(const ReportPage& page) {
+  std::ostringstream h;
+  h << "<h2 id=\"files\">Files</h2>\n<ul class=\"files\">\n";
+  for (const ReportLinkGroup& g : page.files) {
+    h << "<li><b>" << HtmlEscape(g.name) << "</b>: ";
+    for (const ReportLink& l : g.links) {
+      h << "<a href=\"" << HtmlEscape(l.path) << "\">" << HtmlEscape(l.label) << "</a>";
+    }
+    h << "</li>\n";
+  }
+  return h.str() + "</ul>\n";
+}
+
+std::string Provenance(const ReportPage& page) {
+  const std::string machine = page.machine.empty() ? CpuModelName() : page.machine;
+  std::ostringstream h;
+  h << "<h2 id=\"provenance\">Provenance</h2>\n<dl class=\"prov\">\n"
+    << "<dt>program</dt><dd>lifelong " << HtmlEscape(page.build.version) << "</dd>\n"
+    << "<dt>commit</dt><dd><code>" << HtmlEscape(page.build.commit) << "</code></dd>\n"
+    << "<dt>command</dt><dd><code>" << HtmlEscape(page.command_line) << "</code></dd>\n";
+  if (!page.working_dir.empty()) {
+    h << "<dt>run in</dt><dd><code>" << HtmlEscape(page.working_dir) << "</code></dd>\n";
+  }
+  h << "<dt>machine</dt><dd>" << HtmlEscape(machine) << "</dd>\n";
+  if (!page.written_utc.empty()) {
+    h << "<dt>written</dt><dd>" << HtmlEscape(page.written_utc) << "</dd>\n";
+  }
+  return h.str() + "</dl>\n";
+}
+
+std::string Header(const ReportPage& page) {
+  const RunSummary& s = page.summary;
+  std::ostringstream h;
+  h << "<h1>" << HtmlEscape(page.title) << "</h1>\n<p class=\"lead\">source <code>"
+    << HtmlEscape(s.source) << "</code>";
+  if (s.seed) h << ", seed " << *s.seed;
+  if (s.log_duration_s) h << ", " << Num(*s.log_duration_s, "%.0f") << " s of data";
+  h << ", " << Num(s.wall_time_s, "%.1f") << " s wall time; modes ";
+  const std::vector<std::string> modes = OrderedModes(s, page.mode_order);
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    h << (i ? ", " : "") << "<span class=\"swatch\" style=\"background:" << ModeColourHex(modes[i])
+      << "\"></span>" << HtmlEscape(modes[i]);
+  }
+  h << "</p>\n<nav><a href=\"#summary\">Summary</a>";
+  if (page.reference) h << "<a href=\"#published\">Published figures</a>";
+  h << "<a href=\"#plots\">Plots</a><a href=\"#maps\">Maps</a><a href=\"#graphs\">Graphs</a>"
+       "<a href=\"#files\">Files</a><a href=\"#provenance\">Provenance</a></nav>\n";
+  return h.str();
+}
+
+}  // namespace
+
+std::string ReportHtmlText(const ReportPage& page) {
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+    << HtmlEscape(page.title) << "</title>\n<style>" << kCss << "</style></head><body>\n"
+    << Header(page) << "<h2 id=\"summary\">Summary</h2>\n"
+    << SummaryTableHtml(page.summary, page.mode_order) << Reference(page);
+  h << "<h2 id=\"plots\">Runtime and graph size</h2>\n<div class=\"row plots\">\n"
+    << Figures(page.figures) << "</div>\n";
+  h << "<h2 id=\"maps\">Maps</h2>\n";
+  if (!page.maps_note.empty()) h << "<p class=\"note\">" << HtmlEscape(page.maps_note) << "</p>\n";
+  h << "<div class=\"with-legend\">" << Legend(page) << "<div class=\"row maps\">\n"
+    << Figures(page.map_figures) << "</div></div>\n";
+  h << "<h2 id=\"graphs\">Graphs</h2>\n<div class=\"with-legend\">" << Legend(page)
+    << "<div class=\"row maps\">\n"
+    << Figures(page.graph_figures) << "</div></div>\n";
+  h << Files(page) << Provenance(page) << "</body></html>\n";
+  return h.str();
+}
+
+void WriteReportHtml(const std::string& path, const ReportPage& page) {
+  WriteFileAtomically(path, ReportHtmlText(page));
+}
+
+}  // namespace lifelong::eval

@@ -1,0 +1,196 @@
+#include "eval/report_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "eval/html.hpp"
+#include "eval/mode_colors.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kKiB = 1.0 / 1024.0;
+
+const char kRuntime[] = "Runtime";
+const char kGraph[] = "Graph and memory";
+const char kAccuracy[] = "Accuracy";
+const char kMap[] = "Map quality";
+
+/// The value of a row for a mode, scaled; absent when the mode has no such figure.
+std::optional<double> Value(const json& mode, const TableRow& row, bool* is_integer) {
+  const json::json_pointer ptr(row.pointer);
+  if (!mode.contains(ptr) || !mode.at(ptr).is_number()) return std::nullopt;
+  const json& v = mode.at(ptr);
+  *is_integer = v.is_number_integer() && row.scale == 1.0;
+  return v.get<double>() * row.scale;
+}
+
+std::string Cell(const json& mode, const TableRow& row, const std::optional<double>& base) {
+  bool is_integer = false;
+  const std::optional<double> v = Value(mode, row, &is_integer);
+  if (!v) return "<td class=\"na\">&ndash;</td>";
+  std::string html = "<td>" + FormatValue(*v, is_integer);
+  if (row.ratio && base && *base != 0.0) {
+    html += " <span class=\"ratio\">" + FormatRatio(*v / *base) + "</span>";
+  }
+  return html + "</td>";
+}
+
+}  // namespace
+
+const std::vector<TableRow>& SummaryTableRows() {
+  static const std::vector<TableRow> rows = {
+      {kRuntime, "/observations", "observations", "", 1, false,
+       "scans taken as graph nodes (the robot moved or turned enough since the last one)"},
+      {kRuntime, "/wall_time_s", "mapper time", "s", 1, true,
+       "time spent in the mapper over the whole stream, the final optimization included"},
+      {kRuntime, "/time_per_obs_ms/mean", "time per observation, mean", "ms", 1, true,
+       "mapper time per observation, mean over all observations (seed Figs. 6.1-6.4)"},
+      {kRuntime, "/time_per_obs_ms/p50", "time per observation, median", "ms", 1, true,
+       "50th percentile of the time per observation"},
+      {kRuntime, "/time_per_obs_ms/p95", "time per observation, 95th percentile", "ms", 1, true,
+       "95th percentile of the time per observation"},
+      {kRuntime, "/time_per_obs_ms/max", "time per observation, maximum", "ms", 1, true,
+       "the slowest observation"},
+      {kRuntime, "/time_per_obs_ms/first_pass_mean", "time per observation, first pass", "ms", 1,
+       true, "mean over the first pass (first forth-and-back cycle, or every tour place once)"},
+      {kRuntime, "/time_per_obs_ms/last10_mean", "time per observation, last 10 %", "ms", 1, true,
+       "mean over the last tenth of the observations: the cost once the area is mapped"},
+      {kGraph, "/nodes_final", "nodes, final", "", 1, true, "graph nodes at the end"},
+      {kGraph, "/nodes_max", "nodes, maximum", "", 1, true, "most graph nodes at any time"},
+      {kGraph, "/nodes_after_first_pass", "nodes after the first pass", "", 1, true,
+       "graph nodes when the first pass ended: the size of the mapped area in nodes"},
+      {kGraph, "/edges_final", "edges, final", "", 1, true,
+       "graph edges at the end; a dense clique over m nodes counts m(m-1)/2"},
+      {kGraph, "/edges_max", "edges, maximum", "", 1, true, "most graph edges at any time"},
+      {kGraph, "/edges_by_kind/odometry", "odometry edges", "", 1, false,
+       "final factors from incremental scan matching"},
+      {kGraph, "/edges_by_kind/loop", "loop-closure edges", "", 1, false,
+       "final factors from accepted loop closures"},
+      {kGraph, "/edges_by_kind/marginal", "marginal edges", "", 1, false,
+       "final factors made by marginalizing nodes out (Chow-Liu tree or naive composition)"},
+      {kGraph, "/edges_by_kind/clique_pairs", "exact-clique pairs", "", 1, false,
+       "node pairs of the dense clique factors left by exact marginalization"},
+      {kGraph, "/edges_by_kind/prior", "prior edges", "", 1, false, "final unary-like factors"},
+      {kGraph, "/gamma_final", "gamma index, final", "", 1, false,
+       "e / (v(v-1)/2): 0 for no edges, 1 for a complete graph (seed eq. 6.1)"},
+      {kGraph, "/scans_kept_pct", "scans kept", "%", 1, false,
+       "final nodes as a share of the observations"},
+      {kGraph, "/peak_rss_mb", "peak resident memory", "MiB", 1, true,
+       "the process's peak RSS while this mode ran, the observation stream included"},
+      {kGraph, "/graph_bytes_final", "graph memory, final", "KiB", kKiB, true,
+       "bytes held by the graph's nodes, edges and cliques at the end"},
+      {kAccuracy, "/ate_rmse_m", "ATE RMSE", "cm", 100, true,
+       "RMS position error of every scan's pose after the best rigid alignment to the truth"},
+      {kAccuracy, "/loop_precision", "loop-closure precision", "%", 100, false,
+       "share of accepted loop closures within 0.3 m and 5 deg of the true relative pose"},
+      {kAccuracy, "/loop_recall", "loop-closure recall", "%", 100, false,
+       "share of revisits (1 m, 30 deg of an older node) with a correct loop closure"},
+      {kAccuracy, "/relations/count", "relations used", "", 1, false,
+       "relations of the --relations file whose two stamps fall on scans of the log"},
+      {kAccuracy, "/relations/trans_mean_m", "relation error, translation, mean", "m", 1, true,
+       "Kümmerle et al. 2009: translation of the estimated vs the true relative pose, mean"},
+      {kAccuracy, "/relations/trans_std_m", "relation error, translation, std", "m", 1, true,
+       "standard deviation of the translational relation error"},
+      {kAccuracy, "/relations/rot_mean_deg", "relation error, rotation, mean", "deg", 1, true,
+       "rotation of the estimated vs the true relative pose, mean"},
+      {kAccuracy, "/relations/rot_std_deg", "relation error, rotation, std", "deg", 1, true,
+       "standard deviation of the rotational relation error"},
+      {kAccuracy, "/kld/count", "marginalizations", "", 1, false,
+       "nodes marginalized out (rows of marginalizations.csv)"},
+      {kAccuracy, "/kld/mean", "KL divergence, mean", "nats", 1, false,
+       "KL divergence of each approximate clique from the exact marginal, mean (0: exact)"},
+      {kAccuracy, "/kld/max", "KL divergence, maximum", "nats", 1, false,
+       "the largest KL divergence of one marginalization"},
+      {kMap, "/blur/mean_cm", "blur, mean", "cm", 1, true,
+       "distance of the aligned map's occupied cells (p >= 0.65) to the nearest true wall"},
+      {kMap, "/blur/p95_cm", "blur, 95th percentile", "cm", 1, true,
+       "95th percentile of that distance"},
+      {kMap, "/blur/thickness", "wall thickness", "cells/m", 1, true,
+       "occupied cells per metre of true wall (thick, blurred walls score high)"},
+      {kMap, "/blur/recall", "wall recall", "%", 100, false,
+       "true-wall cells within 8 m of the path with an occupied cell within 1.5 cells"},
+      {kMap, "/map_entropy_bits", "map entropy", "bits", 1, true,
+       "sum of the binary entropy H(p) over the known cells (seed eq. 5.8)"},
+      {kMap, "/occupied_share", "occupied share", "%", 100, false, "known cells with p >= 0.65"},
+  };
+  return rows;
+}
+
+std::string FormatValue(double value, bool is_integer) {
+  char buf[64];
+  if (is_integer || std::fabs(value) >= 1000.0) {
+    std::snprintf(buf, sizeof(buf), "%.0f", value);
+  } else {
+    std::snprintf(buf, sizeof(buf), "%.3g", value);
+  }
+  return buf;
+}
+
+std::string FormatRatio(double ratio) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), ratio >= 100.0 ? "%.0f" : "%.2g", ratio);
+  return std::string(buf) + "\u00d7";
+}
+
+std::vector<std::string> OrderedModes(const RunSummary& summary,
+                                      const std::vector<std::string>& mode_order) {
+  std::vector<std::string> out;
+  for (const std::string& m : mode_order) {
+    if (summary.modes.count(m) && std::find(out.begin(), out.end(), m) == out.end()) {
+      out.push_back(m);
+    }
+  }
+  for (const auto& [name, mode] : summary.modes) {
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  }
+  return out;
+}
+
+std::string SummaryTableHtml(const RunSummary& summary,
+                             const std::vector<std::string>& mode_order) {
+  const std::vector<std::string> modes = OrderedModes(summary, mode_order);
+  const json all = json::parse(SummaryJsonText(summary))["modes"];
+  std::string head = "<tr><th>figure</th><th>unit</th>";
+  for (const std::string& m : modes) {
+    head += "<th><span class=\"swatch\" style=\"background:" + ModeColourHex(m) + "\"></span>" +
+            HtmlEscape(m) + "</th>";
+  }
+  head += "<th>definition</th></tr>\n";
+  std::string body;
+  const char* group = "";
+  const std::size_t columns = modes.size() + 3;
+  for (const TableRow& row : SummaryTableRows()) {
+    bool any = false, is_integer = false;
+    for (const std::string& m : modes) any = any || Value(all.at(m), row, &is_integer).has_value();
+    if (!any) continue;  // a row no mode has: left out
+    if (std::string(group) != row.group) {
+      group = row.group;
+      body += "<tr class=\"group\"><th colspan=\"" + std::to_string(columns) + "\">" +
+              std::string(group) + "</th></tr>\n";
+    }
+    const std::optional<double> base = Value(all.at(modes.front()), row, &is_integer);
+    body += "<tr><td>" + std::string(row.label) + "</td><td class=\"unit\">" + row.unit + "</td>";
+    for (const std::string& m : modes) {
+      body += Cell(all.at(m), row, m == modes.front() ? std::nullopt : base);
+    }
+    body += "<td class=\"def\">" + HtmlEscape(row.definition) + "</td></tr>\n";
+  }
+  std::string note;
+  if (!modes.empty()) {
+    note =
+        "<p class=\"note\">Grey &times; figures: the mode's value divided by the baseline's, <b>" +
+        HtmlEscape(modes.front()) +
+        "</b> (the first mode of <code>--modes</code>), where a ratio means something. "
+        "&ndash; : the figure does not apply to that mode.</p>\n";
+  }
+  return "<table class=\"summary\">\n" + head + body + "</table>\n" + note;
+}
+
+}  // namespace lifelong::eval

@@ -1,0 +1,43 @@
+// One colour per mode (eval/mode_colors.hpp): fixed for the known modes, distinct, and a
+// stable fallback for names it does not know.
+#include "eval/mode_colors.hpp"
+
+#include <set>
+#include <string>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+namespace lifelong::eval {
+namespace {
+
+std::tuple<int, int, int> Key(const render::Rgb& c) { return {c.r, c.g, c.b}; }
+
+TEST(ModeColoursTest, KnownModesHaveDistinctFixedColours) {
+  const char* known[] = {"standard",     "pruned",     "pruned-exact",
+                         "pruned-naive", "pruned-glc", "pruned-nfr"};
+  std::set<std::tuple<int, int, int>> seen;
+  for (const char* m : known) seen.insert(Key(ModeColour(m)));
+  EXPECT_EQ(seen.size(), 6u);
+  EXPECT_EQ(ModeColourHex("standard"), "#1f77b4");  // the seed's blue ...
+  EXPECT_EQ(ModeColourHex("pruned"), "#d62728");    // ... and red
+}
+
+TEST(ModeColoursTest, UnknownModesGetAStableColourUnlikeTheKnownOnes) {
+  EXPECT_EQ(ModeColourHex("pruned-something-new"), ModeColourHex("pruned-something-new"));
+  const std::set<std::string> known = {ModeColourHex("standard"),     ModeColourHex("pruned"),
+                                       ModeColourHex("pruned-exact"), ModeColourHex("pruned-naive"),
+                                       ModeColourHex("pruned-glc"),   ModeColourHex("pruned-nfr")};
+  std::set<std::string> fallback;
+  for (const char* m : {"a", "b", "c", "d", "e", "f", "g", "h", "x-1", "x-2", "y", "z"}) {
+    const std::string hex = ModeColourHex(m);
+    EXPECT_EQ(known.count(hex), 0u) << m;
+    fallback.insert(hex);
+  }
+  EXPECT_GT(fallback.size(), 1u);  // not one colour for every unknown name
+}
+
+TEST(ModeColoursTest, HexIsLowerCaseRrggbb) { EXPECT_EQ(HexColour({255, 0, 16}), "#ff0010"); }
+
+}  // namespace
+}  // namespace lifelong::eval

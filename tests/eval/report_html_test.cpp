@@ -1,0 +1,172 @@
+// report.html (eval/report_html.hpp) and what it gathers from an output directory
+// (eval/report_files.hpp): captions, full size on click, the legend in the palette's
+// colours, one display scale for all maps, links only to files that exist, provenance.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "eval/draw.hpp"
+#include "eval/mode_colors.hpp"
+#include "eval/report_files.hpp"
+#include "eval/report_html.hpp"
+#include "render/palette.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::size_t Count(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+  return n;
+}
+
+ReportPage Page() {
+  ReportPage page;
+  page.summary.source = "a<b>.yaml";
+  page.summary.modes["standard"].observations = 4;
+  page.summary.modes["pruned"].observations = 4;
+  page.summary.modes["pruned"].relations = RelationsSummary{12, 0.025, 0.02, 1.0, 2.0};
+  page.mode_order = {"standard", "pruned"};
+  page.command_line = "lifelong run x.yaml --modes standard,pruned";
+  page.working_dir = "/home/me";
+  page.machine = "Test CPU";
+  page.build = {"0.1.0", "abc1234-dirty"};
+  page.figures = {{"time_per_obs.png", "Time per observation.", 0, 0}};
+  page.map_figures = {{"truth/map.png", "Ground truth.", 450, 150},
+                      {"standard/map.png", "standard map.", 450, 150}};
+  page.graph_figures = {{"graph_standard.png", "standard graph.", 450, 150}};
+  page.true_path_in_maps = true;
+  page.files = {{"standard", {{"timeline.csv", "standard/timeline.csv"}}}};
+  return page;
+}
+
+TEST(ReportHtmlTest, EveryFigureHasACaptionAndOpensFullSize) {
+  const std::string html = ReportHtmlText(Page());
+  EXPECT_EQ(Count(html, "<figure>"), 4u);
+  EXPECT_EQ(Count(html, "<figcaption>"), 4u);
+  EXPECT_NE(html.find("<a href=\"standard/map.png\"><img src=\"standard/map.png\""),
+            std::string::npos);
+  EXPECT_NE(html.find("width=\"450\" height=\"150\""), std::string::npos);
+  EXPECT_NE(html.find("<figcaption>Time per observation.</figcaption>"), std::string::npos);
+  EXPECT_NE(html.find("a&lt;b&gt;.yaml"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);  // offline, no scripts
+  EXPECT_EQ(html.find("http"), std::string::npos);
+}
+
+TEST(ReportHtmlTest, LegendUsesThePaletteAndModesTheirColours) {
+  const std::string html = ReportHtmlText(Page());
+  for (slam::EdgeKind k :
+       {slam::EdgeKind::kOdometry, slam::EdgeKind::kLoop, slam::EdgeKind::kMarginal}) {
+    EXPECT_NE(html.find("background:" + HexColour(render::EdgeColour(k))), std::string::npos);
+  }
+  EXPECT_NE(html.find("background:" + HexColour(render::kTrueTrajectory) + "\"></span>true"),
+            std::string::npos);
+  EXPECT_EQ(Count(html, "<aside class=\"legend\">"), 2u);  // beside the maps and the graphs
+  EXPECT_NE(html.find("background:" + ModeColourHex("pruned")), std::string::npos);
+}
+
+TEST(ReportHtmlTest, ProvenanceAndFiles) {
+  const std::string html = ReportHtmlText(Page());
+  EXPECT_NE(html.find("lifelong 0.1.0"), std::string::npos);
+  EXPECT_NE(html.find("<code>abc1234-dirty</code>"), std::string::npos);
+  EXPECT_NE(html.find("lifelong run x.yaml --modes standard,pruned"), std::string::npos);
+  EXPECT_NE(html.find("/home/me"), std::string::npos);
+  EXPECT_NE(html.find("Test CPU"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"standard/timeline.csv\">timeline.csv</a>"), std::string::npos);
+}
+
+TEST(ReportHtmlTest, PublishedFiguresBesideThisRunsWhenKnown) {
+  ReportPage page = Page();
+  EXPECT_EQ(ReportHtmlText(page).find("Published figures:"), std::string::npos);
+  page.reference = FindReferenceFigures("intel.relations", "intel-raw.clf.gz");
+  const std::string html = ReportHtmlText(page);
+  EXPECT_NE(html.find("Published figures: Intel Research Lab"), std::string::npos);
+  EXPECT_NE(html.find("<td>Graph mapping</td><td>0.031 &plusmn; 0.026</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>Cartographer</td><td>0.0229 &plusmn; 0.0239</td>"), std::string::npos);
+  EXPECT_NE(html.find("<b>pruned</b> (this run)</td><td>0.025 &plusmn; 0.02</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("29 % of the scans"), std::string::npos);
+}
+
+fs::path OutDir() {
+  const fs::path d = fs::temp_directory_path() / "lifelong_eval_report_files";
+  fs::remove_all(d);
+  for (const char* sub : {"standard", "pruned", "truth"}) fs::create_directories(d / sub);
+  return d;
+}
+
+void Touch(const fs::path& p) { std::ofstream(p) << "x\n"; }
+
+void Png(const fs::path& p, int w, int h) {
+  WritePng(p.string(), Image{w, h, std::vector<std::uint8_t>(3u * w * h, 255)});
+}
+
+TEST(ReportFilesTest, LinksOnlyFilesThatExistAndPlotsInTheSeedsOrder) {
+  const fs::path dir = OutDir();
+  for (const char* f : {"config.yaml", "standard/timeline.csv", "standard/graph.g2o",
+                        "pruned/timeline.csv", "pruned/marginalizations.csv"}) {
+    Touch(dir / f);
+  }
+  Png(dir / "nodes.png", 8, 5);
+  Png(dir / "time_per_obs.png", 8, 5);
+  Png(dir / "memory.png", 8, 5);
+  ReportPage page = Page();
+  ReportContext c;
+  c.out_dir = dir.string();
+  c.mode_order = {"standard", "pruned"};
+  CompleteReportPage(c, &page);
+  std::vector<std::string> plots;
+  for (const ReportFigure& f : page.figures) plots.push_back(f.path);
+  EXPECT_EQ(plots, (std::vector<std::string>{"time_per_obs.png", "nodes.png", "memory.png"}));
+  for (const ReportFigure& f : page.figures) EXPECT_FALSE(f.caption.empty()) << f.path;
+  std::set<std::string> links;
+  for (const ReportLinkGroup& g : page.files)
+    for (const ReportLink& l : g.links) links.insert(l.path);
+  EXPECT_EQ(links, (std::set<std::string>{"summary.json", "config.yaml", "standard/timeline.csv",
+                                          "standard/graph.g2o", "pruned/timeline.csv",
+                                          "pruned/marginalizations.csv"}));
+  EXPECT_FALSE(page.reference.has_value());
+  EXPECT_FALSE(page.build.commit.empty());
+  EXPECT_FALSE(page.written_utc.empty());
+}
+
+// All maps are shown at one factor: the largest fits 900 x 640 px, the others keep scale.
+TEST(ReportFilesTest, MapsTruthFirstAtOneDisplayScale) {
+  const fs::path dir = OutDir();
+  Png(dir / "truth" / "map.png", 1800, 400);
+  Png(dir / "standard" / "map.png", 1800, 400);
+  Png(dir / "pruned" / "map.png", 900, 200);
+  Png(dir / "graph_pruned.png", 900, 200);
+  ReportPage page = Page();
+  page.maps = {{"standard", "standard/map.png"}, {"pruned", "pruned/map.png"}};
+  ReportContext c;
+  c.out_dir = dir.string();
+  c.mode_order = {"pruned", "standard"};
+  c.truth_frame = true;
+  CompleteReportPage(c, &page);
+  ASSERT_EQ(page.map_figures.size(), 3u);
+  EXPECT_EQ(page.map_figures[0].path, "truth/map.png");
+  EXPECT_EQ(page.map_figures[1].path, "pruned/map.png");  // run order
+  EXPECT_EQ(page.map_figures[0].width_px, 900);
+  EXPECT_EQ(page.map_figures[0].height_px, 200);
+  EXPECT_EQ(page.map_figures[1].width_px, 450);
+  ASSERT_EQ(page.graph_figures.size(), 1u);
+  EXPECT_EQ(page.graph_figures[0].width_px, 450);
+  EXPECT_TRUE(page.true_path_in_maps);
+  EXPECT_NE(page.maps_note.find("shown here at 50 %"), std::string::npos) << page.maps_note;
+}
+
+TEST(ReportFilesTest, PngSizeReadsTheHeader) {
+  const fs::path dir = OutDir();
+  Png(dir / "a.png", 17, 9);
+  EXPECT_EQ(PngSize((dir / "a.png").string()), (std::pair<int, int>{17, 9}));
+  Touch(dir / "b.png");
+  EXPECT_EQ(PngSize((dir / "b.png").string()), (std::pair<int, int>{0, 0}));
+  EXPECT_EQ(PngSize((dir / "none.png").string()), (std::pair<int, int>{0, 0}));
+}
+
+}  // namespace
+}  // namespace lifelong::eval

@@ -17,6 +17,7 @@
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
 #include "io/graph_file.hpp"
+#include "lifelong_build_info.hpp"  // generated: LIFELONG_VERSION, LIFELONG_COMMIT
 #include "sensor/input_error.hpp"
 #include "slam/optimizer.hpp"
 
@@ -105,6 +106,7 @@ int main(int argc, char** argv) {
   CLI::App app{"lifelong: a testbed for life-long graph-based 2D laser SLAM"};
   app.require_subcommand(1);
   app.option_defaults()->always_capture_default();
+  app.set_version_flag("--version", "lifelong " LIFELONG_VERSION " (commit " LIFELONG_COMMIT ")");
   const std::string command_line = CommandLine(argc, argv);
 
   lifelong::apps::RunArgs run_args;

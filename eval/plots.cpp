@@ -73,7 +73,7 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
     std::ofstream gp(script);
     const int height = f.panels.size() > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
     gp << "set terminal " << terminal << " noenhanced size " << c.width_px << "," << height
-       << "\nset output " << GpQuote(png.string() + ".tmp") << "\n"
+       << "\nset output " << GpQuote(f.name + ".png.tmp") << "\n"
        << "set xlabel " << GpQuote(f.xlabel) << "\nset grid\nset key top left\n";
     if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
     for (const Panel& panel : f.panels) {
@@ -82,7 +82,9 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
       int i = 0;
       for (const auto& [mode, file] : data_files) {
         gp << (i++ ? ", \\\n     " : "")
-           << panel.clauses(GpQuote(ModeColourHex(mode)), GpQuote(file), GpQuote(mode));
+           << panel.clauses(GpQuote(ModeColourHex(mode)),
+                            GpQuote(fs::path(file).lexically_relative(out_dir).string()),
+                            GpQuote(mode));
       }
       gp << "\n";
     }
@@ -93,8 +95,11 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
     }
   }
   const fs::path log = fs::path(out_dir) / "plot_data" / (f.name + ".log");
-  const std::string cmd =
-      ShellQuote(c.gnuplot) + " " + ShellQuote(script.string()) + " 2> " + ShellQuote(log.string());
+  // Paths in the script are relative to out_dir, so that plot_data/ can re-make a figure
+  // wherever the directory is moved (a run is written in a staging directory and renamed).
+  const std::string cmd = "cd " + ShellQuote(out_dir) + " && " + ShellQuote(c.gnuplot) + " " +
+                          ShellQuote("plot_data/" + f.name + ".gp") + " 2> " +
+                          ShellQuote("plot_data/" + f.name + ".log");
   const int status = std::system(cmd.c_str());
   std::error_code ec;
   if (status != 0 || !fs::exists(png.string() + ".tmp")) {

@@ -276,6 +276,13 @@ TEST(Cli, HelpShowsEveryDefault) {
   EXPECT_NE(r.output.find("lm"), std::string::npos) << r.output;
 }
 
+TEST(Cli, VersionNamesTheVersionAndTheCommit) {
+  const Result r = Lifelong("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_TRUE(std::regex_search(r.output, std::regex(R"(^lifelong \d+\.\d+\.\d+ \(commit \S+\))")))
+      << r.output;
+}
+
 TEST(Cli, UnknownCommandsAndBadValuesAreNamedReadably) {
   Result r = Lifelong("foo");
   EXPECT_EQ(r.code, 2);

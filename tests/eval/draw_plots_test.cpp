@@ -170,6 +170,25 @@ TEST(PlotsTest, EachModeKeepsItsColourInEveryRun) {
   }
 }
 
+// A run is written into a staging directory and renamed: plot_data/ must still re-make its
+// figures from the final place.
+TEST(PlotsTest, ScriptsReMakeTheFiguresAfterTheDirectoryMoved) {
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path staging = fs::temp_directory_path() / "lifelong_eval_plot_staging";
+  const fs::path final_dir = fs::temp_directory_path() / "lifelong_eval_plot_final";
+  fs::remove_all(staging);
+  fs::remove_all(final_dir);
+  fs::create_directories(staging);
+  ASSERT_TRUE(PlotTimelines({{"standard", Timeline(50, 10)}}, staging.string()).ok);
+  fs::rename(staging, final_dir);
+  fs::remove(final_dir / "nodes.png");
+  const std::string cmd =
+      "cd '" + final_dir.string() +
+      "' && gnuplot plot_data/nodes.gp 2>/dev/null && mv nodes.png.tmp nodes.png";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_TRUE(fs::exists(final_dir / "nodes.png"));
+}
+
 TEST(ResourcesTest, RssIsPositiveAndPeakAtLeastCurrent) {
   const auto now = CurrentRssMb();
   const auto peak = PeakRssMb();

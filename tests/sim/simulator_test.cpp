@@ -251,7 +251,7 @@ TEST(Simulator, BigLoop10MinDrivesOneLapWithoutCollisions) {
     length += std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
   }
   EXPECT_NEAR(length, 289.0, 3.0);         // the centre line of the ring
-  EXPECT_NEAR(path.back().x, 1.25, 0.15);  // back at `sw`
+  EXPECT_NEAR(path.back().x, 46.0, 0.15);  // back at `s_mid`, where it started
   EXPECT_NEAR(path.back().y, 1.3, 0.15);
 }
 

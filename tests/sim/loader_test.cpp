@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sensor/input_error.hpp"
 #include "sim/scenario.hpp"
@@ -42,6 +45,48 @@ TEST(LoadWorld, ShippedWorldsLoad) {
   EXPECT_GE(office.places.size(), 8u);
   EXPECT_EQ(DoorSegments(office).size(), office.doors.size());
   EXPECT_GT(WallSegments(office).size(), 30u);
+}
+
+// Every YAML file in a folder of the source tree, sorted.
+std::vector<std::string> YamlFiles(const std::string& folder) {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(kDir + "/" + folder)) {
+    if (e.path().extension() == ".yaml") out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(LoadWorld, EveryShippedWorldLoads) {
+  const std::vector<std::string> files = YamlFiles("worlds");
+  EXPECT_GE(files.size(), 5u);
+  for (const std::string& f : files) {
+    const World w = LoadWorld(f);  // checks places and roadmap edges against the walls
+    EXPECT_GE(w.places.size(), 2u) << f;
+    EXPECT_FALSE(w.roadmap.empty()) << f;
+  }
+}
+
+TEST(LoadWorld, Issue16Worlds) {
+  // Seven aisles with a place at each end and in the middle cross aisle; the roadmap runs
+  // through every aisle (2 edges each) and along the three cross aisles (6 edges each).
+  const World warehouse = LoadWorld(kDir + "/worlds/warehouse.yaml");
+  EXPECT_EQ(warehouse.places.size(), 21u);
+  EXPECT_EQ(warehouse.roadmap.size(), 7u * 2u + 3u * 6u);
+  EXPECT_EQ(warehouse.boxes.size(), 3u);
+  const World corridor = LoadWorld(kDir + "/worlds/long_corridor.yaml");
+  EXPECT_EQ(corridor.doors.size(), 8u);
+  int closed_at_start = 0;
+  for (const Door& d : corridor.doors) {
+    closed_at_start += d.IsClosed(0.0);
+    EXPECT_FALSE(d.closed_intervals_s.empty()) << d.name;
+    EXPECT_LE(d.closed_intervals_s.back().second, 7200.0) << d.name;
+  }
+  EXPECT_EQ(closed_at_start, 4);  // s0, s2, s4, n6 closed; n1, n3, n4, s5 open
+  const World loop = LoadWorld(kDir + "/worlds/big_loop.yaml");
+  EXPECT_EQ(loop.places.size(), 8u);
+  EXPECT_EQ(loop.roadmap.size(), 8u);  // a ring
+  EXPECT_EQ(loop.doors.size(), 3u);
 }
 
 TEST(LoadWorld, RoomBuildsSegments) {
@@ -105,6 +150,38 @@ TEST(LoadScenario, ShippedScenariosLoad) {
   EXPECT_GT(c100.duration_s, 7200.0);
   EXPECT_LT(c100.duration_s, 9000.0);
   EXPECT_EQ(LoadScenario(kDir + "/scenarios/office_1h.yaml").duration_s, 3600.0);
+}
+
+TEST(LoadScenario, EveryShippedScenarioLoads) {
+  const std::vector<std::string> files = YamlFiles("scenarios");
+  EXPECT_GE(files.size(), 11u);
+  for (const std::string& f : files) {
+    const Scenario s = LoadScenario(f);
+    EXPECT_EQ(s.name, std::filesystem::path(f).stem().string()) << f;
+    EXPECT_GT(s.duration_s, 0.0) << f;
+  }
+}
+
+// Issue #16: each 2-hour scenario has a 10-minute twin with the same world, seed, models
+// and route type.
+TEST(LoadScenario, Issue16TwinsMatchTheirTwoHourScenarios) {
+  for (const char* name : {"warehouse", "long_corridor", "big_loop"}) {
+    const Scenario full = LoadScenario(kDir + "/scenarios/" + name + "_2h.yaml");
+    const Scenario twin = LoadScenario(kDir + "/scenarios/" + name + "_10min.yaml");
+    EXPECT_EQ(full.world_path, twin.world_path) << name;
+    EXPECT_EQ(full.seed, twin.seed) << name;
+    EXPECT_EQ(full.route.kind, twin.route.kind) << name;
+    EXPECT_EQ(full.route.one_way, twin.route.one_way) << name;
+    EXPECT_EQ(full.route.waypoints.size(), twin.route.waypoints.size()) << name;
+    EXPECT_EQ(full.route.tour_places, twin.route.tour_places) << name;
+    EXPECT_EQ(full.robot.max_speed_mps, twin.robot.max_speed_mps) << name;
+    EXPECT_EQ(full.laser.beams, twin.laser.beams) << name;
+    EXPECT_EQ(full.odometry.left_scale, twin.odometry.left_scale) << name;
+    EXPECT_GT(full.duration_s, 6900.0) << name;  // about two hours
+    EXPECT_LT(full.duration_s, 7500.0) << name;
+    EXPECT_GT(twin.duration_s, 500.0) << name;  // about ten minutes
+    EXPECT_LE(twin.duration_s, 610.0) << name;
+  }
 }
 
 InputError ScenarioError(const std::string& yaml) {

@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "sim/scenario.hpp"
 #include "tests/sim/test_worlds.hpp"
@@ -203,6 +206,53 @@ TEST(Simulator, Office5MinVisitsRoomsWithoutCollisions) {
   EXPECT_NEAR(sim.time_s(), 300.0, 0.5);
   EXPECT_GE(rooms.size(), 2u);
   EXPECT_TRUE(sim.collisions().empty());
+}
+
+// Issue #16: the ten-minute twins drive their routes to the end without touching a wall,
+// door or box (about 1.5 s each in Release).
+std::vector<Pose2> RunTwin(const std::string& name) {
+  const Scenario s = LoadScenario(kDir + "/scenarios/" + name + ".yaml");
+  Simulator sim(s);
+  Observation obs;
+  std::vector<Pose2> path;
+  while (sim.Next(&obs, nullptr)) path.push_back(*obs.T_world_robot_true);
+  EXPECT_TRUE(sim.collisions().empty()) << name << ": " << sim.collisions().front().what;
+  EXPECT_FALSE(sim.timed_out()) << name;
+  EXPECT_NEAR(sim.time_s(), s.duration_s, 0.05 * s.duration_s) << name;
+  return path;
+}
+
+TEST(Simulator, Warehouse10MinDrivesSeveralAislesWithoutCollisions) {
+  std::set<int> aisles;  // aisle j has its centre at y = 1.3 + 3.8 j; the rows span x 4..33
+  for (const Pose2& p : RunTwin("warehouse_10min")) {
+    if (p.x > 6.0 && p.x < 31.0) aisles.insert(static_cast<int>(std::lround((p.y - 1.3) / 3.8)));
+  }
+  EXPECT_GE(aisles.size(), 2u);
+}
+
+TEST(Simulator, LongCorridor10MinReachesBothEndsWithoutCollisions) {
+  double min_x = 1e9, max_x = -1e9;
+  const std::vector<Pose2> path = RunTwin("long_corridor_10min");
+  for (const Pose2& p : path) {
+    min_x = std::min(min_x, p.x);
+    max_x = std::max(max_x, p.x);
+    EXPECT_GT(p.y, 0.5);  // in the corridor (y 0 .. 2.5), never in a room
+    EXPECT_LT(p.y, 2.0);
+  }
+  EXPECT_LT(min_x, 1.2);
+  EXPECT_GT(max_x, 70.8);
+  EXPECT_NEAR(path.back().x, 1.0, 0.15);  // back at `west`
+}
+
+TEST(Simulator, BigLoop10MinDrivesOneLapWithoutCollisions) {
+  const std::vector<Pose2> path = RunTwin("big_loop_10min");
+  double length = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    length += std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
+  }
+  EXPECT_NEAR(length, 289.0, 3.0);         // the centre line of the ring
+  EXPECT_NEAR(path.back().x, 46.0, 0.15);  // back at `s_mid`, where it started
+  EXPECT_NEAR(path.back().y, 1.3, 0.15);
 }
 
 }  // namespace

@@ -20,8 +20,8 @@
 #include "eval/report.hpp"
 #include "eval/report_files.hpp"
 #include "eval/resources.hpp"
-#include "eval/staged_output.hpp"
 #include "eval/run_maps.hpp"
+#include "eval/staged_output.hpp"
 #include "eval/video.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -102,7 +102,7 @@ class ModeRunner {
 
   /// Writes <mode>/loops.csv (one row per accepted closure, with its truth when known)
   /// and the precision over the last hour of runs longer than one.
-  void WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* summary) const;
+  void WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const;
 
   /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame).
   Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
@@ -121,8 +121,9 @@ class ModeRunner {
   const std::vector<TimelineRow>& timeline() const { return timeline_; }
 };
 
-void ModeRunner::WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* summary) const {
-  std::string text = "stamp_current_s,stamp_old_s,injected,correct\n";
+void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const {
+  const std::vector<bool>& correct = truth.correct_each;
+  std::string text = "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg\n";
   const auto& loops = mapper_->loop_closures();
   const double end = timeline_.empty() ? 0.0 : timeline_.back().t_s;
   const double start = timeline_.empty() ? 0.0 : timeline_.front().t_s;
@@ -130,9 +131,14 @@ void ModeRunner::WriteLoopsCsv(const std::vector<bool>& correct, ModeSummary* su
   char line[160];
   for (std::size_t k = 0; k < loops.size(); ++k) {
     const bool known = k < correct.size();
-    std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%s\n", loops[k].stamp_current_s,
-                  loops[k].stamp_old_s, loops[k].injected ? 1 : 0,
-                  known ? (correct[k] ? "1" : "0") : "");
+    if (known) {
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%d,%.4f,%.3f\n", loops[k].stamp_current_s,
+                    loops[k].stamp_old_s, loops[k].injected ? 1 : 0, correct[k] ? 1 : 0,
+                    truth.error_m_each[k], truth.error_deg_each[k]);
+    } else {
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,,,\n", loops[k].stamp_current_s,
+                    loops[k].stamp_old_s, loops[k].injected ? 1 : 0);
+    }
     text += line;
     if (known && loops[k].stamp_current_s >= end - 3600.0) {
       ++last_hour;
@@ -180,7 +186,7 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
   if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
   if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
-  WriteLoopsCsv(lcr.correct_each, summary);
+  WriteLoopsCsv(lcr, summary);
   return T_truth_est;
 }
 
@@ -227,7 +233,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
       lv.proposed, lv.accepted, lv.rejected, lv.expired, lv.injected, lv.injected_accepted};
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
-  if (!truth) WriteLoopsCsv({}, nullptr);
+  if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
   if (!relations.empty()) {
     std::vector<Relation> rel;
     for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});

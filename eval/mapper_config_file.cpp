@@ -118,6 +118,7 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("max_window_rad", c.max_window_rad, kPositive);
   v.Ordered("min_window_rad", c.min_window_rad, "max_window_rad", c.max_window_rad);
   v.Int("neighbours_per_candidate", c.neighbours_per_candidate, 0);
+  v.Int("submap_span", c.submap_span, 0);
   v.Number("min_score", c.min_score, kUnit);
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);

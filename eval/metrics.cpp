@@ -209,6 +209,9 @@ LoopClosureResult ComputeLoopClosureStats(const std::vector<LoopClosure>& closur
                                    true_nodes[static_cast<std::size_t>(lc.j)]);
     const bool correct = Within(true_rel, lc.T_i_j, config.correct_trans_m, config.correct_rot_deg);
     r.correct_each.push_back(correct);
+    const Pose2 error = Between(true_rel, lc.T_i_j);
+    r.error_m_each.push_back(Norm(error));
+    r.error_deg_each.push_back(std::abs(error.theta) * kRadToDeg);
     if (!correct) continue;
     ++r.correct;
     const int newer = std::max(lc.i, lc.j), older = std::min(lc.i, lc.j);

@@ -102,13 +102,15 @@ struct LoopClosureConfig {
 };
 
 struct LoopClosureResult {
-  int accepted = 0;                ///< closures given
-  int correct = 0;                 ///< closures within tolerance of the true relative pose
-  int revisit_nodes = 0;           ///< nodes that are revisits by the definition above
-  int recalled_nodes = 0;          ///< revisit nodes with >= 1 correct closure to an old node
-  double precision = 0.0;          ///< correct / accepted; meaningful only when accepted > 0
-  double recall = 0.0;             ///< recalled / revisit; meaningful only when revisit_nodes > 0
-  std::vector<bool> correct_each;  ///< per closure, in the order given
+  int accepted = 0;                  ///< closures given
+  int correct = 0;                   ///< closures within tolerance of the true relative pose
+  int revisit_nodes = 0;             ///< nodes that are revisits by the definition above
+  int recalled_nodes = 0;            ///< revisit nodes with >= 1 correct closure to an old node
+  double precision = 0.0;            ///< correct / accepted; meaningful only when accepted > 0
+  double recall = 0.0;               ///< recalled / revisit; meaningful only when revisit_nodes > 0
+  std::vector<bool> correct_each;    ///< per closure, in the order given
+  std::vector<double> error_m_each;  ///< per closure: translation error, m
+  std::vector<double> error_deg_each;  ///< per closure: rotation error, deg
 };
 
 /// Precision = share of accepted closures that are correct. Recall = share of revisit

@@ -48,6 +48,27 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
     if (m <= lc.gate_chi2) candidates.push_back({id, m, node.covariance});
   }
   if (candidates.empty()) return false;
+  // One traversal only: the candidates observed within submap_span observations of the most
+  // likely one. Candidates of different visits disagree by whatever error the map still
+  // holds between them; a submap mixing them is blurred, and a closure attached to one node
+  // after matching against another visit's walls is off by that disagreement.
+  if (lc.submap_span > 0) {
+    const NodeId centre = std::min_element(candidates.begin(), candidates.end(),
+                                           [](const Candidate& a, const Candidate& b) {
+                                             return a.mahalanobis < b.mahalanobis;
+                                           })
+                              ->id;
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [&](const Candidate& c) {
+                                      return std::abs(c.id - centre) > lc.submap_span;
+                                    }),
+                     candidates.end());
+  }
+  const auto in_span = [&](NodeId n) {
+    return lc.submap_span <= 0 ||
+           std::any_of(candidates.begin(), candidates.end(),
+                       [&](const Candidate& c) { return std::abs(n - c.id) <= lc.submap_span; });
+  };
 
   // The submap: every candidate plus its graph neighbours that are not near the current node.
   std::set<NodeId> submap;
@@ -57,7 +78,7 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
     int added = 0;
     for (NodeId n : graph.Neighbours(c.id)) {
       if (added >= lc.neighbours_per_candidate) break;
-      if (!near.count(n)) {
+      if (!near.count(n) && in_span(n)) {
         submap.insert(n);
         ++added;
       }

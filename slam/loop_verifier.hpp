@@ -9,10 +9,12 @@
 //   e_ab = t2v( Z_a * T_j_l * Z_b^-1 * T_k_i ),   T_x_y = X_x^-1 X_y at the current estimate,
 //
 // which is zero for two correct closures up to their noise and the drift of the two
-// chains. They are *consistent* when e^T S^-1 e <= consistency_chi2 with
-// S = Sigma_a + Sigma_b + drift(d_jl + d_ki), drift(d) = diag(var_xy_per_m d, var_xy_per_m d,
-// var_rad_per_m d) + the base variances (Sigma rotated into the frame of i; the drift is
-// isotropic in translation, so it needs no rotation). A wrong closure into a look-alike place
+// chains. They are *consistent* when e^T S^-1 e <= consistency_chi2, where S propagates
+// the two closures' covariances and the two chains' drift through the SE(2) adjoints of the
+// cycle (first order). A chain d metres long drifts by base + var_xy_per_m d in
+// translation and base + var_rad_per_m d in heading, plus the lateral error the heading
+// walk builds up, var_rad_per_m d^3 / 3; the current-side chain's length is the path
+// travelled between j and l, the old side's the distance between k and i.
 // (the neighbouring aisle) is off by that place's offset and fails the test against correct
 // ones, while a run of wrong closures along one aliased traversal is consistent among
 // itself: that is why recently accepted closures count as evidence too.
@@ -48,9 +50,9 @@ struct LoopVerifierConfig {
   double window_m = 40.0;           ///< m of travel: accepted closures that count as evidence
   double expiry_m = 40.0;           ///< m of travel: a pending hypothesis waits this long
   double base_var_xy_m2 = 0.0025;   ///< m^2, chain variance at zero length (0.05 m)
-  double var_xy_per_m = 0.001;      ///< m^2 per m of chain (0.2 m after 40 m)
+  double var_xy_per_m = 0.0005;     ///< m^2 per m of chain (0.14 m after 40 m)
   double base_var_rad2 = 3e-4;      ///< rad^2 (1 deg)
-  double var_rad_per_m = 2e-4;      ///< rad^2 per m of chain (5 deg after 40 m)
+  double var_rad_per_m = 3e-5;      ///< rad^2 per m of chain (2 deg after 40 m)
 };
 
 struct LoopHypothesis {

@@ -50,13 +50,16 @@ struct LoopClosingConfig {
   double min_window_rad = 0.15;
   double max_window_rad = 0.5;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
-  double min_score = 0.6;            ///< a good match...
-  double max_ambiguity = 0.85;       ///< ...and an unambiguous one
-  double consistency_chi2 = 16.27;   ///< 99.9 % gate (3 dof) of the correction
-  int min_reference_points = 60;     ///< submap points the search can reach, fewer: no match
-  MatcherConfig matcher;             ///< windows are set per attempt
-  double optimize_edge_chi2 = 9.0;   ///< optimize at once when the new edge's chi2 exceeds
-  int optimize_every = 10;           ///< ...and at least every this many closures
+  /// The submap holds one visit: candidates observed within this many observations of the
+  /// most likely candidate (and their neighbours alike). 0: every candidate.
+  int submap_span = 0;
+  double min_score = 0.6;           ///< a good match...
+  double max_ambiguity = 0.85;      ///< ...and an unambiguous one
+  double consistency_chi2 = 16.27;  ///< 99.9 % gate (3 dof) of the correction
+  int min_reference_points = 60;    ///< submap points the search can reach, fewer: no match
+  MatcherConfig matcher;            ///< windows are set per attempt
+  double optimize_edge_chi2 = 9.0;  ///< optimize at once when the new edge's chi2 exceeds
+  int optimize_every = 10;          ///< ...and at least every this many closures
   /// Group verification: a closure enters the graph only once enough others confirm it
   /// (slam/loop_verifier.hpp).
   LoopVerifierConfig verify;

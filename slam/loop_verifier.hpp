@@ -14,10 +14,10 @@
 // cycle (first order). A chain d metres long drifts by base + var_xy_per_m d in
 // translation and base + var_rad_per_m d in heading, plus the lateral error the heading
 // walk builds up, var_rad_per_m d^3 / 3; the current-side chain's length is the path
-// travelled between j and l, the old side's the distance between k and i.
-// (the neighbouring aisle) is off by that place's offset and fails the test against correct
-// ones, while a run of wrong closures along one aliased traversal is consistent among
-// itself: that is why recently accepted closures count as evidence too.
+// travelled between j and l, the old side's the distance between k and i. A wrong
+// closure into a look-alike place (the neighbouring aisle) is off by that place's offset and fails
+// the test against correct ones, while a run of wrong closures along one aliased traversal is
+// consistent among itself: that is why recently accepted closures count as evidence too.
 //
 // Rule, for each new hypothesis h:
 //  1. If recently accepted closures (current node within window_m of travel before h's)

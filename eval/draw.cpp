@@ -21,7 +21,7 @@ constexpr double kSub = 16.0;
 
 /// The drawn window of the grid: cells [col0, col0 + cols) x [row0, row0 + rows).
 struct View {
-  const io::OccupancyGrid* grid = nullptr;
+  const OccupancyGrid* grid = nullptr;
   int col0 = 0, row0 = 0, cols = 0, rows = 0, scale = 1;
   cv::Point Px(double x, double y) const {
     const double c = (x - grid->origin_x_m) / grid->resolution_m - col0;
@@ -31,7 +31,7 @@ struct View {
   }
 };
 
-View MakeView(const io::OccupancyGrid& g, const DrawConfig& c) {
+View MakeView(const OccupancyGrid& g, const DrawConfig& c) {
   View v{&g, 0, 0, g.width, g.height, std::max(c.pixels_per_cell, 1)};
   if (!c.crop_to_known) return v;
   int c0 = g.width, r0 = g.height, c1 = -1, r1 = -1;
@@ -68,7 +68,7 @@ cv::Mat DrawCells(const View& v) {
   return big;
 }
 
-cv::Scalar EdgeColour(slam::EdgeKind k) {
+cv::Scalar EdgeColour(EdgeKind k) {
   const render::Rgb c = render::EdgeColour(k);
   return {static_cast<double>(c.b), static_cast<double>(c.g), static_cast<double>(c.r)};  // BGR
 }
@@ -104,26 +104,28 @@ void DrawScaleBar(cv::Mat& img, double m_per_px) {
 GraphOverlay MakeGraphOverlay(const slam::PoseGraph& graph, const slam::Values& values) {
   GraphOverlay o;
   for (const auto& [id, pose] : values) o.nodes.push_back(pose);
-  auto add = [&](slam::NodeId a, slam::NodeId b, slam::EdgeKind kind) {
+  auto add = [&](slam::NodeId a, slam::NodeId b, EdgeKind kind) {
     const auto ia = values.find(a), ib = values.find(b);
     if (ia == values.end() || ib == values.end()) return;
-    o.edges.push_back({ia->second.x, ia->second.y, ib->second.x, ib->second.y, kind});
+    o.edges.push_back({{ia->second.x, ia->second.y, ib->second.x, ib->second.y}, kind});
   };
   for (const slam::PoseEdge& e : graph.edges()) add(e.from, e.to, e.kind);
   for (const slam::CliqueFactor& c : graph.cliques())
     for (std::size_t i = 1; i < c.nodes.size(); ++i)
-      add(c.nodes[0], c.nodes[i], slam::EdgeKind::kMarginal);
+      add(c.nodes[0], c.nodes[i], EdgeKind::kMarginal);
   return o;
 }
 
-Image RenderMap(const io::OccupancyGrid& grid, const GraphOverlay& graph,
+Image RenderMap(const OccupancyGrid& grid, const GraphOverlay& graph,
                 const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
   Image out;
   if (grid.width <= 0 || grid.height <= 0) return out;
   const View v = MakeView(grid, config);
   cv::Mat img = DrawCells(v);
-  for (const GraphOverlay::Edge& e : graph.edges)
-    cv::line(img, v.Px(e.x0, e.y0), v.Px(e.x1, e.y1), EdgeColour(e.kind), 1, cv::LINE_AA, kShift);
+  for (const GraphEdge& e : graph.edges) {
+    const Segment& s = e.segment;
+    cv::line(img, v.Px(s.x0, s.y0), v.Px(s.x1, s.y1), EdgeColour(e.kind), 1, cv::LINE_AA, kShift);
+  }
   for (const Pose2& n : graph.nodes)
     cv::circle(img, v.Px(n.x, n.y), static_cast<int>(1.5 * kSub), cv::Scalar(90, 40, 0), cv::FILLED,
                cv::LINE_AA, kShift);
@@ -132,14 +134,17 @@ Image RenderMap(const io::OccupancyGrid& grid, const GraphOverlay& graph,
       cv::line(img, v.Px(t.poses[i - 1].x, t.poses[i - 1].y), v.Px(t.poses[i].x, t.poses[i].y),
                TrajectoryColour(t.kind), 1, cv::LINE_AA, kShift);
   if (config.scale_bar) DrawScaleBar(img, grid.resolution_m / v.scale);
+  cv::cvtColor(img, img, cv::COLOR_BGR2RGB);
   out.width = img.cols, out.height = img.rows;
-  out.bgr.assign(img.data, img.data + img.total() * img.elemSize());
+  out.rgb.assign(img.data, img.data + img.total() * img.elemSize());
   return out;
 }
 
 void WritePng(const std::string& path, const Image& image) {
-  const cv::Mat img(image.height, image.width, CV_8UC3,
-                    const_cast<std::uint8_t*>(image.bgr.data()));
+  const cv::Mat rgb(image.height, image.width, CV_8UC3,
+                    const_cast<std::uint8_t*>(image.rgb.data()));
+  cv::Mat img;
+  if (!rgb.empty()) cv::cvtColor(rgb, img, cv::COLOR_RGB2BGR);
   const std::filesystem::path p(path);
   const std::string tmp = (p.parent_path() / (p.stem().string() + ".tmp.png")).string();
   bool ok = false;
@@ -154,14 +159,14 @@ void WritePng(const std::string& path, const Image& image) {
   }
 }
 
-void WriteMapPng(const std::string& path, const io::OccupancyGrid& grid, const GraphOverlay& graph,
+void WriteMapPng(const std::string& path, const OccupancyGrid& grid, const GraphOverlay& graph,
                  const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
   WritePng(path, RenderMap(grid, graph, trajectories, config));
 }
 
 void WriteWorldPng(const std::string& path, const std::vector<Segment>& walls,
                    const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
-  const io::OccupancyGrid grid = RasterizeWalls(walls, config.world_resolution_m, config.margin_m);
+  const OccupancyGrid grid = RasterizeWalls(walls, config.world_resolution_m, config.margin_m);
   DrawConfig c = config;
   c.crop_to_known = false;  // every cell is known; the raster already has the margin
   WriteMapPng(path, grid, GraphOverlay{}, trajectories, c);

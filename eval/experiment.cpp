@@ -77,7 +77,7 @@ class ModeRunner {
   // Finishes the mapper, writes DIR/<mode>/... and returns the mode's summary.
   ModeSummary Finish(const std::vector<Observation>& stream,
                      const std::optional<GroundTruth>& truth,
-                     const std::vector<io::Relation>& relations, std::vector<double>* kld,
+                     const std::vector<Relation>& relations, std::vector<double>* kld,
                      std::string* map_png);
 
  private:
@@ -99,7 +99,7 @@ class ModeRunner {
   }
 
   void TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                    const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                    const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                     ModeSummary* summary, std::vector<TrajectoryOverlay>* overlays) const;
 
   slam::PruningMode mode_;
@@ -115,7 +115,7 @@ class ModeRunner {
 };
 
 void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                              const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                              const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                               ModeSummary* summary,
                               std::vector<TrajectoryOverlay>* overlays) const {
   std::vector<Pose2> true_poses;
@@ -156,7 +156,7 @@ void ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Grou
 
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                const std::optional<GroundTruth>& truth,
-                               const std::vector<io::Relation>& relations, std::vector<double>* kld,
+                               const std::vector<Relation>& relations, std::vector<double>* kld,
                                std::string* map_png) {
   const auto start = Clock::now();
   mapper_->Finish();
@@ -176,17 +176,12 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
   if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
 
-  std::vector<io::StampedPose> trajectory;
+  const std::vector<StampedPose> trajectory = m.Trajectory();
   std::vector<Pose2> estimate;
-  std::vector<StampedPose> stamped;
-  for (const slam::ScanPose& p : m.Trajectory()) {
-    trajectory.push_back({p.stamp_s, p.T_world_robot});
-    estimate.push_back(p.T_world_robot);
-    stamped.push_back({p.stamp_s, p.T_world_robot});
-  }
+  for (const StampedPose& p : trajectory) estimate.push_back(p.T_world_robot);
   io::WriteTum((dir / "trajectory.tum").string(), trajectory);
   io::WriteG2o((dir / "graph.g2o").string(), m.graph(), m.values());
-  const io::OccupancyGrid grid = ToOccupancyGrid(m.map());
+  const OccupancyGrid grid = ToOccupancyGrid(m.map());
   io::WritePgmMap((dir / "map.pgm").string(), grid);
   const EntropyResult entropy = ComputeMapEntropy(grid);
   summary.map_entropy_bits = entropy.entropy_bits;
@@ -195,9 +190,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   std::vector<TrajectoryOverlay> overlays;
   if (truth) TruthMetrics(stream, *truth, estimate, grid, &summary, &overlays);
   if (!relations.empty()) {
-    std::vector<Relation> rel;
-    for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});
-    const RelationsResult rr = ComputeRelationsError(stamped, rel);
+    const RelationsResult rr = ComputeRelationsError(trajectory, relations);
     summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
                                          rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
   }
@@ -235,7 +228,7 @@ void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth
   fs::create_directories(dir);
   io::WritePgmMap((dir / "map.pgm").string(),
                   RasterizeWalls(truth.walls, config.mapper.grid.resolution_m));
-  std::vector<io::StampedPose> poses;
+  std::vector<StampedPose> poses;
   TrajectoryOverlay path{TrajectoryKind::kTrue, {}};
   for (const Observation& o : stream) {
     poses.push_back({o.stamp_s, *o.T_world_robot_true});
@@ -306,8 +299,8 @@ std::string SummaryTable(const std::string& summary_json) {
   return out.str();
 }
 
-io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
-  io::OccupancyGrid grid;
+OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
+  OccupancyGrid grid;
   grid.resolution_m = map.resolution_m();
   const slam::CellBounds b = map.Bounds();
   if (b.empty) return grid;
@@ -316,7 +309,7 @@ io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   grid.origin_x_m = b.min.x * grid.resolution_m;
   grid.origin_y_m = b.min.y * grid.resolution_m;
   grid.p_occ.assign(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height),
-                    io::OccupancyGrid::kUnknown);
+                    OccupancyGrid::kUnknown);
   map.ForEachKnownCell([&](slam::CellIndex c, slam::CellCounts counts) {
     const double total = static_cast<double>(counts.hits) + static_cast<double>(counts.misses);
     if (total > 0.0) {
@@ -335,7 +328,7 @@ std::string RunExperiment(const std::vector<Observation>& stream,
   WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
                       "# Mapper settings of this run (lifelong --config format)\n" +
                           MapperConfigToYaml(config.mapper));
-  std::vector<io::Relation> relations;
+  std::vector<Relation> relations;
   if (config.relations_path) {
     relations = io::ReadRelations(*config.relations_path, config.relations_offset_s);
   }

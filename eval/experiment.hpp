@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
 #include "sensor/observation.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 
@@ -41,8 +41,8 @@ struct ExperimentConfig {
 /// A short table of the key figures per mode, from RunExperiment's JSON, for the console.
 std::string SummaryTable(const std::string& summary_json);
 
-/// The mapper's counting grid as an io::OccupancyGrid (p = hits / (hits + misses)).
-io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
+/// The mapper's counting grid as an OccupancyGrid (p = hits / (hits + misses)).
+OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
 
 /// Runs every mode over `stream` and writes DIR/summary.json, DIR/<mode>/..., figures and
 /// report.html. `truth` enables the ground-truth metrics. Returns the summary's JSON text.

@@ -85,7 +85,7 @@ json ModeJson(const ModeSummary& m) {
 std::map<std::string, std::int64_t> EdgesByKind(const slam::PoseGraph& graph) {
   std::map<std::string, std::int64_t> out;
   for (const slam::PoseEdge& e : graph.edges()) {
-    ++out[slam::EdgeKindName(e.kind)];
+    ++out[EdgeKindName(e.kind)];
   }
   for (const slam::CliqueFactor& c : graph.cliques()) {
     out["clique_pairs"] += static_cast<std::int64_t>(c.nodes.size() * (c.nodes.size() - 1) / 2);

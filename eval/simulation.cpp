@@ -54,13 +54,14 @@ SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progr
 }
 
 std::vector<Segment> TrueWalls(const sim::World& world) {
-  std::vector<Segment> out;
-  for (const auto& s : sim::WallSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
-  for (const auto& s : sim::DoorSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+  std::vector<Segment> out = sim::WallSegments(world);
+  const std::vector<Segment> doors = sim::DoorSegments(world);
+  out.insert(out.end(), doors.begin(), doors.end());
   // Boxes at every pose they take during the run: a map may show any of them.
   sim::World moved = world;
   for (std::size_t step = 0;; ++step) {
-    for (const auto& s : sim::BoxSegments(moved)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+    const std::vector<Segment> boxes = sim::BoxSegments(moved);
+    out.insert(out.end(), boxes.begin(), boxes.end());
     bool any = false;
     for (std::size_t b = 0; b < world.boxes.size(); ++b) {
       if (step < world.boxes[b].moves.size()) {
@@ -108,7 +109,7 @@ void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,
     while (k < run.odometry.size()) writer.WriteOdometry(run.odometry[k++]);
     writer.Close();
   }
-  std::vector<io::StampedPose> truth;
+  std::vector<StampedPose> truth;
   TrajectoryOverlay true_path{TrajectoryKind::kTrue, {}};
   TrajectoryOverlay odom_path{TrajectoryKind::kOdometry, {}};
   const Pose2 T_world_odom = run.observations.empty()

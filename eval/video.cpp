@@ -19,11 +19,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // The rendered RGB image as BGR with its labels drawn (Hershey simplex, anti-aliased).
-cv::Mat ToBgr(const render::Image& image) {
+cv::Mat ToBgr(const render::Frame& frame) {
+  const Image& image = frame.image;
   cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.rgb.data()));
   cv::Mat bgr;
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  for (const render::TextLabel& label : image.labels) {
+  for (const render::TextLabel& label : frame.labels) {
     const double scale = label.height_px / 22.0;  // simplex capitals are ~22 px at scale 1
     cv::putText(bgr, label.text, {label.x_px, label.baseline_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
                 cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
@@ -132,7 +133,7 @@ void VideoSink::Close() {
 int VideoSink::frames() const { return impl_->frames; }
 std::string VideoSink::backend_name() const { return impl_->renderer.backend_name(); }
 
-render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
+render::Panel MakePanel(const std::string& title, const OccupancyGrid& map,
                         const slam::PoseGraph& graph, const slam::Values& values,
                         const Pose2& robot_estimate, int observation) {
   render::Panel panel;
@@ -140,9 +141,7 @@ render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
   panel.map = map;
   GraphOverlay overlay = MakeGraphOverlay(graph, values);
   panel.nodes = std::move(overlay.nodes);
-  panel.edges.reserve(overlay.edges.size());
-  for (const GraphOverlay::Edge& e : overlay.edges)
-    panel.edges.push_back({{e.x0, e.y0, e.x1, e.y1}, e.kind});
+  panel.edges = std::move(overlay.edges);
   panel.robot_estimate = robot_estimate;
   panel.observation = observation;
   panel.node_count = graph.NumNodes();
@@ -153,8 +152,7 @@ render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
 render::Scene MakeScene(const std::vector<Segment>& walls, const Pose2& T_world_robot,
                         const LaserScan& scan, std::vector<render::Panel> panels) {
   render::Scene scene;
-  scene.walls.reserve(walls.size());
-  for (const Segment& w : walls) scene.walls.push_back({w.x0, w.y0, w.x1, w.y1});
+  scene.walls = walls;
   scene.robot_true = T_world_robot;
   const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {

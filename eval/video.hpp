@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
 #include "render/gl_context.hpp"
 #include "render/scene.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
 #include "slam/pose_graph.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 
@@ -58,7 +58,7 @@ class VideoSink {
 
 /// One mode's panel: the graph at `values` (a clique is drawn as marginal edges from its
 /// root, as eval::MakeGraphOverlay does), its counts, the map and the pose estimate.
-render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
+render::Panel MakePanel(const std::string& title, const OccupancyGrid& map,
                         const slam::PoseGraph& graph, const slam::Values& values,
                         const Pose2& robot_estimate, int observation);
 

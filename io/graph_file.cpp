@@ -135,8 +135,8 @@ void ReadEdge(Parsed* p, LineReader* r) {
   e.information = ReadInformation(r, p->result.format);
   r->ExpectEnd();
   if (e.from == e.to) r->Fail("to", "edge from a vertex to itself");
-  e.kind = e.to == e.from + 1 ? slam::EdgeKind::kOdometry : slam::EdgeKind::kLoop;
-  e.robust = e.kind == slam::EdgeKind::kLoop;
+  e.kind = e.to == e.from + 1 ? EdgeKind::kOdometry : EdgeKind::kLoop;
+  e.robust = e.kind == EdgeKind::kLoop;
   p->edges.push_back({e, r->line()});
 }
 

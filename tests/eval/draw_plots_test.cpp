@@ -15,11 +15,11 @@ namespace {
 namespace fs = std::filesystem;
 
 // 10 x 10 cells of 0.1 m: bottom row free, cell (5, 5) occupied, the rest unknown.
-io::OccupancyGrid SmallGrid() {
-  io::OccupancyGrid g;
+OccupancyGrid SmallGrid() {
+  OccupancyGrid g;
   g.width = g.height = 10;
   g.resolution_m = 0.1;
-  g.p_occ.assign(100, io::OccupancyGrid::kUnknown);
+  g.p_occ.assign(100, OccupancyGrid::kUnknown);
   for (int c = 0; c < 10; ++c) g.At(c, 0) = 0.0f;
   g.At(5, 5) = 1.0f;
   return g;
@@ -27,7 +27,7 @@ io::OccupancyGrid SmallGrid() {
 
 cv::Vec3b Pixel(const Image& im, int col, int row) {
   const std::size_t i = (static_cast<std::size_t>(row) * im.width + col) * 3;
-  return {im.bgr[i], im.bgr[i + 1], im.bgr[i + 2]};
+  return {im.rgb[i + 2], im.rgb[i + 1], im.rgb[i]};  // as BGR
 }
 
 DrawConfig Plain() {
@@ -47,8 +47,8 @@ TEST(DrawTest, FreeWhiteOccupiedBlackUnknownGreyWithYUp) {
 }
 
 TEST(DrawTest, CropsToKnownCellsWithMarginAndUpscales) {
-  io::OccupancyGrid g = SmallGrid();
-  std::fill(g.p_occ.begin(), g.p_occ.end(), io::OccupancyGrid::kUnknown);
+  OccupancyGrid g = SmallGrid();
+  std::fill(g.p_occ.begin(), g.p_occ.end(), OccupancyGrid::kUnknown);
   g.At(3, 3) = g.At(4, 4) = 0.0f;  // known box 2 x 2 cells
   DrawConfig c;
   c.margin_m = 0.1;  // one cell
@@ -72,19 +72,19 @@ TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
 // Edge kinds take the one palette the video frames use too (render/palette.hpp).
 TEST(DrawTest, EdgesAreDrawnInTheSharedPalette) {
   GraphOverlay graph;
-  graph.edges.push_back({0.05, 0.75, 0.95, 0.75, slam::EdgeKind::kLoop});
-  graph.edges.push_back({0.05, 0.25, 0.95, 0.25, slam::EdgeKind::kMarginal});
+  graph.edges.push_back({{0.05, 0.75, 0.95, 0.75}, EdgeKind::kLoop});
+  graph.edges.push_back({{0.05, 0.25, 0.95, 0.25}, EdgeKind::kMarginal});
   DrawConfig config = Plain();
   config.pixels_per_cell = 4;
   const Image im = RenderMap(SmallGrid(), graph, {}, config);
-  for (const auto& [row, kind] : {std::pair{10, slam::EdgeKind::kLoop},  // 40 - 0.75 * 40
-                                  std::pair{30, slam::EdgeKind::kMarginal}}) {
+  for (const auto& [row, kind] : {std::pair{10, EdgeKind::kLoop},  // 40 - 0.75 * 40
+                                  std::pair{30, EdgeKind::kMarginal}}) {
     const render::Rgb c = render::EdgeColour(kind);
     const cv::Vec3b p = Pixel(im, 20, row);
     // Anti-aliased: within a tenth of full scale of the palette colour, channel by channel.
-    EXPECT_NEAR(p[0], c.b, 25) << slam::EdgeKindName(kind);
-    EXPECT_NEAR(p[1], c.g, 25) << slam::EdgeKindName(kind);
-    EXPECT_NEAR(p[2], c.r, 25) << slam::EdgeKindName(kind);
+    EXPECT_NEAR(p[0], c.b, 25) << EdgeKindName(kind);
+    EXPECT_NEAR(p[1], c.g, 25) << EdgeKindName(kind);
+    EXPECT_NEAR(p[2], c.r, 25) << EdgeKindName(kind);
   }
 }
 

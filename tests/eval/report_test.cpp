@@ -128,11 +128,11 @@ TEST(EdgesByKindTest, CountsEachFactorByOriginAndCliquesAsPairs) {
   for (slam::NodeId id = 0; id < 4; ++id) graph.AddNode(id);
   slam::PoseEdge edge;
   edge.information = Eigen::Matrix3d::Identity();
-  edge.from = 0, edge.to = 1, edge.kind = slam::EdgeKind::kOdometry;
+  edge.from = 0, edge.to = 1, edge.kind = EdgeKind::kOdometry;
   graph.AddEdge(edge);
   edge.from = 1, edge.to = 2;
   graph.AddEdge(edge);
-  edge.from = 0, edge.to = 2, edge.kind = slam::EdgeKind::kLoop;
+  edge.from = 0, edge.to = 2, edge.kind = EdgeKind::kLoop;
   graph.AddEdge(edge);
   slam::CliqueFactor clique;
   clique.nodes = {1, 2, 3};

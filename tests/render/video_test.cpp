@@ -31,7 +31,7 @@ render::Scene SmallScene() {
   scan.angle_increment_rad = 0.5;
   scan.ranges_m = {3.0f, 2.0f, 100.0f};  // the third is no return
   scan.stamp_s = 1.5;
-  io::OccupancyGrid map;
+  OccupancyGrid map;
   map.width = map.height = 4;
   map.p_occ.assign(16, 0.0f);
   return MakeScene({{0, 5, 10, 5}}, Pose2(1, 1, 0), scan,

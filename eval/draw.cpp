@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <stdexcept>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "eval/map_quality.hpp"
+#include "io/atomic_file.hpp"
 #include "render/palette.hpp"
 
 namespace lifelong::eval {
@@ -143,20 +142,15 @@ Image RenderMap(const OccupancyGrid& grid, const GraphOverlay& graph,
 void WritePng(const std::string& path, const Image& image) {
   const cv::Mat rgb(image.height, image.width, CV_8UC3,
                     const_cast<std::uint8_t*>(image.rgb.data()));
-  cv::Mat img;
-  if (!rgb.empty()) cv::cvtColor(rgb, img, cv::COLOR_RGB2BGR);
-  const std::filesystem::path p(path);
-  const std::string tmp = (p.parent_path() / (p.stem().string() + ".tmp.png")).string();
-  bool ok = false;
-  try {
-    ok = !img.empty() && cv::imwrite(tmp, img);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot write PNG");
-  }
+  cv::Mat bgr;
+  if (!rgb.empty()) cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  io::WriteThroughTempFile(path, [&](const std::string& tmp) {  // ".png" kept for imwrite
+    try {
+      return !bgr.empty() && cv::imwrite(tmp, bgr);
+    } catch (const cv::Exception&) {
+      return false;
+    }
+  });
 }
 
 void WriteMapPng(const std::string& path, const OccupancyGrid& grid, const GraphOverlay& graph,

@@ -2,7 +2,7 @@
 // bottom row), unknown grey, free white, occupied black (grey level 255 * (1 - p)), with
 // optional overlays drawn in world coordinates: the pose graph (nodes as dots, edges
 // coloured by kind) and trajectories (true green, odometry red, estimate blue). Images are
-// written to "<stem>.tmp.png" and renamed, so a PNG that exists is whole.
+// written atomically (io/atomic_file.hpp), so a PNG that exists is whole.
 #pragma once
 
 #include <cstdint>
@@ -47,7 +47,8 @@ struct DrawConfig {
 Image RenderMap(const OccupancyGrid& grid, const GraphOverlay& graph,
                 const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config = {});
 
-/// Writes an image as PNG (atomically). Throws std::runtime_error naming the path.
+/// Writes an image as PNG (atomically). Throws InputError (a std::runtime_error) naming the
+/// path.
 void WritePng(const std::string& path, const Image& image);
 
 /// RenderMap + WritePng.

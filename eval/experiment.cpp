@@ -17,6 +17,7 @@
 #include "eval/report.hpp"
 #include "eval/resources.hpp"
 #include "eval/video.hpp"
+#include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
 #include "io/relations.hpp"
@@ -249,7 +250,7 @@ void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper) 
                   m.clique_size, m.kl_divergence, m.information_gain_bits);
     text += line;
   }
-  WriteFileAtomically(path, text);
+  io::WriteFileAtomically(path, text);
 }
 
 // Writes DIR/<mode>/sparsifications.csv: one row per edge-budget sparsification.
@@ -261,7 +262,7 @@ void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
                   s.nodes, s.edges_before, s.edges_after, s.kl_divergence);
     text += line;
   }
-  WriteFileAtomically(path, text);
+  io::WriteFileAtomically(path, text);
 }
 
 std::string Cell(const nlohmann::json& j, std::initializer_list<const char*> keys, double scale,
@@ -325,9 +326,9 @@ std::string RunExperiment(const std::vector<Observation>& stream,
   fs::create_directories(config.out_dir);
   // A summary from an earlier run must not make a failed run look complete.
   fs::remove(fs::path(config.out_dir) / "summary.json");
-  WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
-                      "# Mapper settings of this run (lifelong --config format)\n" +
-                          MapperConfigToYaml(config.mapper));
+  io::WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
+                          "# Mapper settings of this run (lifelong --config format)\n" +
+                              MapperConfigToYaml(config.mapper));
   std::vector<Relation> relations;
   if (config.relations_path) {
     relations = io::ReadRelations(*config.relations_path, config.relations_offset_s);

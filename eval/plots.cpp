@@ -4,8 +4,10 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -52,16 +54,29 @@ struct Figure {
   std::function<std::string(int, const std::string&, const std::string&)> clauses;
 };
 
+/// Writes a plot_data file atomically; a failure becomes the result's error (figures are
+/// optional, a run goes on without them).
+bool WritePlotFile(const fs::path& path, const std::string& text, PlotResult* result) {
+  try {
+    io::WriteFileAtomically(path.string(), text);
+    return true;
+  } catch (const std::exception& e) {
+    result->error = e.what();
+    return false;
+  }
+}
+
 /// Writes the script, runs gnuplot, renames the PNG into place.
 bool Render(const Figure& f, const std::map<std::string, std::string>& data_files,
             const std::string& out_dir, const std::string& terminal, const PlotConfig& c,
             PlotResult* result) {
   const fs::path png = fs::path(out_dir) / (f.name + ".png");
+  const std::string tmp = io::TempPathFor(png.string());
   const fs::path script = fs::path(out_dir) / "plot_data" / (f.name + ".gp");
   {
-    std::ofstream gp(script);
+    std::ostringstream gp;
     gp << "set terminal " << terminal << " noenhanced size " << c.width_px << "," << c.height_px
-       << "\nset output " << GpQuote(png.string() + ".tmp") << "\n"
+       << "\nset output " << GpQuote(tmp) << "\n"
        << "set xlabel " << GpQuote(f.xlabel) << "\nset ylabel " << GpQuote(f.ylabel) << "\n"
        << "set grid\nset key top left\n"
        << (f.log_y ? "set logscale y\n" : "") << "plot ";
@@ -71,24 +86,22 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
       ++i;
     }
     gp << "\n";
-    if (!gp) {
-      result->error = script.string() + ": cannot write";
-      return false;
-    }
+    if (!WritePlotFile(script, gp.str(), result)) return false;
   }
   const fs::path log = fs::path(out_dir) / "plot_data" / (f.name + ".log");
   const std::string cmd =
       ShellQuote(c.gnuplot) + " " + ShellQuote(script.string()) + " 2> " + ShellQuote(log.string());
   const int status = std::system(cmd.c_str());
   std::error_code ec;
-  if (status != 0 || !fs::exists(png.string() + ".tmp")) {
+  if (status != 0 || !fs::exists(tmp)) {
     result->error = "gnuplot failed on " + script.string() + " (see " + log.string() + ")";
-    fs::remove(png.string() + ".tmp", ec);
+    fs::remove(tmp, ec);
     return false;
   }
-  fs::rename(png.string() + ".tmp", png, ec);
-  if (ec) {
-    result->error = png.string() + ": " + ec.message();
+  try {
+    io::CommitTempFile(tmp, png.string());
+  } catch (const std::exception& e) {
+    result->error = e.what();
     return false;
   }
   result->files.push_back(png.string());
@@ -144,12 +157,13 @@ PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_
     for (const TimelineRow& row : rows) ms.push_back(row.time_ms);
     const std::vector<double> ma = MovingAverage(ms, config.moving_average);
     const fs::path p = fs::path(out_dir) / "plot_data" / ("timeline_" + SafeName(mode) + ".dat");
-    std::ofstream out(p);
+    std::ostringstream out;
     out << "# obs time_ms time_ms_moving_average nodes edges gamma\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       out << rows[i].obs << ' ' << rows[i].time_ms << ' ' << ma[i] << ' ' << rows[i].nodes << ' '
           << rows[i].edges << ' ' << rows[i].gamma << '\n';
     }
+    if (!WritePlotFile(p, out.str(), &r)) return r;
     files[mode] = p.string();
   }
   const std::string ma_label = std::to_string(config.moving_average);
@@ -184,9 +198,10 @@ PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode
   std::map<std::string, std::string> files;
   for (const auto& [mode, kl] : kl_per_mode) {
     const fs::path p = fs::path(out_dir) / "plot_data" / ("kld_" + SafeName(mode) + ".dat");
-    std::ofstream out(p);
+    std::ostringstream out;
     out << "# marginalization kl_divergence\n";
     for (std::size_t i = 0; i < kl.size(); ++i) out << i << ' ' << kl[i] << '\n';
+    if (!WritePlotFile(p, out.str(), &r)) return r;
     files[mode] = p.string();
   }
   const Figure f{"kld", "KL divergence of the approximate clique [nats]", "marginalization", false,

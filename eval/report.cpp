@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,6 +10,7 @@
 
 #include "eval/metrics.hpp"
 #include "eval/resources.hpp"
+#include "io/atomic_file.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -155,22 +155,8 @@ std::string SummaryJsonText(const RunSummary& s) {
   return j.dump(2) + "\n";
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(tmp + ": cannot write");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot rename " + tmp + " onto it");
-  }
-}
-
 void WriteSummaryJson(const std::string& path, const RunSummary& summary) {
-  WriteFileAtomically(path, SummaryJsonText(summary));
+  io::WriteFileAtomically(path, SummaryJsonText(summary));
 }
 
 void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& rows) {
@@ -185,7 +171,7 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
                   r.optimize_ms, r.nodes_removed);
     text += line;
   }
-  WriteFileAtomically(path, text);
+  io::WriteFileAtomically(path, text);
 }
 
 namespace {
@@ -312,7 +298,7 @@ std::string ReportHtmlText(const ReportPage& page) {
 }
 
 void WriteReportHtml(const std::string& path, const ReportPage& page) {
-  WriteFileAtomically(path, ReportHtmlText(page));
+  io::WriteFileAtomically(path, ReportHtmlText(page));
 }
 
 }  // namespace lifelong::eval

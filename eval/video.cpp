@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -18,18 +17,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The rendered RGB image as BGR with its labels drawn (Hershey simplex, anti-aliased).
-cv::Mat ToBgr(const render::Frame& frame) {
-  const Image& image = frame.image;
-  cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.rgb.data()));
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+// The rendered image with its labels drawn (Hershey simplex, anti-aliased; the grey text
+// blends each channel alike, so drawing it before or after the RGB -> BGR swap is the same).
+Image WithLabels(render::Frame frame) {
+  Image& image = frame.image;
+  cv::Mat rgb(image.height, image.width, CV_8UC3, image.rgb.data());
   for (const render::TextLabel& label : frame.labels) {
     const double scale = label.height_px / 22.0;  // simplex capitals are ~22 px at scale 1
-    cv::putText(bgr, label.text, {label.x_px, label.baseline_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
+    cv::putText(rgb, label.text, {label.x_px, label.baseline_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
                 cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
   }
-  return bgr;
+  return std::move(frame.image);
 }
 
 void CreateDirectories(const fs::path& dir, const std::string& what) {
@@ -39,16 +37,6 @@ void CreateDirectories(const fs::path& dir, const std::string& what) {
   if (error || !fs::is_directory(dir))
     throw std::runtime_error("cannot create " + what + " '" + dir.string() +
                              "': " + (error ? error.message() : "not a directory"));
-}
-
-void WritePngFile(const std::string& path, const cv::Mat& bgr) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, bgr);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw std::runtime_error("cannot write PNG '" + path + "'");
 }
 
 void Check(const VideoOptions& o) {
@@ -113,13 +101,18 @@ void VideoSink::AddFrame(const render::Scene& scene) {
   const std::vector<render::Bounds> now = render::ViewBounds(scene);
   if (m.views.size() != now.size()) m.views.assign(now.size(), render::Bounds{});
   for (std::size_t i = 0; i < now.size(); ++i) m.views[i].Extend(now[i]);
-  const cv::Mat bgr =
-      ToBgr(scene.view ? m.renderer.Render(scene) : m.renderer.Render(scene, m.views));
-  if (m.writer.isOpened()) m.writer.write(bgr);
+  Image image =
+      WithLabels(scene.view ? m.renderer.Render(scene) : m.renderer.Render(scene, m.views));
+  if (m.writer.isOpened()) {
+    cv::Mat bgr;
+    cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, image.rgb.data()), bgr,
+                 cv::COLOR_RGB2BGR);
+    m.writer.write(bgr);
+  }
   if (!m.options.frames_dir.empty()) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", m.frames);
-    WritePngFile((fs::path(m.options.frames_dir) / name).string(), bgr);
+    WritePng((fs::path(m.options.frames_dir) / name).string(), image);
   }
   ++m.frames;
 }
@@ -173,7 +166,7 @@ std::string WriteScenePng(const std::string& path, const render::Scene& scene, i
                           int height) {
   auto renderer = render::OffscreenRenderer::Create(width, height);
   CreateDirectories(fs::path(path).parent_path(), "directory");
-  WritePngFile(path, ToBgr(renderer.Render(scene)));
+  WritePng(path, WithLabels(renderer.Render(scene)));
   return renderer.backend_name();
 }
 

@@ -15,6 +15,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "io/atomic_file.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
@@ -310,10 +311,9 @@ void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Value
 }
 
 void WriteG2o(const std::string& path, const slam::PoseGraph& graph, const slam::Values& values) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, 0, "", "cannot open graph file for writing");
+  std::ostringstream out;
   WriteG2o(out, graph, values);
-  if (!out.flush()) throw InputError(path, 0, "", "write failed");
+  WriteFileAtomically(path, out.str());
 }
 
 void WriteToro(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values) {

@@ -12,7 +12,7 @@
 namespace lifelong::io {
 
 /// Writes stamps and positions with 6 decimals, quaternions with 9 (locale-independent),
-/// via `path + ".tmp"` renamed into place. Throws InputError when unwritable.
+/// atomically (io/atomic_file.hpp). Throws InputError when unwritable.
 void WriteTum(const std::string& path, const std::vector<StampedPose>& poses);
 
 /// Reads a TUM file back, converting each quaternion to yaw (roll and pitch ignored).

@@ -7,7 +7,9 @@
 #include "eval/draw.hpp"
 #include "eval/plots.hpp"
 #include "eval/resources.hpp"
+#include "io/atomic_file.hpp"
 #include "render/palette.hpp"
+#include "tests/io/file_size_limit.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -99,8 +101,29 @@ TEST(DrawTest, WritesAReadablePngAndNoTemporary) {
   const cv::Mat world = cv::imread((dir / "world.png").string());
   EXPECT_EQ(world.cols, static_cast<int>(std::lround((4 + 2.0) / 0.05)) + 1);
   EXPECT_FALSE(cv::imread((dir / "map.png").string()).empty());
-  EXPECT_FALSE(fs::exists(dir / "map.tmp.png"));
+  EXPECT_FALSE(fs::exists(io::TempPathFor((dir / "map.png").string())));
   EXPECT_THROW(WriteMapPng("/nonexistent_dir/map.png", SmallGrid(), {}, {}), std::runtime_error);
+}
+
+TEST(DrawTest, FailedPngWriteKeepsThePreviousPng) {
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_draw_full";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path path = dir / "map.png";
+  WriteMapPng(path.string(), SmallGrid(), {}, {});
+  const cv::Mat before = cv::imread(path.string());
+  Image noise;  // incompressible, so the PNG is larger than the limit
+  noise.width = noise.height = 256;
+  for (std::size_t i = 0; i < 256u * 256u * 3u; ++i)
+    noise.rgb.push_back(static_cast<std::uint8_t>((i * 2654435761u) >> 13));
+  {
+    const testing::FileSizeLimit limit(8 * 1024);
+    EXPECT_THROW(WritePng(path.string(), noise), std::runtime_error);
+  }
+  const cv::Mat after = cv::imread(path.string());
+  ASSERT_EQ(after.size(), before.size());
+  EXPECT_EQ(cv::norm(after, before, cv::NORM_INF), 0.0);
+  EXPECT_FALSE(fs::exists(io::TempPathFor(path.string())));
 }
 
 std::vector<TimelineRow> Timeline(int n, int growth) {
@@ -128,6 +151,7 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
   ASSERT_EQ(r.files.size(), 4u);
   for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png"}) {
     EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
+    EXPECT_FALSE(fs::exists(io::TempPathFor((dir / name).string()))) << name;
   }
   const PlotResult k = PlotKld({{"chow_liu", {0.1, 0.3, 0.2}}}, dir.string());
   EXPECT_TRUE(k.ok) << k.error;

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.hpp"
+
 namespace lifelong::eval {
 namespace {
 
@@ -95,7 +97,7 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
 
   const fs::path dir = TempDir("json");
   WriteSummaryJson((dir / "summary.json").string(), s);
-  EXPECT_FALSE(fs::exists(dir / "summary.json.tmp"));
+  EXPECT_FALSE(fs::exists(io::TempPathFor((dir / "summary.json").string())));
   const auto j = nlohmann::json::parse(ReadAll(dir / "summary.json"));
   EXPECT_EQ(Keys(j),
             (std::set<std::string>{"source", "seed", "wall_time_s", "log_duration_s", "modes"}));
@@ -155,7 +157,7 @@ TEST(SummaryJsonTest, SeedAndDurationAbsentWhenUnknown) {
 TEST(TimelineCsvTest, HeaderAndRows) {
   const fs::path p = TempDir("csv") / "timeline.csv";
   WriteTimelineCsv(p.string(), Rows(3));
-  EXPECT_FALSE(fs::exists(p.string() + ".tmp"));
+  EXPECT_FALSE(fs::exists(io::TempPathFor(p.string())));
   std::ifstream in(p);
   std::string line;
   std::getline(in, line);

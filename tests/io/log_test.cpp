@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "io/atomic_file.hpp"
 #include "io/carmen_log.hpp"
 #include "io/relations.hpp"
 #include "io/tum.hpp"
@@ -205,7 +206,7 @@ TEST(CarmenWrite, RoundTripWithinPrintedPrecision) {
   for (const std::string name : {"rt.clf", "rt.clf.gz"}) {
     const std::string path = TempPath(name);
     WriteSample(path);
-    EXPECT_FALSE(Exists(path + ".tmp"));
+    EXPECT_FALSE(Exists(TempPathFor(path)));
     const CarmenLog log = ReadCarmenLog(path);
     const std::vector<Observation> in = SampleScans();
     ASSERT_EQ(log.observations.size(), in.size());
@@ -252,10 +253,10 @@ TEST(CarmenWrite, UnclosedWriterLeavesNoFileAndBadPathThrows) {
   {
     CarmenWriter writer(path);
     writer.WriteOdometry({1.0, Pose2()});
-    EXPECT_TRUE(Exists(path + ".tmp"));
+    EXPECT_TRUE(Exists(TempPathFor(path)));
   }
   EXPECT_FALSE(Exists(path));
-  EXPECT_FALSE(Exists(path + ".tmp"));
+  EXPECT_FALSE(Exists(TempPathFor(path)));
   EXPECT_THROW(CarmenWriter(TempPath("no_such_dir/x.clf")), InputError);
 }
 

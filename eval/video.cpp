@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "eval/draw.hpp"
+#include "io/atomic_file.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sensor/input_error.hpp"
 
@@ -66,17 +68,21 @@ struct VideoSink::Impl {
   std::vector<render::Bounds> views;  // grow over the run, so the picture does not jump
   int frames = 0;
   bool closed = false;
+  std::string video_tmp;  // the mp4 is written here and renamed onto video_path by Close
+  int exceptions_at_start = std::uncaught_exceptions();
 };
 
 VideoSink::VideoSink(const VideoOptions& options) {
   Check(options);
   auto renderer = render::OffscreenRenderer::Create(options.width, options.height,
                                                     RendererFor(options.backend));
-  impl_ = std::make_unique<Impl>(Impl{options, std::move(renderer), {}, {}, 0, false});
+  impl_ = std::make_unique<Impl>(
+      Impl{options, std::move(renderer), {}, {}, 0, false, {}, std::uncaught_exceptions()});
   CreateDirectories(options.frames_dir, "frames directory");
   if (!options.video_path.empty()) {
     CreateDirectories(fs::path(options.video_path).parent_path(), "video directory");
-    impl_->writer.open(options.video_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options.fps,
+    impl_->video_tmp = io::TempPathFor(options.video_path);  // ".mp4" kept for the container
+    impl_->writer.open(impl_->video_tmp, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options.fps,
                        cv::Size(options.width, options.height), true);
     if (!impl_->writer.isOpened())
       throw std::runtime_error("cannot open video '" + options.video_path +
@@ -85,6 +91,11 @@ VideoSink::VideoSink(const VideoOptions& options) {
 }
 
 VideoSink::~VideoSink() {
+  if (std::uncaught_exceptions() > impl_->exceptions_at_start) {  // a failed run: no video
+    impl_->writer.release();
+    if (!impl_->video_tmp.empty()) std::remove(impl_->video_tmp.c_str());
+    return;
+  }
   try {
     Close();
   } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor must not throw
@@ -120,7 +131,9 @@ void VideoSink::AddFrame(const render::Scene& scene) {
 void VideoSink::Close() {
   if (impl_->closed) return;
   impl_->closed = true;
+  const bool opened = impl_->writer.isOpened();
   impl_->writer.release();
+  if (opened) io::CommitTempFile(impl_->video_tmp, impl_->options.video_path);
 }
 
 int VideoSink::frames() const { return impl_->frames; }

@@ -1,7 +1,9 @@
 // Videos of runs (issue #7): eval::VideoSink renders a render::Scene every `stride`
 // observations with render::OffscreenRenderer (EGL, else OSMesa; no display needed) and
 // writes the frames as an mp4 (cv::VideoWriter, fourcc 'mp4v') and/or as PNG files
-// DIR/frame_000000.png, ... . Titles and counters are drawn with cv::putText.
+// DIR/frame_000000.png, ... . Titles and counters are drawn with cv::putText. Every file is
+// written atomically (io/atomic_file.hpp): the mp4 grows under a temporary name and is
+// renamed into place by Close; a sink destroyed by an exception leaves no video.
 // Nothing here runs unless a VideoSink is made: a run without --video pays nothing.
 // The MakePanel / MakeScene helpers build the scene from the mapper's plain data.
 #pragma once
@@ -45,7 +47,8 @@ class VideoSink {
   bool Wants(int observation_index) const;
   /// Renders and writes one frame. Throws std::runtime_error naming the file on failure.
   void AddFrame(const render::Scene& scene);
-  /// Finishes the video; later AddFrame calls throw. Called by the destructor.
+  /// Finishes the video and renames it into place; later AddFrame calls throw. Called by
+  /// the destructor, unless that runs for an exception (then the video is discarded).
   void Close();
 
   int frames() const;

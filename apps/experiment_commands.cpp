@@ -153,10 +153,9 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
 // Reads the relations and puts them in log time: with the given offset, or the one that
 // puts relation stamps on scan stamps. No matching relation is an input error, never a
 // zero error figure.
-std::vector<lifelong::io::Relation> LoadRelations(const std::string& path, bool given,
-                                                  double given_s,
-                                                  const lifelong::io::CarmenLog& data,
-                                                  lifelong::eval::LogInfo* info) {
+std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool given, double given_s,
+                                              const lifelong::io::CarmenLog& data,
+                                              lifelong::eval::LogInfo* info) {
   const auto file_time = lifelong::io::ReadRelations(path, 0.0);
   std::vector<double> stamps;
   for (const auto& o : data.observations) stamps.push_back(o.stamp_s);

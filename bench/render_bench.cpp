@@ -19,7 +19,7 @@ using namespace lifelong;
 render::Scene CorridorScene(int panels) {
   const sim::Scenario scenario =
       sim::LoadScenario(std::string(LIFELONG_SOURCE_DIR) + "/scenarios/corridor_3.yaml");
-  const std::vector<eval::Segment> walls = eval::TrueWalls(scenario.world, scenario.duration_s);
+  const std::vector<Segment> walls = eval::TrueWalls(scenario.world, scenario.duration_s);
   render::Scene scene;
   for (const auto& w : walls) scene.walls.push_back({w.x0, w.y0, w.x1, w.y1});
   const render::Bounds b = render::ViewBounds(scene)[0];
@@ -37,7 +37,7 @@ render::Scene CorridorScene(int panels) {
     if (i > 0) {
       const Pose2& p = panel.nodes[i - 1];
       const Pose2& q = panel.nodes[i];
-      panel.edges.push_back({{p.x, p.y, q.x, q.y}, slam::EdgeKind::kOdometry});
+      panel.edges.push_back({{p.x, p.y, q.x, q.y}, EdgeKind::kOdometry});
     }
   }
   panel.node_count = 250;

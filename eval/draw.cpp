@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <stdexcept>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "eval/map_figure.hpp"
 #include "eval/map_quality.hpp"
+#include "io/atomic_file.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -20,7 +20,7 @@ struct View {
   int col0 = 0, row0 = 0, cols = 0, rows = 0;
 };
 
-View MakeView(const io::OccupancyGrid& g, const DrawConfig& c) {
+View MakeView(const OccupancyGrid& g, const DrawConfig& c) {
   View v{0, 0, g.width, g.height};
   if (!c.crop_to_known) return v;
   int c0 = g.width, r0 = g.height, c1 = -1, r1 = -1;
@@ -41,19 +41,19 @@ View MakeView(const io::OccupancyGrid& g, const DrawConfig& c) {
 GraphOverlay MakeGraphOverlay(const slam::PoseGraph& graph, const slam::Values& values) {
   GraphOverlay o;
   for (const auto& [id, pose] : values) o.nodes.push_back(pose);
-  auto add = [&](slam::NodeId a, slam::NodeId b, slam::EdgeKind kind) {
+  auto add = [&](slam::NodeId a, slam::NodeId b, EdgeKind kind) {
     const auto ia = values.find(a), ib = values.find(b);
     if (ia == values.end() || ib == values.end()) return;
-    o.edges.push_back({ia->second.x, ia->second.y, ib->second.x, ib->second.y, kind});
+    o.edges.push_back({{ia->second.x, ia->second.y, ib->second.x, ib->second.y}, kind});
   };
   for (const slam::PoseEdge& e : graph.edges()) add(e.from, e.to, e.kind);
   for (const slam::CliqueFactor& c : graph.cliques())
     for (std::size_t i = 1; i < c.nodes.size(); ++i)
-      add(c.nodes[0], c.nodes[i], slam::EdgeKind::kMarginal);
+      add(c.nodes[0], c.nodes[i], EdgeKind::kMarginal);
   return o;
 }
 
-Image RenderMap(const io::OccupancyGrid& grid, const GraphOverlay& graph,
+Image RenderMap(const OccupancyGrid& grid, const GraphOverlay& graph,
                 const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
   if (grid.width <= 0 || grid.height <= 0) return {};
   const View v = MakeView(grid, config);
@@ -73,30 +73,27 @@ Image RenderMap(const io::OccupancyGrid& grid, const GraphOverlay& graph,
 }
 
 void WritePng(const std::string& path, const Image& image) {
-  const cv::Mat img(image.height, image.width, CV_8UC3,
-                    const_cast<std::uint8_t*>(image.bgr.data()));
-  const std::filesystem::path p(path);
-  const std::string tmp = (p.parent_path() / (p.stem().string() + ".tmp.png")).string();
-  bool ok = false;
-  try {
-    ok = !img.empty() && cv::imwrite(tmp, img);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot write PNG");
-  }
+  const cv::Mat rgb(image.height, image.width, CV_8UC3,
+                    const_cast<std::uint8_t*>(image.rgb.data()));
+  cv::Mat bgr;
+  if (!rgb.empty()) cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  io::WriteThroughTempFile(path, [&](const std::string& tmp) {  // ".png" kept for imwrite
+    try {
+      return !bgr.empty() && cv::imwrite(tmp, bgr);
+    } catch (const cv::Exception&) {
+      return false;
+    }
+  });
 }
 
-void WriteMapPng(const std::string& path, const io::OccupancyGrid& grid, const GraphOverlay& graph,
+void WriteMapPng(const std::string& path, const OccupancyGrid& grid, const GraphOverlay& graph,
                  const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
   WritePng(path, RenderMap(grid, graph, trajectories, config));
 }
 
 void WriteWorldPng(const std::string& path, const std::vector<Segment>& walls,
                    const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config) {
-  const io::OccupancyGrid grid = RasterizeWalls(walls, config.world_resolution_m, config.margin_m);
+  const OccupancyGrid grid = RasterizeWalls(walls, config.world_resolution_m, config.margin_m);
   DrawConfig c = config;
   c.crop_to_known = false;  // every cell is known; the raster already has the margin
   WriteMapPng(path, grid, GraphOverlay{}, trajectories, c);

@@ -3,17 +3,19 @@
 // optional overlays drawn in world coordinates: the pose graph (nodes as dots, edges
 // coloured by kind) and trajectories (true green, odometry red, estimate blue; drawn thin and
 // under the graph). eval/map_figure.hpp draws the same in any frame and scale. Images are
-// written to "<stem>.tmp.png" and renamed, so a PNG that exists is whole.
+// written atomically (io/atomic_file.hpp), so a PNG that exists is whole.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
 #include "sensor/pose2.hpp"
 #include "slam/pose_graph.hpp"
+#include "types/edge_kind.hpp"
+#include "types/image.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 
@@ -25,12 +27,8 @@ struct TrajectoryOverlay {
 };
 
 struct GraphOverlay {
-  struct Edge {
-    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< m, world
-    slam::EdgeKind kind = slam::EdgeKind::kOdometry;
-  };
   std::vector<Pose2> nodes;
-  std::vector<Edge> edges;
+  std::vector<GraphEdge> edges;  ///< end points in the world frame, m
 };
 
 /// Nodes and edges of a graph at the given estimate; a clique factor is drawn as marginal
@@ -46,22 +44,16 @@ struct DrawConfig {
   double world_resolution_m = 0.05;  ///< m per cell when drawing true walls (WriteWorldPng)
 };
 
-/// A BGR image, row-major, 3 bytes per pixel, row 0 at the top (as PNG).
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> bgr;
-};
-
 /// Renders the grid with overlays; the caller may inspect pixels (tests) or write it.
-Image RenderMap(const io::OccupancyGrid& grid, const GraphOverlay& graph,
+Image RenderMap(const OccupancyGrid& grid, const GraphOverlay& graph,
                 const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config = {});
 
-/// Writes an image as PNG (atomically). Throws std::runtime_error naming the path.
+/// Writes an image as PNG (atomically). Throws InputError (a std::runtime_error) naming the
+/// path.
 void WritePng(const std::string& path, const Image& image);
 
 /// RenderMap + WritePng.
-void WriteMapPng(const std::string& path, const io::OccupancyGrid& grid, const GraphOverlay& graph,
+void WriteMapPng(const std::string& path, const OccupancyGrid& grid, const GraphOverlay& graph,
                  const std::vector<TrajectoryOverlay>& trajectories, const DrawConfig& config = {});
 
 /// The true world (walls black on white, rasterized at config.world_resolution_m) with

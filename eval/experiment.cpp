@@ -23,6 +23,7 @@
 #include "eval/run_maps.hpp"
 #include "eval/staged_output.hpp"
 #include "eval/video.hpp"
+#include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
 #include "io/relations.hpp"
@@ -79,7 +80,7 @@ class ModeRunner {
   // Finishes the mapper, writes DIR/<mode>/... and returns the mode's summary.
   ModeSummary Finish(const std::vector<Observation>& stream,
                      const std::optional<GroundTruth>& truth,
-                     const std::vector<io::Relation>& relations, std::vector<double>* kld,
+                     const std::vector<Relation>& relations, std::vector<double>* kld,
                      std::string* map_png);
 
  private:
@@ -106,7 +107,7 @@ class ModeRunner {
 
   /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame).
   Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                     const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                     const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                      ModeSummary* summary) const;
 
   slam::PruningMode mode_;
@@ -148,11 +149,11 @@ void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summ
   if (summary && end - start > 3600.0 && last_hour > 0) {
     summary->loop_precision_last_hour = static_cast<double>(last_hour_correct) / last_hour;
   }
-  WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
+  io::WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
 }
 
 Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
-                               const std::vector<Pose2>& estimate, const io::OccupancyGrid& grid,
+                               const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                                ModeSummary* summary) const {
   std::vector<Pose2> true_poses;
   std::map<double, Pose2> true_at;
@@ -192,7 +193,7 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
 
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                const std::optional<GroundTruth>& truth,
-                               const std::vector<io::Relation>& relations, std::vector<double>* kld,
+                               const std::vector<Relation>& relations, std::vector<double>* kld,
                                std::string* map_png) {
   const auto start = Clock::now();
   mapper_->Finish();
@@ -212,17 +213,12 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
   if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
 
-  std::vector<io::StampedPose> trajectory;
+  const std::vector<StampedPose> trajectory = m.Trajectory();
   std::vector<Pose2> estimate;
-  std::vector<StampedPose> stamped;
-  for (const slam::ScanPose& p : m.Trajectory()) {
-    trajectory.push_back({p.stamp_s, p.T_world_robot});
-    estimate.push_back(p.T_world_robot);
-    stamped.push_back({p.stamp_s, p.T_world_robot});
-  }
+  for (const StampedPose& p : trajectory) estimate.push_back(p.T_world_robot);
   io::WriteTum((dir / "trajectory.tum").string(), trajectory);
   io::WriteG2o((dir / "graph.g2o").string(), m.graph(), m.values());
-  const io::OccupancyGrid grid = ToOccupancyGrid(m.map());
+  const OccupancyGrid grid = ToOccupancyGrid(m.map());
   io::WritePgmMap((dir / "map.pgm").string(), grid);
   const EntropyResult entropy = ComputeMapEntropy(grid);
   summary.map_entropy_bits = entropy.entropy_bits;
@@ -235,9 +231,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
   if (!relations.empty()) {
-    std::vector<Relation> rel;
-    for (const auto& r : relations) rel.push_back({r.t1_s, r.t2_s, r.T_1_2});
-    const RelationsResult rr = ComputeRelationsError(stamped, rel);
+    const RelationsResult rr = ComputeRelationsError(trajectory, relations);
     summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
                                          rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
   }
@@ -283,7 +277,7 @@ void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper) 
                   m.clique_size, m.kl_divergence, m.information_gain_bits);
     text += line;
   }
-  WriteFileAtomically(path, text);
+  io::WriteFileAtomically(path, text);
 }
 
 // Writes DIR/<mode>/sparsifications.csv: one row per edge-budget sparsification.
@@ -295,13 +289,13 @@ void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
                   s.nodes, s.edges_before, s.edges_after, s.kl_divergence);
     text += line;
   }
-  WriteFileAtomically(path, text);
+  io::WriteFileAtomically(path, text);
 }
 
 }  // namespace
 
-io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
-  io::OccupancyGrid grid;
+OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
+  OccupancyGrid grid;
   grid.resolution_m = map.resolution_m();
   const slam::CellBounds b = map.Bounds();
   if (b.empty) return grid;
@@ -310,7 +304,7 @@ io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   grid.origin_x_m = b.min.x * grid.resolution_m;
   grid.origin_y_m = b.min.y * grid.resolution_m;
   grid.p_occ.assign(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height),
-                    io::OccupancyGrid::kUnknown);
+                    OccupancyGrid::kUnknown);
   map.ForEachKnownCell([&](slam::CellIndex c, slam::CellCounts counts) {
     const double total = static_cast<double>(counts.hits) + static_cast<double>(counts.misses);
     if (total > 0.0) {
@@ -359,10 +353,10 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   StagedOutput output(final_config.out_dir);
   ExperimentConfig config = final_config;
   config.out_dir = output.path();
-  WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
-                      "# Mapper settings of this run (lifelong --config format)\n" +
-                          MapperConfigToYaml(config.mapper));
-  const std::vector<io::Relation>& relations = config.relations;
+  io::WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
+                          "# Mapper settings of this run (lifelong --config format)\n" +
+                              MapperConfigToYaml(config.mapper));
+  const std::vector<Relation>& relations = config.relations;
   std::unique_ptr<VideoSink> sink;
   if (!config.video_path.empty() || !config.frames_dir.empty()) {
     VideoOptions options;

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "eval/report.hpp"
-#include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
-#include "io/relations.hpp"
 #include "sensor/observation.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/relation.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 
@@ -29,10 +29,10 @@ struct ExperimentConfig {
   std::string source;                ///< scenario or log path, for the summary
   std::optional<std::int64_t> seed;  ///< simulation seed
   /// Relations in log time (io::ShiftRelations already applied); empty: none.
-  std::vector<io::Relation> relations;
+  std::vector<Relation> relations;
   std::optional<std::string> relations_path;  ///< the file they came from (report, figures)
-  std::optional<LogInfo> log;          ///< replay: what was read from the log
-  std::optional<double> first_pass_s;  ///< observations before this time form the first pass
+  std::optional<LogInfo> log;                 ///< replay: what was read from the log
+  std::optional<double> first_pass_s;         ///< observations before this time form the first pass
   std::string command_line;
   std::ostream* progress = nullptr;  ///< progress lines; nullptr: quiet
   bool progress_terminal = false;    ///< progress goes to a terminal: redraw one line
@@ -43,8 +43,8 @@ struct ExperimentConfig {
   int video_stride = 20;  ///< render every this many scans
 };
 
-/// The mapper's counting grid as an io::OccupancyGrid (p = hits / (hits + misses)).
-io::OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
+/// The mapper's counting grid as an OccupancyGrid (p = hits / (hits + misses)).
+OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
 
 /// Runs every mode over `stream` and writes DIR/summary.json, DIR/<mode>/..., figures and
 /// report.html, all or nothing: into a staging directory beside DIR that replaces DIR only

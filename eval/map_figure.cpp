@@ -48,8 +48,7 @@ std::uint8_t Grey(float p) {
 }
 
 /// Each pixel centre mapped into the grid, nearest cell; outside the grid is unknown.
-void DrawCells(const Canvas& c, const io::OccupancyGrid& g, const Pose2& T_frame_grid,
-               cv::Mat& img) {
+void DrawCells(const Canvas& c, const OccupancyGrid& g, const Pose2& T_frame_grid, cv::Mat& img) {
   const Pose2 T_grid_frame = T_frame_grid.Inverse();
   const double cs = std::cos(T_grid_frame.theta), sn = std::sin(T_grid_frame.theta);
   for (int v = 0; v < c.height_px; ++v) {
@@ -61,7 +60,7 @@ void DrawCells(const Canvas& c, const io::OccupancyGrid& g, const Pose2& T_frame
       const double gy = T_grid_frame.y + sn * xf + cs * yf;
       const double col = std::floor((gx - g.origin_x_m) / g.resolution_m);
       const double row = std::floor((gy - g.origin_y_m) / g.resolution_m);
-      float p = io::OccupancyGrid::kUnknown;
+      float p = OccupancyGrid::kUnknown;
       if (col >= 0 && row >= 0 && col < g.width && row < g.height) {
         p = g.At(static_cast<int>(col), static_cast<int>(row));
       }
@@ -100,12 +99,12 @@ Canvas CanvasCovering(double x0_m, double y0_m, double x1_m, double y1_m, double
   return c;
 }
 
-Canvas CanvasOfGrid(const io::OccupancyGrid& g, double m_per_px) {
+Canvas CanvasOfGrid(const OccupancyGrid& g, double m_per_px) {
   return CanvasCovering(g.origin_x_m, g.origin_y_m, g.origin_x_m + g.width * g.resolution_m,
                         g.origin_y_m + g.height * g.resolution_m, m_per_px);
 }
 
-Canvas CanvasOfKnownCells(const io::OccupancyGrid& g, const Pose2& T_frame_grid, double margin_m,
+Canvas CanvasOfKnownCells(const OccupancyGrid& g, const Pose2& T_frame_grid, double margin_m,
                           double m_per_px) {
   int c0 = g.width, r0 = g.height, c1 = -1, r1 = -1;
   for (int r = 0; r < g.height; ++r) {
@@ -140,8 +139,9 @@ Image RenderFigure(const Canvas& c, const FigureLayers& layers) {
                TrajectoryColour(t.kind), 1, cv::LINE_AA, kShift);
     }
   }
-  for (const GraphOverlay::Edge& e : layers.graph.edges) {
-    cv::line(img, Px(c, e.x0, e.y0), Px(c, e.x1, e.y1), Bgr(render::EdgeColour(e.kind)), 1,
+  for (const GraphEdge& e : layers.graph.edges) {
+    const Segment& s = e.segment;
+    cv::line(img, Px(c, s.x0, s.y0), Px(c, s.x1, s.y1), Bgr(render::EdgeColour(e.kind)), 1,
              cv::LINE_AA, kShift);
   }
   const int radius = static_cast<int>(std::lround(layers.node_radius_px * kSub));
@@ -150,8 +150,9 @@ Image RenderFigure(const Canvas& c, const FigureLayers& layers) {
                kShift);
   }
   if (layers.scale_bar) DrawScaleBar(img, c.m_per_px);
+  cv::cvtColor(img, img, cv::COLOR_BGR2RGB);  // lifelong::Image is RGB
   out.width = img.cols, out.height = img.rows;
-  out.bgr.assign(img.data, img.data + img.total() * img.elemSize());
+  out.rgb.assign(img.data, img.data + img.total() * img.elemSize());
   return out;
 }
 
@@ -159,9 +160,10 @@ GraphOverlay Transformed(const Pose2& T, const GraphOverlay& graph) {
   GraphOverlay out;
   out.nodes = Transformed(T, graph.nodes);
   out.edges = graph.edges;
-  for (GraphOverlay::Edge& e : out.edges) {
-    T.Apply(e.x0, e.y0, &e.x0, &e.y0);
-    T.Apply(e.x1, e.y1, &e.x1, &e.y1);
+  for (GraphEdge& e : out.edges) {
+    Segment& s = e.segment;
+    T.Apply(s.x0, s.y0, &s.x0, &s.y0);
+    T.Apply(s.x1, s.y1, &s.x1, &s.y1);
   }
   return out;
 }

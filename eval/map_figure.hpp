@@ -6,8 +6,8 @@
 #pragma once
 
 #include "eval/draw.hpp"
-#include "io/occupancy_grid.hpp"
 #include "sensor/pose2.hpp"
+#include "types/occupancy_grid.hpp"
 
 namespace lifelong::eval {
 
@@ -25,15 +25,15 @@ struct Canvas {
 Canvas CanvasCovering(double x0_m, double y0_m, double x1_m, double y1_m, double m_per_px);
 
 /// The canvas covering every cell of `grid` (placed by identity) at m_per_px.
-Canvas CanvasOfGrid(const io::OccupancyGrid& grid, double m_per_px);
+Canvas CanvasOfGrid(const OccupancyGrid& grid, double m_per_px);
 
 /// The canvas covering the known cells of `grid` placed in the figure frame by
 /// T_frame_grid, plus margin_m on every side; the whole grid when no cell is known.
-Canvas CanvasOfKnownCells(const io::OccupancyGrid& grid, const Pose2& T_frame_grid, double margin_m,
+Canvas CanvasOfKnownCells(const OccupancyGrid& grid, const Pose2& T_frame_grid, double margin_m,
                           double m_per_px);
 
 struct FigureLayers {
-  const io::OccupancyGrid* grid = nullptr;      ///< nullptr: a white background
+  const OccupancyGrid* grid = nullptr;          ///< nullptr: a white background
   Pose2 T_frame_grid;                           ///< where the grid lies in the figure frame
   std::vector<TrajectoryOverlay> trajectories;  ///< figure frame; 1 px, under the graph
   GraphOverlay graph;                           ///< figure frame

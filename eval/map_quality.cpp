@@ -61,7 +61,7 @@ cv::Mat DistanceCells(const cv::Mat& zeros_are_targets) {
   return dist;
 }
 
-std::vector<cv::Point2d> OccupiedCentres(const io::OccupancyGrid& map, const Pose2& T,
+std::vector<cv::Point2d> OccupiedCentres(const OccupancyGrid& map, const Pose2& T,
                                          float threshold) {
   std::vector<cv::Point2d> pts;
   for (int row = 0; row < map.height; ++row) {
@@ -84,7 +84,7 @@ double WallLength(const std::vector<Segment>& walls) {
 
 }  // namespace
 
-BlurResult ComputeBlur(const io::OccupancyGrid& map, const std::vector<Segment>& walls,
+BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& walls,
                        const Pose2& T_truth_est, const std::vector<Pose2>& true_trajectory,
                        const BlurConfig& config) {
   BlurResult out;
@@ -145,14 +145,14 @@ BlurResult ComputeBlur(const io::OccupancyGrid& map, const std::vector<Segment>&
   return out;
 }
 
-io::OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
-                                 double margin_m) {
+OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
+                             double margin_m) {
   Box box;
   for (const Segment& s : walls) box.Add(s.x0, s.y0), box.Add(s.x1, s.y1);
   if (walls.empty()) box.Add(0.0, 0.0);
   const Raster r = MakeRaster(box, resolution_m, margin_m, 0.0, 0.0);
   const cv::Mat img = DrawWalls(r, walls);
-  io::OccupancyGrid grid;
+  OccupancyGrid grid;
   grid.width = r.cols, grid.height = r.rows, grid.resolution_m = resolution_m;
   grid.origin_x_m = r.ox, grid.origin_y_m = r.oy;
   grid.p_occ.assign(static_cast<std::size_t>(r.cols) * static_cast<std::size_t>(r.rows), 0.0f);
@@ -164,7 +164,7 @@ io::OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resol
   return grid;
 }
 
-EntropyResult ComputeMapEntropy(const io::OccupancyGrid& map, float occupied_threshold) {
+EntropyResult ComputeMapEntropy(const OccupancyGrid& map, float occupied_threshold) {
   EntropyResult out;
   for (float p : map.p_occ) {
     if (p < 0.0f) continue;

@@ -9,9 +9,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
 #include "sensor/pose2.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 
@@ -39,14 +39,14 @@ struct BlurResult {
 /// truth frame (AteResult::T_truth_est). `true_trajectory` (truth frame) limits recall and
 /// thickness to the walls the robot could have seen; pass {} to use every wall.
 /// Distances are between cell centres, so they are quantized to the resolution.
-BlurResult ComputeBlur(const io::OccupancyGrid& map, const std::vector<Segment>& walls,
+BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& walls,
                        const Pose2& T_truth_est, const std::vector<Pose2>& true_trajectory,
                        const BlurConfig& config = {});
 
 /// An occupancy grid holding the true walls rasterized (p = 1 on walls, 0 elsewhere) on
 /// the given geometry. Useful as truth/map.pgm and as a perfect map in tests.
-io::OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
-                                 double margin_m = 1.0);
+OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
+                             double margin_m = 1.0);
 
 struct EntropyResult {
   double entropy_bits = 0.0;       ///< sum over known cells of H(p) (seed eq. 5.8), bits
@@ -57,6 +57,6 @@ struct EntropyResult {
 
 /// Map entropy for maps without ground truth. Unknown cells (p < 0) are left out: each
 /// would add 1 bit and the map's extent is arbitrary.
-EntropyResult ComputeMapEntropy(const io::OccupancyGrid& map, float occupied_threshold = 0.65f);
+EntropyResult ComputeMapEntropy(const OccupancyGrid& map, float occupied_threshold = 0.65f);
 
 }  // namespace lifelong::eval

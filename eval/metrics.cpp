@@ -113,8 +113,8 @@ MatchedPoses MatchByStamp(const std::vector<StampedPose>& estimate,
       ++m.unmatched;
       continue;
     }
-    m.estimate.push_back(e.pose);
-    m.truth.push_back(sorted[static_cast<std::size_t>(k)].pose);
+    m.estimate.push_back(e.T_world_robot);
+    m.truth.push_back(sorted[static_cast<std::size_t>(k)].T_world_robot);
   }
   return m;
 }
@@ -159,8 +159,8 @@ RelationsResult ComputeRelationsError(const std::vector<StampedPose>& estimate,
       ++r.unmatched;
       continue;
     }
-    const Pose2 est_rel =
-        Between(sorted[static_cast<std::size_t>(a)].pose, sorted[static_cast<std::size_t>(b)].pose);
+    const Pose2 est_rel = Between(sorted[static_cast<std::size_t>(a)].T_world_robot,
+                                  sorted[static_cast<std::size_t>(b)].T_world_robot);
     const Pose2 err = Between(est_rel, rel.T_1_2);
     trans.push_back(Norm(err));
     rot.push_back(std::abs(err.theta) * kRadToDeg);

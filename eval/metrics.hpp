@@ -12,8 +12,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "eval/types.hpp"
 #include "sensor/pose2.hpp"
+#include "types/relation.hpp"
+#include "types/stamped_pose.hpp"
 
 namespace lifelong::eval {
 
@@ -62,13 +63,6 @@ struct RpeResult {
 /// a pair is the sum of the true steps between i and i + delta.
 RpeResult ComputeRpe(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth,
                      int delta = 1);
-
-/// One line of a relations file: the true T_1_2 between the poses at t1_s and t2_s.
-struct Relation {
-  double t1_s = 0.0;
-  double t2_s = 0.0;
-  Pose2 T_1_2;
-};
 
 struct RelationsResult {
   std::size_t count = 0;      ///< relations whose both stamps matched a pose

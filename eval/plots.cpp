@@ -4,8 +4,10 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
 
 #include "eval/mode_colors.hpp"
 
@@ -63,17 +65,30 @@ struct Figure {
   std::vector<Panel> panels;  ///< stacked top to bottom, sharing the x axis
 };
 
+/// Writes a plot_data file atomically; a failure becomes the result's error (figures are
+/// optional, a run goes on without them).
+bool WritePlotFile(const fs::path& path, const std::string& text, PlotResult* result) {
+  try {
+    io::WriteFileAtomically(path.string(), text);
+    return true;
+  } catch (const std::exception& e) {
+    result->error = e.what();
+    return false;
+  }
+}
+
 /// Writes the script, runs gnuplot, renames the PNG into place.
 bool Render(const Figure& f, const std::map<std::string, std::string>& data_files,
             const std::string& out_dir, const std::string& terminal, const PlotConfig& c,
             PlotResult* result) {
   const fs::path png = fs::path(out_dir) / (f.name + ".png");
+  const std::string tmp = io::TempPathFor(png.string());
   const fs::path script = fs::path(out_dir) / "plot_data" / (f.name + ".gp");
   {
-    std::ofstream gp(script);
+    std::ostringstream gp;
     const int height = f.panels.size() > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
     gp << "set terminal " << terminal << " noenhanced size " << c.width_px << "," << height
-       << "\nset output " << GpQuote(f.name + ".png.tmp") << "\n"
+       << "\nset output " << GpQuote(fs::path(tmp).filename().string()) << "\n"
        << "set xlabel " << GpQuote(f.xlabel) << "\nset grid\nset key top left\n";
     if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
     for (const Panel& panel : f.panels) {
@@ -89,10 +104,7 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
       gp << "\n";
     }
     if (f.panels.size() > 1) gp << "unset multiplot\n";
-    if (!gp) {
-      result->error = script.string() + ": cannot write";
-      return false;
-    }
+    if (!WritePlotFile(script, gp.str(), result)) return false;
   }
   const fs::path log = fs::path(out_dir) / "plot_data" / (f.name + ".log");
   // Paths in the script are relative to out_dir, so that plot_data/ can re-make a figure
@@ -102,14 +114,15 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
                           ShellQuote("plot_data/" + f.name + ".log");
   const int status = std::system(cmd.c_str());
   std::error_code ec;
-  if (status != 0 || !fs::exists(png.string() + ".tmp")) {
+  if (status != 0 || !fs::exists(tmp)) {
     result->error = "gnuplot failed on " + script.string() + " (see " + log.string() + ")";
-    fs::remove(png.string() + ".tmp", ec);
+    fs::remove(tmp, ec);
     return false;
   }
-  fs::rename(png.string() + ".tmp", png, ec);
-  if (ec) {
-    result->error = png.string() + ": " + ec.message();
+  try {
+    io::CommitTempFile(tmp, png.string());
+  } catch (const std::exception& e) {
+    result->error = e.what();
     return false;
   }
   result->files.push_back(png.string());
@@ -175,7 +188,7 @@ PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_
     for (const TimelineRow& row : rows) ms.push_back(row.time_ms);
     const std::vector<double> ma = MovingAverage(ms, config.moving_average);
     const fs::path p = fs::path(out_dir) / "plot_data" / ("timeline_" + SafeName(mode) + ".dat");
-    std::ofstream out(p);
+    std::ostringstream out;
     out << "# obs time_ms time_ms_moving_average nodes edges gamma cumulative_s rss_mib "
            "graph_mib\n";
     double cumulative_ms = 0.0;
@@ -185,6 +198,7 @@ PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_
           << rows[i].edges << ' ' << rows[i].gamma << ' ' << cumulative_ms / 1000.0 << ' '
           << rows[i].rss_mb << ' ' << static_cast<double>(rows[i].graph_bytes) / kMiB << '\n';
     }
+    if (!WritePlotFile(p, out.str(), &r)) return r;
     files[mode] = p.string();
   }
   bool any_graph_bytes = false;  // a log axis needs a positive value
@@ -226,9 +240,10 @@ PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode
   std::map<std::string, std::string> files;
   for (const auto& [mode, kl] : kl_per_mode) {
     const fs::path p = fs::path(out_dir) / "plot_data" / ("kld_" + SafeName(mode) + ".dat");
-    std::ofstream out(p);
+    std::ostringstream out;
     out << "# marginalization kl_divergence\n";
     for (std::size_t i = 0; i < kl.size(); ++i) out << i << ' ' << kl[i] << '\n';
+    if (!WritePlotFile(p, out.str(), &r)) return r;
     files[mode] = p.string();
   }
   const Figure f{"kld",

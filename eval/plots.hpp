@@ -1,8 +1,8 @@
 // Figures in the style of the seed's Figs. 6.1-6.5: every mode on one chart, per
 // observation. Drives the `gnuplot` binary with generated scripts and data files (kept in
 // <out_dir>/plot_data/ so a figure can be re-made or restyled by hand). PNG terminal:
-// pngcairo when gnuplot has it, else png. Figures are written to "<name>.png.tmp" and
-// renamed when gnuplot succeeded.
+// pngcairo when gnuplot has it, else png. Every file is written atomically
+// (io/atomic_file.hpp): gnuplot draws into "<name>.tmp.png", renamed when it succeeded.
 #pragma once
 
 #include <map>

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/metrics.hpp"
+#include "io/atomic_file.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -90,7 +91,7 @@ json ModeJson(const ModeSummary& m) {
 std::map<std::string, std::int64_t> EdgesByKind(const slam::PoseGraph& graph) {
   std::map<std::string, std::int64_t> out;
   for (const slam::PoseEdge& e : graph.edges()) {
-    ++out[slam::EdgeKindName(e.kind)];
+    ++out[EdgeKindName(e.kind)];
   }
   for (const slam::CliqueFactor& c : graph.cliques()) {
     out["clique_pairs"] += static_cast<std::int64_t>(c.nodes.size() * (c.nodes.size() - 1) / 2);
@@ -168,22 +169,8 @@ std::string SummaryJsonText(const RunSummary& s) {
   return j.dump(2) + "\n";
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error(tmp + ": cannot write");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot rename " + tmp + " onto it");
-  }
-}
-
 void WriteSummaryJson(const std::string& path, const RunSummary& summary) {
-  WriteFileAtomically(path, SummaryJsonText(summary));
+  io::WriteFileAtomically(path, SummaryJsonText(summary));
 }
 
 void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& rows) {
@@ -198,7 +185,7 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
                   r.optimize_ms, r.nodes_removed);
     text += line;
   }
-  WriteFileAtomically(path, text);
+  io::WriteFileAtomically(path, text);
 }
 
 }  // namespace lifelong::eval

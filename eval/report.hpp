@@ -1,6 +1,6 @@
 // The output contract of DESIGN.md: summary.json and <mode>/timeline.csv (report.html:
 // eval/report_html.hpp).
-// Every writer goes through `path + ".tmp"` and a rename, so a file that exists is whole.
+// Every writer goes through io::WriteFileAtomically, so a file that exists is whole.
 // A figure that does not apply is an empty std::optional and is absent from the JSON.
 #pragma once
 
@@ -116,8 +116,5 @@ void WriteSummaryJson(const std::string& path, const RunSummary& summary);
 /// Writes the timeline CSV with header obs,t_s,time_ms,nodes,edges,gamma,rss_mb,
 /// graph_bytes,loop_closures. Throws std::runtime_error naming the path on failure.
 void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& rows);
-
-/// Writes `text` to path + ".tmp" and renames it onto path. Throws on failure.
-void WriteFileAtomically(const std::string& path, const std::string& text);
 
 }  // namespace lifelong::eval

@@ -1,4 +1,5 @@
 #include "eval/report_html.hpp"
+#include "io/atomic_file.hpp"
 
 #include <cstdio>
 #include <sstream>
@@ -68,10 +69,10 @@ std::string Legend(const ReportPage& page) {
   for (const auto& [name, mode] : page.summary.modes)
     prior = prior || mode.edges_by_kind.count("prior");
   std::string html = "<aside class=\"legend\"><b>Legend</b>\n";
-  html += LegendLine(render::EdgeColour(slam::EdgeKind::kOdometry), "odometry edge", "line");
-  html += LegendLine(render::EdgeColour(slam::EdgeKind::kLoop), "loop closure", "line");
-  html += LegendLine(render::EdgeColour(slam::EdgeKind::kMarginal), "marginal edge", "line");
-  if (prior) html += LegendLine(render::EdgeColour(slam::EdgeKind::kPrior), "prior", "line");
+  html += LegendLine(render::EdgeColour(EdgeKind::kOdometry), "odometry edge", "line");
+  html += LegendLine(render::EdgeColour(EdgeKind::kLoop), "loop closure", "line");
+  html += LegendLine(render::EdgeColour(EdgeKind::kMarginal), "marginal edge", "line");
+  if (prior) html += LegendLine(render::EdgeColour(EdgeKind::kPrior), "prior", "line");
   html += LegendLine(render::kGraphNode, "graph node", "dot");
   if (page.true_path_in_maps) {
     html += LegendLine(render::kTrueTrajectory, "true trajectory (thin, under the graph)", "line");
@@ -201,7 +202,7 @@ std::string ReportHtmlText(const ReportPage& page) {
 }
 
 void WriteReportHtml(const std::string& path, const ReportPage& page) {
-  WriteFileAtomically(path, ReportHtmlText(page));
+  io::WriteFileAtomically(path, ReportHtmlText(page));
 }
 
 }  // namespace lifelong::eval

@@ -29,7 +29,7 @@ RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
                             const std::vector<Segment>* walls, double resolution_m) {
   RunMapFrame f;
   if (walls) {
-    const io::OccupancyGrid truth = RasterizeWalls(*walls, resolution_m);
+    const OccupancyGrid truth = RasterizeWalls(*walls, resolution_m);
     const double side_m = std::max(truth.width, truth.height) * resolution_m;
     f.truth_frame = true;
     f.m_per_px = MetresPerPixel(side_m, resolution_m);
@@ -51,7 +51,7 @@ RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
 }
 
 void WriteModeFigures(const std::string& out_dir, const std::string& mode,
-                      const io::OccupancyGrid& grid, const GraphOverlay& graph,
+                      const OccupancyGrid& grid, const GraphOverlay& graph,
                       const std::optional<Pose2>& T_truth_est, const RunMapFrame& frame) {
   FigureLayers layers;
   layers.grid = &grid;
@@ -73,7 +73,7 @@ void WriteModeFigures(const std::string& out_dir, const std::string& mode,
 
 void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls,
                       double resolution_m, const RunMapFrame& frame) {
-  const io::OccupancyGrid truth = RasterizeWalls(walls, resolution_m);
+  const OccupancyGrid truth = RasterizeWalls(walls, resolution_m);
   FigureLayers layers;
   layers.grid = &truth;
   layers.trajectories.push_back({TrajectoryKind::kTrue, frame.true_path});
@@ -85,7 +85,7 @@ void WriteTruthFiles(const std::string& dir, const std::vector<Observation>& str
                      const std::vector<Segment>& walls, double resolution_m) {
   fs::create_directories(dir);
   io::WritePgmMap((fs::path(dir) / "map.pgm").string(), RasterizeWalls(walls, resolution_m));
-  std::vector<io::StampedPose> poses;
+  std::vector<StampedPose> poses;
   for (const Observation& o : stream) {
     if (o.T_world_robot_true) poses.push_back({o.stamp_s, *o.T_world_robot_true});
   }

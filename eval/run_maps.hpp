@@ -13,8 +13,8 @@
 #include "eval/draw.hpp"
 #include "eval/map_figure.hpp"
 #include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
 #include "sensor/observation.hpp"
+#include "types/occupancy_grid.hpp"
 
 namespace lifelong::eval {
 
@@ -38,7 +38,7 @@ RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
 /// frame when the frame is the truth's. Throws std::runtime_error naming a file it cannot
 /// write.
 void WriteModeFigures(const std::string& out_dir, const std::string& mode,
-                      const io::OccupancyGrid& grid, const GraphOverlay& graph,
+                      const OccupancyGrid& grid, const GraphOverlay& graph,
                       const std::optional<Pose2>& T_truth_est, const RunMapFrame& frame);
 
 /// Writes the truth map (the walls rasterized at resolution_m, the true path thin) on the

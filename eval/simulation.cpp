@@ -69,16 +69,16 @@ bool ClosedDuring(const sim::Door& door, double end_s) {
 }  // namespace
 
 std::vector<Segment> TrueWalls(const sim::World& world, double end_s) {
-  std::vector<Segment> out;
-  for (const auto& s : sim::WallSegments(world)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+  std::vector<Segment> out = sim::WallSegments(world);
   for (const sim::Door& d : world.doors) {
     if (!ClosedDuring(d, end_s)) continue;  // open all run long: never a wall to see
-    out.push_back({d.segment.x0, d.segment.y0, d.segment.x1, d.segment.y1});
+    out.push_back(d.segment);
   }
   // Boxes at every pose they take during the run: a map may show any of them.
   sim::World moved = world;
   for (std::size_t step = 0;; ++step) {
-    for (const auto& s : sim::BoxSegments(moved)) out.push_back({s.x0, s.y0, s.x1, s.y1});
+    const std::vector<Segment> boxes = sim::BoxSegments(moved);
+    out.insert(out.end(), boxes.begin(), boxes.end());
     bool any = false;
     for (std::size_t b = 0; b < world.boxes.size(); ++b) {
       if (step < world.boxes[b].moves.size() && world.boxes[b].moves[step].t_s <= end_s) {
@@ -126,7 +126,7 @@ void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,
     while (k < run.odometry.size()) writer.WriteOdometry(run.odometry[k++]);
     writer.Close();
   }
-  std::vector<io::StampedPose> truth;
+  std::vector<StampedPose> truth;
   TrajectoryOverlay true_path{TrajectoryKind::kTrue, {}};
   TrajectoryOverlay odom_path{TrajectoryKind::kOdometry, {}};
   const Pose2 T_world_odom = run.observations.empty()

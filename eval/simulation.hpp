@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "eval/types.hpp"
 #include "sensor/observation.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulator.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 

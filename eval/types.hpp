@@ -1,23 +1,11 @@
 // Plain data exchanged between the experiment runner and the eval functions. Nothing
-// here knows the simulator or the mapper: callers copy their records into these.
+// here knows the simulator or the mapper: callers copy their records into these. The
+// plain types other modules share too (Segment, StampedPose, ...) are in types/.
 #pragma once
 
 #include <cstddef>
 
-#include "sensor/pose2.hpp"
-
 namespace lifelong::eval {
-
-/// A pose with its time, e.g. one line of a TUM trajectory.
-struct StampedPose {
-  double stamp_s = 0.0;  ///< s
-  Pose2 pose;            ///< T_world_robot
-};
-
-/// A true wall as a line segment, world frame, metres.
-struct Segment {
-  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
-};
 
 /// One row of `<mode>/timeline.csv` (DESIGN.md output contract), one per observation.
 struct TimelineRow {

@@ -2,14 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "eval/draw.hpp"
+#include "io/atomic_file.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sensor/input_error.hpp"
 
@@ -18,17 +19,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The rendered RGB image as BGR with its labels drawn (Hershey simplex, anti-aliased).
-cv::Mat ToBgr(const render::Image& image) {
-  cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(image.rgb.data()));
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  for (const render::TextLabel& label : image.labels) {
+// The rendered image with its labels drawn (Hershey simplex, anti-aliased; the grey text
+// blends each channel alike, so drawing it before or after the RGB -> BGR swap is the same).
+Image WithLabels(render::Frame frame) {
+  Image& image = frame.image;
+  cv::Mat rgb(image.height, image.width, CV_8UC3, image.rgb.data());
+  for (const render::TextLabel& label : frame.labels) {
     const double scale = label.height_px / 22.0;  // simplex capitals are ~22 px at scale 1
-    cv::putText(bgr, label.text, {label.x_px, label.baseline_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
+    cv::putText(rgb, label.text, {label.x_px, label.baseline_px}, cv::FONT_HERSHEY_SIMPLEX, scale,
                 cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
   }
-  return bgr;
+  return std::move(frame.image);
 }
 
 void CreateDirectories(const fs::path& dir, const std::string& what) {
@@ -38,16 +39,6 @@ void CreateDirectories(const fs::path& dir, const std::string& what) {
   if (error || !fs::is_directory(dir))
     throw std::runtime_error("cannot create " + what + " '" + dir.string() +
                              "': " + (error ? error.message() : "not a directory"));
-}
-
-void WritePngFile(const std::string& path, const cv::Mat& bgr) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, bgr);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw std::runtime_error("cannot write PNG '" + path + "'");
 }
 
 void Check(const VideoOptions& o) {
@@ -77,17 +68,21 @@ struct VideoSink::Impl {
   std::vector<render::Bounds> views;  // grow over the run, so the picture does not jump
   int frames = 0;
   bool closed = false;
+  std::string video_tmp;  // the mp4 is written here and renamed onto video_path by Close
+  int exceptions_at_start = std::uncaught_exceptions();
 };
 
 VideoSink::VideoSink(const VideoOptions& options) {
   Check(options);
   auto renderer = render::OffscreenRenderer::Create(options.width, options.height,
                                                     RendererFor(options.backend));
-  impl_ = std::make_unique<Impl>(Impl{options, std::move(renderer), {}, {}, 0, false});
+  impl_ = std::make_unique<Impl>(
+      Impl{options, std::move(renderer), {}, {}, 0, false, {}, std::uncaught_exceptions()});
   CreateDirectories(options.frames_dir, "frames directory");
   if (!options.video_path.empty()) {
     CreateDirectories(fs::path(options.video_path).parent_path(), "video directory");
-    impl_->writer.open(options.video_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options.fps,
+    impl_->video_tmp = io::TempPathFor(options.video_path);  // ".mp4" kept for the container
+    impl_->writer.open(impl_->video_tmp, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), options.fps,
                        cv::Size(options.width, options.height), true);
     if (!impl_->writer.isOpened())
       throw std::runtime_error("cannot open video '" + options.video_path +
@@ -96,6 +91,11 @@ VideoSink::VideoSink(const VideoOptions& options) {
 }
 
 VideoSink::~VideoSink() {
+  if (std::uncaught_exceptions() > impl_->exceptions_at_start) {  // a failed run: no video
+    impl_->writer.release();
+    if (!impl_->video_tmp.empty()) std::remove(impl_->video_tmp.c_str());
+    return;
+  }
   try {
     Close();
   } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor must not throw
@@ -112,13 +112,18 @@ void VideoSink::AddFrame(const render::Scene& scene) {
   const std::vector<render::Bounds> now = render::ViewBounds(scene);
   if (m.views.size() != now.size()) m.views.assign(now.size(), render::Bounds{});
   for (std::size_t i = 0; i < now.size(); ++i) m.views[i].Extend(now[i]);
-  const cv::Mat bgr =
-      ToBgr(scene.view ? m.renderer.Render(scene) : m.renderer.Render(scene, m.views));
-  if (m.writer.isOpened()) m.writer.write(bgr);
+  Image image =
+      WithLabels(scene.view ? m.renderer.Render(scene) : m.renderer.Render(scene, m.views));
+  if (m.writer.isOpened()) {
+    cv::Mat bgr;
+    cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, image.rgb.data()), bgr,
+                 cv::COLOR_RGB2BGR);
+    m.writer.write(bgr);
+  }
   if (!m.options.frames_dir.empty()) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", m.frames);
-    WritePngFile((fs::path(m.options.frames_dir) / name).string(), bgr);
+    WritePng((fs::path(m.options.frames_dir) / name).string(), image);
   }
   ++m.frames;
 }
@@ -126,13 +131,15 @@ void VideoSink::AddFrame(const render::Scene& scene) {
 void VideoSink::Close() {
   if (impl_->closed) return;
   impl_->closed = true;
+  const bool opened = impl_->writer.isOpened();
   impl_->writer.release();
+  if (opened) io::CommitTempFile(impl_->video_tmp, impl_->options.video_path);
 }
 
 int VideoSink::frames() const { return impl_->frames; }
 std::string VideoSink::backend_name() const { return impl_->renderer.backend_name(); }
 
-render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
+render::Panel MakePanel(const std::string& title, const OccupancyGrid& map,
                         const slam::PoseGraph& graph, const slam::Values& values,
                         const Pose2& robot_estimate, int observation) {
   render::Panel panel;
@@ -140,9 +147,7 @@ render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
   panel.map = map;
   GraphOverlay overlay = MakeGraphOverlay(graph, values);
   panel.nodes = std::move(overlay.nodes);
-  panel.edges.reserve(overlay.edges.size());
-  for (const GraphOverlay::Edge& e : overlay.edges)
-    panel.edges.push_back({{e.x0, e.y0, e.x1, e.y1}, e.kind});
+  panel.edges = std::move(overlay.edges);
   panel.robot_estimate = robot_estimate;
   panel.observation = observation;
   panel.node_count = graph.NumNodes();
@@ -153,8 +158,7 @@ render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
 render::Scene MakeScene(const std::vector<Segment>& walls, const Pose2& T_world_robot,
                         const LaserScan& scan, std::vector<render::Panel> panels) {
   render::Scene scene;
-  scene.walls.reserve(walls.size());
-  for (const Segment& w : walls) scene.walls.push_back({w.x0, w.y0, w.x1, w.y1});
+  scene.walls = walls;
   scene.robot_true = T_world_robot;
   const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
@@ -175,7 +179,7 @@ std::string WriteScenePng(const std::string& path, const render::Scene& scene, i
                           int height) {
   auto renderer = render::OffscreenRenderer::Create(width, height);
   CreateDirectories(fs::path(path).parent_path(), "directory");
-  WritePngFile(path, ToBgr(renderer.Render(scene)));
+  WritePng(path, WithLabels(renderer.Render(scene)));
   return renderer.backend_name();
 }
 

@@ -1,7 +1,9 @@
 // Videos of runs (issue #7): eval::VideoSink renders a render::Scene every `stride`
 // observations with render::OffscreenRenderer (EGL, else OSMesa; no display needed) and
 // writes the frames as an mp4 (cv::VideoWriter, fourcc 'mp4v') and/or as PNG files
-// DIR/frame_000000.png, ... . Titles and counters are drawn with cv::putText.
+// DIR/frame_000000.png, ... . Titles and counters are drawn with cv::putText. Every file is
+// written atomically (io/atomic_file.hpp): the mp4 grows under a temporary name and is
+// renamed into place by Close; a sink destroyed by an exception leaves no video.
 // Nothing here runs unless a VideoSink is made: a run without --video pays nothing.
 // The MakePanel / MakeScene helpers build the scene from the mapper's plain data.
 #pragma once
@@ -10,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "eval/types.hpp"
-#include "io/occupancy_grid.hpp"
 #include "render/gl_context.hpp"
 #include "render/scene.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
 #include "slam/pose_graph.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::eval {
 
@@ -45,7 +47,8 @@ class VideoSink {
   bool Wants(int observation_index) const;
   /// Renders and writes one frame. Throws std::runtime_error naming the file on failure.
   void AddFrame(const render::Scene& scene);
-  /// Finishes the video; later AddFrame calls throw. Called by the destructor.
+  /// Finishes the video and renames it into place; later AddFrame calls throw. Called by
+  /// the destructor, unless that runs for an exception (then the video is discarded).
   void Close();
 
   int frames() const;
@@ -58,7 +61,7 @@ class VideoSink {
 
 /// One mode's panel: the graph at `values` (a clique is drawn as marginal edges from its
 /// root, as eval::MakeGraphOverlay does), its counts, the map and the pose estimate.
-render::Panel MakePanel(const std::string& title, const io::OccupancyGrid& map,
+render::Panel MakePanel(const std::string& title, const OccupancyGrid& map,
                         const slam::PoseGraph& graph, const slam::Values& values,
                         const Pose2& robot_estimate, int observation);
 

@@ -20,13 +20,12 @@ void Check(bool ok) {
   if (!ok) std::abort();
 }
 
-void CheckGrid(const lifelong::io::OccupancyGrid& g) {
+void CheckGrid(const lifelong::OccupancyGrid& g) {
   Check(g.width > 0 && g.height > 0);
   Check(g.p_occ.size() == static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height));
   Check(std::isfinite(g.resolution_m) && g.resolution_m > 0.0);
   Check(std::isfinite(g.origin_x_m) && std::isfinite(g.origin_y_m));
-  for (float p : g.p_occ)
-    Check(p == 0.0f || p == 1.0f || p == lifelong::io::OccupancyGrid::kUnknown);
+  for (float p : g.p_occ) Check(p == 0.0f || p == 1.0f || p == lifelong::OccupancyGrid::kUnknown);
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto relations = lifelong::io::ParseRelations(in, "fuzz.relations",
                                                         lifelong::io::kIntelRelationsTimeOffsetS);
-    for (const lifelong::io::Relation& r : relations) {
+    for (const lifelong::Relation& r : relations) {
       const lifelong::Pose2& T = r.T_1_2;
       if (!std::isfinite(r.t1_s) || !std::isfinite(r.t2_s) || !std::isfinite(T.x) ||
           !std::isfinite(T.y) || !(std::abs(T.theta) <= kPi)) {

@@ -16,7 +16,7 @@ constexpr double kPi = 3.14159265358979323846;
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
   try {
-    for (const lifelong::io::StampedPose& p : lifelong::io::ParseTum(in, "fuzz.tum")) {
+    for (const lifelong::StampedPose& p : lifelong::io::ParseTum(in, "fuzz.tum")) {
       const lifelong::Pose2& T = p.T_world_robot;
       if (!std::isfinite(p.stamp_s) || !std::isfinite(T.x) || !std::isfinite(T.y) ||
           !(std::abs(T.theta) <= kPi)) {

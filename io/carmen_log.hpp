@@ -63,9 +63,9 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
 /// order, each scan with a known true pose followed by a TRUEPOS line. Scans are written as
 /// ROBOTLASER1 only (never also FLASER, which would duplicate each scan for a reader): it carries
 /// angles, max range and the laser mount exactly. Poses print with 6 decimals, ranges with 4,
-/// angles with 9; the same calls give byte-identical files. Output goes to `path + ".tmp"`, renamed
-/// to `path` on Close(); an unclosed writer removes its temporary file. A path ending in ".gz" is
-/// gzipped.
+/// angles with 9; the same calls give byte-identical files. Output goes to TempPathFor(path)
+/// (io/atomic_file.hpp), renamed to `path` on Close(); an unclosed writer removes its temporary
+/// file. A path ending in ".gz" is gzipped.
 class CarmenWriter {
  public:
   explicit CarmenWriter(const std::string& path);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "io/atomic_file.hpp"
 #include "io/carmen_log.hpp"
 #include "io/text_fields.hpp"
 #include "sensor/input_error.hpp"
@@ -33,7 +34,7 @@ void CheckFinite(double v, const char* field) {
 
 }  // namespace
 
-CarmenWriter::CarmenWriter(const std::string& path) : path_(path), tmp_path_(path + ".tmp") {
+CarmenWriter::CarmenWriter(const std::string& path) : path_(path), tmp_path_(TempPathFor(path)) {
   const bool gz = path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0;
   file_ = gzopen(tmp_path_.c_str(), gz ? "wb6" : "wT");
   if (file_ == nullptr) throw InputError(path, 0, "", "cannot open for writing");
@@ -111,10 +112,11 @@ void CarmenWriter::Close() {
   if (file_ == nullptr) return;
   const int rc = gzclose(static_cast<gzFile>(file_));
   file_ = nullptr;
-  if (rc != Z_OK || std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
+  if (rc != Z_OK) {
     std::remove(tmp_path_.c_str());
     throw InputError(path_, 0, "", "cannot finish writing the file");
   }
+  CommitTempFile(tmp_path_, path_);
 }
 
 }  // namespace lifelong::io

@@ -15,6 +15,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "io/atomic_file.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
@@ -135,8 +136,8 @@ void ReadEdge(Parsed* p, LineReader* r) {
   e.information = ReadInformation(r, p->result.format);
   r->ExpectEnd();
   if (e.from == e.to) r->Fail("to", "edge from a vertex to itself");
-  e.kind = e.to == e.from + 1 ? slam::EdgeKind::kOdometry : slam::EdgeKind::kLoop;
-  e.robust = e.kind == slam::EdgeKind::kLoop;
+  e.kind = e.to == e.from + 1 ? EdgeKind::kOdometry : EdgeKind::kLoop;
+  e.robust = e.kind == EdgeKind::kLoop;
   p->edges.push_back({e, r->line()});
 }
 
@@ -310,10 +311,9 @@ void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Value
 }
 
 void WriteG2o(const std::string& path, const slam::PoseGraph& graph, const slam::Values& values) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path, 0, "", "cannot open graph file for writing");
+  std::ostringstream out;
   WriteG2o(out, graph, values);
-  if (!out.flush()) throw InputError(path, 0, "", "write failed");
+  WriteFileAtomically(path, out.str());
 }
 
 void WriteToro(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values) {

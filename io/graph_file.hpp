@@ -40,7 +40,8 @@ GraphFile ReadGraphFile(const std::string& path);
 GraphFile ParseGraph(std::istream& in, const std::string& name);
 
 /// Writes every node (values must hold each), edge and clique factor in g2o format.
-/// Throws lifelong::InputError when the file cannot be written.
+/// The file is written atomically (io/atomic_file.hpp); throws lifelong::InputError when it
+/// cannot be written.
 void WriteG2o(const std::string& path, const slam::PoseGraph& graph, const slam::Values& values);
 void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values);
 /// TORO format; clique factors have no TORO form and throw std::invalid_argument.

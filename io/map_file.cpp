@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "io/atomic_file.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
@@ -36,20 +37,6 @@ double ParseNumber(std::string token, const std::string& path, int line, const s
     throw InputError(path, line, field, "not a finite number: '" + token + "'");
   }
   return v;
-}
-
-void WriteFile(const std::string& path, const std::string& bytes) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out || !out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
-      throw InputError(path, 0, "", "cannot write file");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "", "cannot rename the temporary file into place");
-  }
 }
 
 /// The flat `key: value` subset of YAML that map_server files use, with line numbers.
@@ -261,8 +248,8 @@ MapFilePaths WritePgmMap(const std::string& stem_or_pgm_path, const OccupancyGri
       ", " + Shortest(grid.origin_y_m) +
       ", 0.0]\nnegate: 0\noccupied_thresh: " + Shortest(config.occupied_thresh) +
       "\nfree_thresh: " + Shortest(config.free_thresh) + "\nmode: trinary\n";
-  WriteFile(paths.pgm, pgm);
-  WriteFile(paths.yaml, yaml);
+  WriteFileAtomically(paths.pgm, pgm);
+  WriteFileAtomically(paths.yaml, yaml);
   return paths;
 }
 

@@ -7,7 +7,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "io/occupancy_grid.hpp"
+#include "types/occupancy_grid.hpp"
 
 namespace lifelong::io {
 

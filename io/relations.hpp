@@ -7,18 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "sensor/pose2.hpp"
+#include "types/relation.hpp"
 
 namespace lifelong::io {
 
 /// s; intel.relations stamps are absolute: relation time = log time + this offset.
 constexpr double kIntelRelationsTimeOffsetS = 976052857.337284;
-
-struct Relation {
-  double t1_s = 0.0;  ///< s, log time of the first pose
-  double t2_s = 0.0;  ///< s, log time of the second pose
-  Pose2 T_1_2;        ///< pose at t2 in the frame of the pose at t1
-};
 
 /// Reads a relations file and subtracts `time_offset_s` from both stamps so they are log
 /// times. Blank lines and `#` comments are skipped; anything else malformed throws

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "io/atomic_file.hpp"
 #include "io/text_fields.hpp"
 #include "sensor/input_error.hpp"
 
@@ -28,28 +29,20 @@ double YawOf(const std::vector<double>& v, const std::string& name, int line) {
 }  // namespace
 
 void WriteTum(const std::string& path, const std::vector<StampedPose>& poses) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw InputError(path, 0, "", "cannot open for writing");
-    for (const StampedPose& p : poses) {
-      std::string s;
-      AppendFixed(&s, p.stamp_s, 6);
-      AppendFixed(&s, p.T_world_robot.x, 6);
-      AppendFixed(&s, p.T_world_robot.y, 6);
-      AppendFixed(&s, 0.0, 6);
-      AppendFixed(&s, 0.0, 9);
-      AppendFixed(&s, 0.0, 9);
-      AppendFixed(&s, std::sin(0.5 * p.T_world_robot.theta), 9);
-      AppendFixed(&s, std::cos(0.5 * p.T_world_robot.theta), 9);
-      out << s << '\n';
-    }
-    if (!out.flush()) throw InputError(path, 0, "", "write failed");
+  std::string text;
+  for (const StampedPose& p : poses) {
+    std::string s;  // one line; AppendFixed separates values with spaces
+    AppendFixed(&s, p.stamp_s, 6);
+    AppendFixed(&s, p.T_world_robot.x, 6);
+    AppendFixed(&s, p.T_world_robot.y, 6);
+    AppendFixed(&s, 0.0, 6);
+    AppendFixed(&s, 0.0, 9);
+    AppendFixed(&s, 0.0, 9);
+    AppendFixed(&s, std::sin(0.5 * p.T_world_robot.theta), 9);
+    AppendFixed(&s, std::cos(0.5 * p.T_world_robot.theta), 9);
+    text += s + '\n';
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "", "cannot rename the temporary file into place");
-  }
+  WriteFileAtomically(path, text);
 }
 
 std::vector<StampedPose> ReadTum(const std::string& path) {

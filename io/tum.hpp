@@ -7,17 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "sensor/pose2.hpp"
+#include "types/stamped_pose.hpp"
 
 namespace lifelong::io {
 
-struct StampedPose {
-  double stamp_s = 0.0;  ///< s
-  Pose2 T_world_robot;
-};
-
 /// Writes stamps and positions with 6 decimals, quaternions with 9 (locale-independent),
-/// via `path + ".tmp"` renamed into place. Throws InputError when unwritable.
+/// atomically (io/atomic_file.hpp). Throws InputError when unwritable.
 void WriteTum(const std::string& path, const std::vector<StampedPose>& poses);
 
 /// Reads a TUM file back, converting each quaternion to yaw (roll and pitch ignored).

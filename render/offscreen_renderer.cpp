@@ -57,13 +57,6 @@ struct OffscreenRenderer::Impl {
   Image ReadBack() const;
 };
 
-std::array<std::uint8_t, 3> Image::Pixel(int x, int y) const {
-  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                         static_cast<std::size_t>(x)) *
-                        3u;
-  return {rgb[i], rgb[i + 1], rgb[i + 2]};
-}
-
 OffscreenRenderer OffscreenRenderer::Create(int width, int height, const RendererOptions& options) {
   if (width < 1 || height < 1 || width > 8192 || height > 8192)
     throw std::invalid_argument("render: frame size must be 1..8192 pixels, got " +
@@ -114,8 +107,8 @@ void OffscreenRenderer::Impl::DrawWorld(const Scene& scene, const Cell& cell) co
 void OffscreenRenderer::Impl::DrawPanel(const Panel& panel, const Cell& cell) const {
   ViewDrawer view(gl, height, cell, kPanelBackground);
   view.Map(panel.map, texture);
-  for (slam::EdgeKind kind : {slam::EdgeKind::kOdometry, slam::EdgeKind::kPrior,
-                              slam::EdgeKind::kMarginal, slam::EdgeKind::kLoop}) {
+  for (EdgeKind kind :
+       {EdgeKind::kOdometry, EdgeKind::kPrior, EdgeKind::kMarginal, EdgeKind::kLoop}) {
     std::vector<Segment> segments;
     for (const GraphEdge& e : panel.edges)
       if (e.kind == kind) segments.push_back(e.segment);
@@ -141,13 +134,13 @@ Image OffscreenRenderer::Impl::ReadBack() const {
   return image;
 }
 
-Image OffscreenRenderer::Render(const Scene& scene) {
+Frame OffscreenRenderer::Render(const Scene& scene) {
   if (scene.view && !scene.view->Empty())
     return Render(scene, std::vector<Bounds>(1 + scene.panels.size(), *scene.view));
   return Render(scene, ViewBounds(scene));
 }
 
-Image OffscreenRenderer::Render(const Scene& scene, const std::vector<Bounds>& views) {
+Frame OffscreenRenderer::Render(const Scene& scene, const std::vector<Bounds>& views) {
   if (views.size() != 1 + scene.panels.size())
     throw std::invalid_argument("render: need one view bounds per view");
   Impl& m = *impl_;
@@ -166,12 +159,11 @@ Image OffscreenRenderer::Render(const Scene& scene, const std::vector<Bounds>& v
     AddLabels(cells[i + 1], scene.panels[i].title, Counters(scene.panels[i]), &labels);
   }
   m.gl.Disable(GL_SCISSOR_TEST);
-  Image image = m.ReadBack();
+  Frame frame{m.ReadBack(), std::move(labels)};
   const GLenum error = m.gl.GetError();
   m.context->Release();
   if (error != GL_NO_ERROR) throw RenderError("render: GL error " + std::to_string(error));
-  image.labels = std::move(labels);
-  return image;
+  return frame;
 }
 
 }  // namespace lifelong::render

@@ -4,17 +4,15 @@
 //
 // The frame: the world view (walls dark grey, laser rays orange with their end points,
 // the true robot as a red triangle), then one view per panel (the map as a texture:
-// unknown grey 205, free white, occupied black, 255 (1 - p); graph edges by kind:
-// odometry blue, loop green, marginal magenta; nodes dark blue; the estimate as a red
-// triangle), all at one scale, laid out by render/layout.hpp.
+// unknown grey 205, free white, occupied black, 255 (1 - p); graph edges by kind in the
+// colours of render/palette.hpp; nodes dark blue; the estimate as a red triangle), all at
+// one scale, laid out by render/layout.hpp.
 //
 // Text is not rasterized here: Render returns the titles and counters as TextLabels at
 // pixel positions in the title strips, for the caller to draw (eval/video.cpp uses
 // cv::putText), so that render depends on no font or image library.
 #pragma once
 
-#include <array>
-#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -23,6 +21,7 @@
 #include "render/gl_context.hpp"
 #include "render/layout.hpp"
 #include "render/scene.hpp"
+#include "types/image.hpp"
 
 namespace lifelong::render {
 
@@ -40,14 +39,10 @@ struct TextLabel {
   int height_px = 14;   ///< cap height wanted, pixels
 };
 
-/// An 8-bit RGB image, rows top first, 3 bytes per pixel.
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;
+/// A rendered frame: the pixels, and the text still to draw onto them.
+struct Frame {
+  Image image;
   std::vector<TextLabel> labels;
-
-  std::array<std::uint8_t, 3> Pixel(int x, int y) const;
 };
 
 struct RendererOptions {
@@ -80,10 +75,10 @@ class OffscreenRenderer {
   int height() const;
 
   /// Draws the scene; the context is current only during the call.
-  Image Render(const Scene& scene);
+  Frame Render(const Scene& scene);
   /// Draws the scene with views[i] as the content of view i (see ViewBounds), e.g. regions
   /// kept steady over a video. Needs one non-empty entry per view.
-  Image Render(const Scene& scene, const std::vector<Bounds>& views);
+  Frame Render(const Scene& scene, const std::vector<Bounds>& views);
 
  private:
   struct Impl;

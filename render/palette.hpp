@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "slam/pose_graph.hpp"
+#include "types/edge_kind.hpp"
 
 namespace lifelong::render {
 
@@ -13,15 +13,15 @@ struct Rgb {
 };
 
 /// Odometry orange, loop closures magenta, marginal edges teal, priors grey.
-constexpr Rgb EdgeColour(slam::EdgeKind kind) {
+constexpr Rgb EdgeColour(EdgeKind kind) {
   switch (kind) {
-    case slam::EdgeKind::kOdometry:
+    case EdgeKind::kOdometry:
       return {255, 140, 0};
-    case slam::EdgeKind::kLoop:
+    case EdgeKind::kLoop:
       return {200, 0, 200};
-    case slam::EdgeKind::kMarginal:
+    case EdgeKind::kMarginal:
       return {0, 170, 200};
-    case slam::EdgeKind::kPrior:
+    case EdgeKind::kPrior:
       return {128, 128, 128};
   }
   return {0, 0, 0};

@@ -8,22 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "io/occupancy_grid.hpp"
 #include "sensor/pose2.hpp"
-#include "slam/pose_graph.hpp"
+#include "types/edge_kind.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::render {
-
-/// A line segment in the world frame, metres.
-struct Segment {
-  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
-};
-
-/// A pose-graph edge as drawn: end points in the world frame (m) and the edge's kind.
-struct GraphEdge {
-  Segment segment;
-  slam::EdgeKind kind = slam::EdgeKind::kOdometry;
-};
 
 /// An axis-aligned world rectangle, metres. Empty when min > max.
 struct Bounds {
@@ -37,7 +27,7 @@ struct Bounds {
 /// One mapping mode's state at an observation.
 struct Panel {
   std::string title;             ///< e.g. the mode's name, "chow-liu"
-  io::OccupancyGrid map;         ///< the mode's current map; may be empty (0 x 0)
+  OccupancyGrid map;             ///< the mode's current map; may be empty (0 x 0)
   std::vector<Pose2> nodes;      ///< T_world_node at the current estimate
   std::vector<GraphEdge> edges;  ///< graph edges at the current estimate
   Pose2 robot_estimate;          ///< the mode's estimate of the current robot pose

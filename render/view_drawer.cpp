@@ -13,13 +13,13 @@ std::uint8_t Grey(float p) {
 
 // Grey levels of the grid, reduced by `step` cells per texel keeping each block's
 // highest occupancy (walls survive); rows bottom first, as GL textures are.
-std::vector<std::uint8_t> Texels(const io::OccupancyGrid& grid, int step, int* w, int* h) {
+std::vector<std::uint8_t> Texels(const OccupancyGrid& grid, int step, int* w, int* h) {
   *w = (grid.width + step - 1) / step;
   *h = (grid.height + step - 1) / step;
   std::vector<std::uint8_t> out(static_cast<std::size_t>(*w) * static_cast<std::size_t>(*h));
   for (int ty = 0; ty < *h; ++ty) {
     for (int tx = 0; tx < *w; ++tx) {
-      float p = io::OccupancyGrid::kUnknown;
+      float p = OccupancyGrid::kUnknown;
       for (int row = ty * step; row < std::min(grid.height, (ty + 1) * step); ++row)
         for (int col = tx * step; col < std::min(grid.width, (tx + 1) * step); ++col)
           p = std::max(p, grid.At(col, row));
@@ -96,7 +96,7 @@ void ViewDrawer::Robot(const Pose2& pose, double length_m, Rgb colour) {
   Draw(GL_TRIANGLES, xy, colour);
 }
 
-void ViewDrawer::Map(const io::OccupancyGrid& grid, unsigned texture) {
+void ViewDrawer::Map(const OccupancyGrid& grid, unsigned texture) {
   if (grid.width <= 0 || grid.height <= 0) return;
   GLint max_size = 1024;
   gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);

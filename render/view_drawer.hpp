@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/occupancy_grid.hpp"
 #include "render/gl_api.hpp"
 #include "render/layout.hpp"
 #include "render/palette.hpp"
 #include "sensor/pose2.hpp"
+#include "types/occupancy_grid.hpp"
 
 namespace lifelong::render {
 
@@ -27,7 +27,7 @@ class ViewDrawer {
   void Robot(const Pose2& pose, double length_m, Rgb colour);
   /// The grid as a texture (texture object `texture`), grey 255 (1 - p), unknown 205;
   /// grids larger than the GL texture limit are reduced by keeping each block's maximum.
-  void Map(const io::OccupancyGrid& grid, unsigned texture);
+  void Map(const OccupancyGrid& grid, unsigned texture);
 
  private:
   void Draw(unsigned mode, const std::vector<float>& xy, Rgb colour);

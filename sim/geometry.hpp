@@ -3,16 +3,13 @@
 
 #include <vector>
 
+#include "types/segment.hpp"
+
 namespace lifelong::sim {
 
 struct Point {
   double x = 0.0;  ///< m
   double y = 0.0;  ///< m
-};
-
-/// A wall segment from (x0, y0) to (x1, y1), metres.
-struct Segment {
-  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
 };
 
 /// True when the closed segments a and b share at least one point.

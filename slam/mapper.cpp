@@ -300,14 +300,14 @@ double Mapper::MaxGainCacheError() const {
   return worst;
 }
 
-ScanPose Mapper::LastScanPose() const {
+StampedPose Mapper::LastScanPose() const {
   if (state_->scans.empty()) return {};
   const ScanAnchor& a = state_->scans.back();
   return {a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan};
 }
 
-std::vector<ScanPose> Mapper::Trajectory() const {
-  std::vector<ScanPose> out;
+std::vector<StampedPose> Mapper::Trajectory() const {
+  std::vector<StampedPose> out;
   out.reserve(state_->scans.size());
   for (const ScanAnchor& a : state_->scans) {
     out.push_back({a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan});

@@ -20,6 +20,7 @@
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
 #include "slam/pose_graph.hpp"
+#include "types/stamped_pose.hpp"
 
 namespace lifelong::slam {
 
@@ -70,12 +71,6 @@ struct SparsificationRecord {
   double kl_divergence = 0.0;    ///< nats, KL(joint of the old edges || tree)
 };
 
-/// A pose for one scan of the stream.
-struct ScanPose {
-  double stamp_s = 0.0;
-  Pose2 T_world_robot;
-};
-
 class Mapper {
  public:
   explicit Mapper(const MapperConfig& config);
@@ -95,9 +90,9 @@ class Mapper {
   double NodeStamp(NodeId id) const;
   /// A pose for every scan seen so far, in stream order (removed nodes' scans included,
   /// held relative to a surviving node).
-  std::vector<ScanPose> Trajectory() const;
+  std::vector<StampedPose> Trajectory() const;
   /// The pose of the latest scan (as Trajectory().back(), without building the whole list).
-  ScanPose LastScanPose() const;
+  StampedPose LastScanPose() const;
   const std::vector<LoopClosureRecord>& loop_closures() const;
   /// Counts of the loop-closure verification (proposed, accepted, rejected, ...).
   const LoopVerifierStats& loop_verification() const;

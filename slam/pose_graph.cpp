@@ -6,20 +6,6 @@
 
 namespace lifelong::slam {
 
-const char* EdgeKindName(EdgeKind kind) {
-  switch (kind) {
-    case EdgeKind::kOdometry:
-      return "odometry";
-    case EdgeKind::kLoop:
-      return "loop";
-    case EdgeKind::kMarginal:
-      return "marginal";
-    case EdgeKind::kPrior:
-      return "prior";
-  }
-  return "unknown";
-}
-
 void PoseGraph::AddNode(NodeId id) {
   if (!adjacency_.emplace(id, std::set<NodeId>{}).second) {
     throw std::logic_error("PoseGraph::AddNode: duplicate node id " + std::to_string(id));

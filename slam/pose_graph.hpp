@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "sensor/pose2.hpp"
+#include "types/edge_kind.hpp"
 
 namespace lifelong::slam {
 
@@ -18,16 +19,6 @@ using NodeId = std::int64_t;
 
 /// The current estimate: one pose per node, T_world_node.
 using Values = std::map<NodeId, Pose2>;
-
-enum class EdgeKind : std::uint8_t {
-  kOdometry,  ///< sequential: incremental scan matching / odometry
-  kLoop,      ///< loop closure from scan matching against an older node
-  kMarginal,  ///< produced by marginalizing a node out (Chow-Liu tree or naive composition)
-  kPrior,     ///< unary-like edge, unused by the standard front-end
-};
-
-/// "odometry", "loop", "marginal" or "prior" (the names in summary.json's edges_by_kind).
-const char* EdgeKindName(EdgeKind kind);
 
 /// Relative-pose constraint Z = T_from_to with information Omega (3x3, order x, y, theta).
 /// Error (DESIGN.md):  e = t2v(Z^-1 * (X_from^-1 * X_to)).

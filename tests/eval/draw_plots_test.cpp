@@ -8,7 +8,9 @@
 #include "eval/mode_colors.hpp"
 #include "eval/plots.hpp"
 #include "eval/resources.hpp"
+#include "io/atomic_file.hpp"
 #include "render/palette.hpp"
+#include "tests/io/file_size_limit.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -16,11 +18,11 @@ namespace {
 namespace fs = std::filesystem;
 
 // 10 x 10 cells of 0.1 m: bottom row free, cell (5, 5) occupied, the rest unknown.
-io::OccupancyGrid SmallGrid() {
-  io::OccupancyGrid g;
+OccupancyGrid SmallGrid() {
+  OccupancyGrid g;
   g.width = g.height = 10;
   g.resolution_m = 0.1;
-  g.p_occ.assign(100, io::OccupancyGrid::kUnknown);
+  g.p_occ.assign(100, OccupancyGrid::kUnknown);
   for (int c = 0; c < 10; ++c) g.At(c, 0) = 0.0f;
   g.At(5, 5) = 1.0f;
   return g;
@@ -28,7 +30,7 @@ io::OccupancyGrid SmallGrid() {
 
 cv::Vec3b Pixel(const Image& im, int col, int row) {
   const std::size_t i = (static_cast<std::size_t>(row) * im.width + col) * 3;
-  return {im.bgr[i], im.bgr[i + 1], im.bgr[i + 2]};
+  return {im.rgb[i + 2], im.rgb[i + 1], im.rgb[i]};  // as BGR
 }
 
 DrawConfig Plain() {
@@ -48,8 +50,8 @@ TEST(DrawTest, FreeWhiteOccupiedBlackUnknownGreyWithYUp) {
 }
 
 TEST(DrawTest, CropsToKnownCellsWithMarginAndUpscales) {
-  io::OccupancyGrid g = SmallGrid();
-  std::fill(g.p_occ.begin(), g.p_occ.end(), io::OccupancyGrid::kUnknown);
+  OccupancyGrid g = SmallGrid();
+  std::fill(g.p_occ.begin(), g.p_occ.end(), OccupancyGrid::kUnknown);
   g.At(3, 3) = g.At(4, 4) = 0.0f;  // known box 2 x 2 cells
   DrawConfig c;
   c.margin_m = 0.1;  // one cell
@@ -74,19 +76,19 @@ TEST(DrawTest, TrajectoryIsDrawnInItsColourAtWorldCoordinates) {
 TEST(DrawTest, EdgesAreDrawnInTheSharedPalette) {
   GraphOverlay graph;
   // Through pixel centres: y = 0.7375 m is 29.5 px from the bottom of 40, image row 10.
-  graph.edges.push_back({0.05, 0.7375, 0.95, 0.7375, slam::EdgeKind::kLoop});
-  graph.edges.push_back({0.05, 0.2375, 0.95, 0.2375, slam::EdgeKind::kMarginal});
+  graph.edges.push_back({0.05, 0.7375, 0.95, 0.7375, EdgeKind::kLoop});
+  graph.edges.push_back({0.05, 0.2375, 0.95, 0.2375, EdgeKind::kMarginal});
   DrawConfig config = Plain();
   config.pixels_per_cell = 4;
   const Image im = RenderMap(SmallGrid(), graph, {}, config);
   for (const auto& [row, kind] :
-       {std::pair{10, slam::EdgeKind::kLoop}, std::pair{30, slam::EdgeKind::kMarginal}}) {
+       {std::pair{10, EdgeKind::kLoop}, std::pair{30, EdgeKind::kMarginal}}) {
     const render::Rgb c = render::EdgeColour(kind);
     const cv::Vec3b p = Pixel(im, 20, row);
     // Anti-aliased: within a tenth of full scale of the palette colour, channel by channel.
-    EXPECT_NEAR(p[0], c.b, 25) << slam::EdgeKindName(kind);
-    EXPECT_NEAR(p[1], c.g, 25) << slam::EdgeKindName(kind);
-    EXPECT_NEAR(p[2], c.r, 25) << slam::EdgeKindName(kind);
+    EXPECT_NEAR(p[0], c.b, 25) << EdgeKindName(kind);
+    EXPECT_NEAR(p[1], c.g, 25) << EdgeKindName(kind);
+    EXPECT_NEAR(p[2], c.r, 25) << EdgeKindName(kind);
   }
 }
 
@@ -101,8 +103,29 @@ TEST(DrawTest, WritesAReadablePngAndNoTemporary) {
   const cv::Mat world = cv::imread((dir / "world.png").string());
   EXPECT_EQ(world.cols, static_cast<int>(std::lround((4 + 2.0) / 0.05)) + 1);
   EXPECT_FALSE(cv::imread((dir / "map.png").string()).empty());
-  EXPECT_FALSE(fs::exists(dir / "map.tmp.png"));
+  EXPECT_FALSE(fs::exists(io::TempPathFor((dir / "map.png").string())));
   EXPECT_THROW(WriteMapPng("/nonexistent_dir/map.png", SmallGrid(), {}, {}), std::runtime_error);
+}
+
+TEST(DrawTest, FailedPngWriteKeepsThePreviousPng) {
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_draw_full";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path path = dir / "map.png";
+  WriteMapPng(path.string(), SmallGrid(), {}, {});
+  const cv::Mat before = cv::imread(path.string());
+  Image noise;  // incompressible, so the PNG is larger than the limit
+  noise.width = noise.height = 256;
+  for (std::size_t i = 0; i < 256u * 256u * 3u; ++i)
+    noise.rgb.push_back(static_cast<std::uint8_t>((i * 2654435761u) >> 13));
+  {
+    const testing::FileSizeLimit limit(8 * 1024);
+    EXPECT_THROW(WritePng(path.string(), noise), std::runtime_error);
+  }
+  const cv::Mat after = cv::imread(path.string());
+  ASSERT_EQ(after.size(), before.size());
+  EXPECT_EQ(cv::norm(after, before, cv::NORM_INF), 0.0);
+  EXPECT_FALSE(fs::exists(io::TempPathFor(path.string())));
 }
 
 std::vector<TimelineRow> Timeline(int n, int growth) {
@@ -132,6 +155,7 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
   for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png",
                            "cumulative_time.png", "memory.png"}) {
     EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
+    EXPECT_FALSE(fs::exists(io::TempPathFor((dir / name).string()))) << name;
   }
   EXPECT_GT(cv::imread((dir / "memory.png").string()).rows, 500);  // two panels
   const PlotResult k = PlotKld({{"chow_liu", {0.1, 0.3, 0.2}}}, dir.string());
@@ -184,7 +208,7 @@ TEST(PlotsTest, ScriptsReMakeTheFiguresAfterTheDirectoryMoved) {
   fs::remove(final_dir / "nodes.png");
   const std::string cmd =
       "cd '" + final_dir.string() +
-      "' && gnuplot plot_data/nodes.gp 2>/dev/null && mv nodes.png.tmp nodes.png";
+      "' && gnuplot plot_data/nodes.gp 2>/dev/null && mv nodes.tmp.png nodes.png";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_TRUE(fs::exists(final_dir / "nodes.png"));
 }

@@ -20,12 +20,12 @@ namespace fs = std::filesystem;
 
 cv::Vec3b Pixel(const Image& im, int col, int row) {
   const std::size_t i = (static_cast<std::size_t>(row) * im.width + col) * 3;
-  return {im.bgr[i], im.bgr[i + 1], im.bgr[i + 2]};
+  return {im.rgb[i + 2], im.rgb[i + 1], im.rgb[i]};  // BGR, as OpenCV colours are written
 }
 
 // 20 x 10 cells of 0.1 m, all free, cell (15, 2) occupied: at x = 1.55, y = 0.25 m.
-io::OccupancyGrid Grid() {
-  io::OccupancyGrid g;
+OccupancyGrid Grid() {
+  OccupancyGrid g;
   g.width = 20, g.height = 10, g.resolution_m = 0.1;
   g.p_occ.assign(200, 0.0f);
   g.At(15, 2) = 1.0f;
@@ -44,7 +44,7 @@ TEST(CanvasTest, CoversABoxInWholePixels) {
 // A grid whose frame is rotated by 90 degrees and shifted in the figure frame: the occupied
 // cell is drawn where T_frame_grid puts it. (1.55, 0.25) -> (-0.25 + 5, 1.55 + 1).
 TEST(RenderFigureTest, ResamplesTheGridIntoTheFigureFrame) {
-  const io::OccupancyGrid grid = Grid();
+  const OccupancyGrid grid = Grid();
   FigureLayers layers;
   layers.grid = &grid;
   layers.T_frame_grid = Pose2(5.0, 1.0, M_PI / 2);
@@ -73,8 +73,8 @@ TEST(RenderFigureTest, TruePathLiesUnderTheGraph) {
   layers.scale_bar = false;
   // Lines through pixel centres: y = 1.05 m is image row 9, x = 1.05 m column 10.
   layers.trajectories.push_back({TrajectoryKind::kTrue, {{0.0, 1.05, 0}, {2.0, 1.05, 0}}});
-  layers.graph.edges.push_back({0.0, 1.05, 2.0, 1.05, slam::EdgeKind::kMarginal});
-  layers.graph.edges.push_back({1.05, 0.0, 1.05, 2.0, slam::EdgeKind::kLoop});
+  layers.graph.edges.push_back({0.0, 1.05, 2.0, 1.05, EdgeKind::kMarginal});
+  layers.graph.edges.push_back({1.05, 0.0, 1.05, 2.0, EdgeKind::kLoop});
   const Canvas c = CanvasCovering(0.0, 0.0, 2.0, 2.0, 0.1);
   const auto expect_near = [](const cv::Vec3b& p, const render::Rgb& want) {
     EXPECT_NEAR(p[0], want.b, 25);  // anti-aliased: within a tenth of full scale
@@ -82,8 +82,8 @@ TEST(RenderFigureTest, TruePathLiesUnderTheGraph) {
     EXPECT_NEAR(p[2], want.r, 25);
   };
   const Image im = RenderFigure(c, layers);
-  expect_near(Pixel(im, 5, 9), render::EdgeColour(slam::EdgeKind::kMarginal));
-  expect_near(Pixel(im, 10, 5), render::EdgeColour(slam::EdgeKind::kLoop));
+  expect_near(Pixel(im, 5, 9), render::EdgeColour(EdgeKind::kMarginal));
+  expect_near(Pixel(im, 10, 5), render::EdgeColour(EdgeKind::kLoop));
   EXPECT_EQ(Pixel(im, 3, 3), cv::Vec3b(255, 255, 255));  // no grid: white
   layers.graph = {};
   expect_near(Pixel(RenderFigure(c, layers), 5, 9), render::kTrueTrajectory);
@@ -92,14 +92,14 @@ TEST(RenderFigureTest, TruePathLiesUnderTheGraph) {
 TEST(RenderFigureTest, TransformedMovesNodesAndEdges) {
   GraphOverlay g;
   g.nodes = {{1.0, 0.0, 0.0}};
-  g.edges = {{1.0, 0.0, 2.0, 0.0, slam::EdgeKind::kOdometry}};
+  g.edges = {{{1.0, 0.0, 2.0, 0.0}, EdgeKind::kOdometry}};
   const GraphOverlay t = Transformed(Pose2(0.0, 1.0, M_PI / 2), g);
   EXPECT_NEAR(t.nodes[0].x, 0.0, 1e-12);
   EXPECT_NEAR(t.nodes[0].y, 2.0, 1e-12);
   EXPECT_NEAR(t.nodes[0].theta, M_PI / 2, 1e-12);
-  EXPECT_NEAR(t.edges[0].x1, 0.0, 1e-12);
-  EXPECT_NEAR(t.edges[0].y1, 3.0, 1e-12);
-  EXPECT_EQ(t.edges[0].kind, slam::EdgeKind::kOdometry);
+  EXPECT_NEAR(t.edges[0].segment.x1, 0.0, 1e-12);
+  EXPECT_NEAR(t.edges[0].segment.y1, 3.0, 1e-12);
+  EXPECT_EQ(t.edges[0].kind, EdgeKind::kOdometry);
 }
 
 std::vector<Observation> Stream(double length_m) {
@@ -117,7 +117,7 @@ std::vector<Observation> Stream(double length_m) {
 TEST(RunMapFrameTest, TruthFrameIsTheTruthMapsCanvasAtOneScale) {
   const std::vector<Segment> walls = {{0, 0, 20, 0}, {20, 0, 20, 3}};
   const RunMapFrame f = MakeRunMapFrame(Stream(10.0), &walls, 0.05);
-  const io::OccupancyGrid truth = RasterizeWalls(walls, 0.05);  // 22 m -> 441 cells -> k = 3
+  const OccupancyGrid truth = RasterizeWalls(walls, 0.05);  // 22 m -> 441 cells -> k = 3
   EXPECT_TRUE(f.truth_frame);
   EXPECT_DOUBLE_EQ(f.m_per_px, 0.05 / 3);
   EXPECT_EQ(f.canvas.width_px, truth.width * 3);
@@ -159,7 +159,7 @@ TEST(RunMapFrameTest, ModeFiguresShareTheTruthCanvasOrTheScale) {
   EXPECT_EQ(graph.at<cv::Vec3b>(graph.rows / 2, graph.cols / 2), cv::Vec3b(255, 255, 255));
 
   const RunMapFrame r = MakeRunMapFrame(Stream(2.0), nullptr, 0.1);
-  io::OccupancyGrid big = Grid();
+  OccupancyGrid big = Grid();
   big.resolution_m = 0.2;  // the same cells cover twice the metres
   WriteModeFigures(dir.string(), "a", Grid(), {}, std::nullopt, r);
   WriteModeFigures(dir.string(), "b", big, {}, std::nullopt, r);

@@ -14,11 +14,11 @@ constexpr double kPi = 3.14159265358979323846;
 // Two parallel 10 m walls 3 m apart, on cell centres: 101 raster cells each.
 std::vector<Segment> Corridor() { return {{0.05, 0.05, 10.05, 0.05}, {0.05, 3.05, 10.05, 3.05}}; }
 
-io::OccupancyGrid Perfect() { return RasterizeWalls(Corridor(), kRes); }
+OccupancyGrid Perfect() { return RasterizeWalls(Corridor(), kRes); }
 
 /// Copies every occupied cell k cells up and down (thickening).
-io::OccupancyGrid Thicken(const io::OccupancyGrid& g, int k) {
-  io::OccupancyGrid out = g;
+OccupancyGrid Thicken(const OccupancyGrid& g, int k) {
+  OccupancyGrid out = g;
   for (int r = 0; r < g.height; ++r)
     for (int c = 0; c < g.width; ++c)
       if (g.At(c, r) >= 0.65f)
@@ -37,7 +37,7 @@ TEST(BlurTest, PerfectMapScoresZero) {
 }
 
 TEST(BlurTest, ShiftedWallsScoreTheShiftAndTheAlignmentUndoesIt) {
-  io::OccupancyGrid shifted = Perfect();
+  OccupancyGrid shifted = Perfect();
   shifted.origin_y_m += 0.3;  // every wall 3 cells up
   const BlurResult b = ComputeBlur(shifted, Corridor(), Pose2(), {});
   EXPECT_NEAR(b.mean_cm, 30.0, 1e-3);
@@ -51,7 +51,7 @@ TEST(BlurTest, ShiftedWallsScoreTheShiftAndTheAlignmentUndoesIt) {
 TEST(BlurTest, RotatedMapIsScoredInTheTrueFrame) {
   std::vector<Segment> rotated;  // the corridor turned by +90 deg: (x, y) -> (-y, x)
   for (const Segment& s : Corridor()) rotated.push_back({-s.y0, s.x0, -s.y1, s.x1});
-  const io::OccupancyGrid map = RasterizeWalls(rotated, kRes);
+  const OccupancyGrid map = RasterizeWalls(rotated, kRes);
   const BlurResult b = ComputeBlur(map, Corridor(), Pose2(0, 0, -kPi / 2), {});
   EXPECT_LT(b.mean_cm, 0.5 * kRes * 100);
   EXPECT_GT(b.recall, 0.95);
@@ -70,7 +70,7 @@ TEST(BlurTest, ThickenedWallsScoreThicknessAndMeanOffset) {
 }
 
 TEST(BlurTest, RecallDropsWhenWallsAreMissing) {
-  io::OccupancyGrid map = Perfect();
+  OccupancyGrid map = Perfect();
   for (int r = 0; r < map.height; ++r)
     for (int c = 0; c < map.width; ++c)
       if (map.origin_y_m + r * kRes > 1.0 && map.origin_x_m + c * kRes < 5.0) map.At(c, r) = 0.0f;
@@ -81,7 +81,7 @@ TEST(BlurTest, RecallDropsWhenWallsAreMissing) {
 }
 
 TEST(BlurTest, RecallOnlyCountsWallsInRangeOfTheTrajectory) {
-  io::OccupancyGrid map = Perfect();
+  OccupancyGrid map = Perfect();
   for (int r = 0; r < map.height; ++r)
     for (int c = 0; c < map.width; ++c)
       if (map.origin_y_m + r * kRes > 1.0) map.At(c, r) = 0.0f;  // top wall never mapped
@@ -96,9 +96,9 @@ TEST(BlurTest, RecallOnlyCountsWallsInRangeOfTheTrajectory) {
 }
 
 TEST(EntropyTest, SumsBinaryEntropyOfKnownCellsOnly) {
-  io::OccupancyGrid g;
+  OccupancyGrid g;
   g.width = 5, g.height = 1;
-  g.p_occ = {io::OccupancyGrid::kUnknown, 0.5f, 1.0f, 0.0f, 0.25f};
+  g.p_occ = {OccupancyGrid::kUnknown, 0.5f, 1.0f, 0.0f, 0.25f};
   const EntropyResult e = ComputeMapEntropy(g);
   // H(0.5) = 1, H(1) = H(0) = 0, H(0.25) = 0.25*2 + 0.75*log2(4/3) = 0.811278 bits
   EXPECT_NEAR(e.entropy_bits, 1.0 + 0.5 + 0.75 * std::log2(4.0 / 3.0), 1e-6);

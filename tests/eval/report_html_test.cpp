@@ -58,8 +58,7 @@ TEST(ReportHtmlTest, EveryFigureHasACaptionAndOpensFullSize) {
 
 TEST(ReportHtmlTest, LegendUsesThePaletteAndModesTheirColours) {
   const std::string html = ReportHtmlText(Page());
-  for (slam::EdgeKind k :
-       {slam::EdgeKind::kOdometry, slam::EdgeKind::kLoop, slam::EdgeKind::kMarginal}) {
+  for (EdgeKind k : {EdgeKind::kOdometry, EdgeKind::kLoop, EdgeKind::kMarginal}) {
     EXPECT_NE(html.find("background:" + HexColour(render::EdgeColour(k))), std::string::npos);
   }
   EXPECT_NE(html.find("background:" + HexColour(render::kTrueTrajectory) + "\"></span>true"),

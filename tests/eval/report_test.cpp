@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.hpp"
+
 namespace lifelong::eval {
 namespace {
 
@@ -96,7 +98,7 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
 
   const fs::path dir = TempDir("json");
   WriteSummaryJson((dir / "summary.json").string(), s);
-  EXPECT_FALSE(fs::exists(dir / "summary.json.tmp"));
+  EXPECT_FALSE(fs::exists(io::TempPathFor((dir / "summary.json").string())));
   const auto j = nlohmann::json::parse(ReadAll(dir / "summary.json"));
   EXPECT_EQ(Keys(j),
             (std::set<std::string>{"source", "seed", "wall_time_s", "log_duration_s", "modes"}));
@@ -129,11 +131,11 @@ TEST(EdgesByKindTest, CountsEachFactorByOriginAndCliquesAsPairs) {
   for (slam::NodeId id = 0; id < 4; ++id) graph.AddNode(id);
   slam::PoseEdge edge;
   edge.information = Eigen::Matrix3d::Identity();
-  edge.from = 0, edge.to = 1, edge.kind = slam::EdgeKind::kOdometry;
+  edge.from = 0, edge.to = 1, edge.kind = EdgeKind::kOdometry;
   graph.AddEdge(edge);
   edge.from = 1, edge.to = 2;
   graph.AddEdge(edge);
-  edge.from = 0, edge.to = 2, edge.kind = slam::EdgeKind::kLoop;
+  edge.from = 0, edge.to = 2, edge.kind = EdgeKind::kLoop;
   graph.AddEdge(edge);
   slam::CliqueFactor clique;
   clique.nodes = {1, 2, 3};
@@ -156,7 +158,7 @@ TEST(SummaryJsonTest, SeedAndDurationAbsentWhenUnknown) {
 TEST(TimelineCsvTest, HeaderAndRows) {
   const fs::path p = TempDir("csv") / "timeline.csv";
   WriteTimelineCsv(p.string(), Rows(3));
-  EXPECT_FALSE(fs::exists(p.string() + ".tmp"));
+  EXPECT_FALSE(fs::exists(io::TempPathFor(p.string())));
   std::ifstream in(p);
   std::string line;
   std::getline(in, line);

@@ -52,13 +52,13 @@ void LoadCarmen(const fs::path& p) {
 }
 void LoadGraph(const fs::path& p) { io::ReadGraphFile(p.string()); }
 void LoadRelations(const fs::path& p) {
-  for (const io::Relation& r : io::ReadRelations(p.string(), io::kIntelRelationsTimeOffsetS)) {
+  for (const Relation& r : io::ReadRelations(p.string(), io::kIntelRelationsTimeOffsetS)) {
     EXPECT_TRUE(std::isfinite(r.t1_s) && std::isfinite(r.t2_s) && std::isfinite(r.T_1_2.x) &&
                 std::isfinite(r.T_1_2.y) && std::isfinite(r.T_1_2.theta));
   }
 }
 void LoadTum(const fs::path& p) {
-  for (const io::StampedPose& pose : io::ReadTum(p.string())) {
+  for (const StampedPose& pose : io::ReadTum(p.string())) {
     const Pose2& T = pose.T_world_robot;
     EXPECT_TRUE(std::isfinite(pose.stamp_s) && std::isfinite(T.x) && std::isfinite(T.y) &&
                 std::isfinite(T.theta));

@@ -45,13 +45,13 @@ TEST(GraphFile, ReadsG2oWithInformationOrder) {
   EXPECT_DOUBLE_EQ(f.values.at(1).y, -2.0);
   EXPECT_DOUBLE_EQ(f.values.at(5).theta, -1.0);
   const slam::PoseEdge& e = f.graph.edges()[0];
-  EXPECT_EQ(e.kind, slam::EdgeKind::kOdometry);
+  EXPECT_EQ(e.kind, EdgeKind::kOdometry);
   EXPECT_FALSE(e.robust);
   EXPECT_DOUBLE_EQ(e.T_from_to.theta, 0.25);
   Eigen::Matrix3d expected;  // I11 I12 I13 I22 I23 I33 = 10 1 2 20 3 30
   expected << 10, 1, 2, 1, 20, 3, 2, 3, 30;
   EXPECT_EQ(e.information, expected);
-  EXPECT_EQ(f.graph.edges()[1].kind, slam::EdgeKind::kLoop);
+  EXPECT_EQ(f.graph.edges()[1].kind, EdgeKind::kLoop);
   EXPECT_TRUE(f.graph.edges()[1].robust);
 }
 

@@ -55,9 +55,9 @@ Scene TinyScene() {
   panel.title = "standard";
   panel.map.width = panel.map.height = 10;
   panel.map.resolution_m = 1.0;
-  panel.map.p_occ.assign(100, 0.0f);                 // free
-  panel.map.At(2, 7) = 1.0f;                         // occupied: pixels x 120..129, y 20..29
-  panel.map.At(6, 1) = io::OccupancyGrid::kUnknown;  // pixels x 160..169, y 80..89
+  panel.map.p_occ.assign(100, 0.0f);             // free
+  panel.map.At(2, 7) = 1.0f;                     // occupied: pixels x 120..129, y 20..29
+  panel.map.At(6, 1) = OccupancyGrid::kUnknown;  // pixels x 160..169, y 80..89
   panel.robot_estimate = Pose2(8.0, 8.0, 0.0);
   scene.panels.push_back(panel);
   return scene;
@@ -80,7 +80,8 @@ void ExpectTinySceneDrawn(BackendChoice choice) {
   } catch (const RenderError& e) {
     GTEST_SKIP() << "no GL backend of this kind here: " << e.what();
   }
-  const Image image = renderer->Render(TinyScene());
+  const Frame frame = renderer->Render(TinyScene());
+  const Image& image = frame.image;
   ::testing::Test::RecordProperty("backend", renderer->backend_name());
   ASSERT_EQ(image.rgb.size(), 200u * 100u * 3u);
   using Px = std::array<std::uint8_t, 3>;
@@ -97,9 +98,9 @@ void ExpectTinySceneDrawn(BackendChoice choice) {
   const Px estimate = image.Pixel(181, 20);  // estimate at (8, 8) in the panel
   EXPECT_GT(estimate[0], 150);
   EXPECT_LT(estimate[1], 60);
-  ASSERT_EQ(image.labels.size(), 4u);
-  EXPECT_EQ(image.labels[2].text, "standard");
-  EXPECT_EQ(image.labels[3].text, "obs 0  nodes 0  edges 0");
+  ASSERT_EQ(frame.labels.size(), 4u);
+  EXPECT_EQ(frame.labels[2].text, "standard");
+  EXPECT_EQ(frame.labels[3].text, "obs 0  nodes 0  edges 0");
 }
 
 TEST(OffscreenRendererTest, TinySceneWithAnyBackend) { ExpectTinySceneDrawn(BackendChoice::kAuto); }
@@ -119,9 +120,9 @@ TEST(OffscreenRendererTest, EglAndOsMesaInterleavedDrawTheSamePixels) {
     GTEST_SKIP() << "needs both EGL and OSMesa: " << e.what();
   }
   const Scene scene = TinyScene();
-  const Image a = egl->Render(scene);
-  const Image b = osmesa->Render(scene);
-  const Image c = egl->Render(scene);  // EGL again after OSMesa was current
+  const Image a = egl->Render(scene).image;
+  const Image b = osmesa->Render(scene).image;
+  const Image c = egl->Render(scene).image;  // EGL again after OSMesa was current
   EXPECT_EQ(a.rgb, c.rgb);
   EXPECT_EQ(a.Pixel(125, 25), b.Pixel(125, 25));
   EXPECT_EQ(c.Pixel(125, 25), (std::array<std::uint8_t, 3>{0, 0, 0}));

@@ -5,12 +5,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "eval/video.hpp"
+#include "io/atomic_file.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sensor/input_error.hpp"
 
@@ -31,7 +34,7 @@ render::Scene SmallScene() {
   scan.angle_increment_rad = 0.5;
   scan.ranges_m = {3.0f, 2.0f, 100.0f};  // the third is no return
   scan.stamp_s = 1.5;
-  io::OccupancyGrid map;
+  OccupancyGrid map;
   map.width = map.height = 4;
   map.p_occ.assign(16, 0.0f);
   return MakeScene({{0, 5, 10, 5}}, Pose2(1, 1, 0), scan,
@@ -105,6 +108,45 @@ TEST(VideoSinkTest, WritesThreePngFramesAndAnMp4) {
   cv::Mat frame;
   ASSERT_TRUE(video.read(frame));
   EXPECT_EQ(frame.cols, 320);
+}
+
+// The mp4 grows under its temporary name, appears whole on Close, and a run that fails
+// (the sink destroyed while an exception unwinds) leaves neither it nor the temporary.
+TEST(VideoSinkTest, TheVideoAppearsOnCloseAndNotAfterAFailedRun) {
+  const fs::path dir = TempDir("atomic");
+  VideoOptions options;
+  options.video_path = (dir / "run.mp4").string();
+  options.stride = 1;
+  options.width = 64;
+  options.height = 48;
+  std::unique_ptr<VideoSink> sink;
+  try {
+    sink = std::make_unique<VideoSink>(options);
+  } catch (const render::RenderError& e) {
+    GTEST_SKIP() << "no GL backend here: " << e.what();
+  } catch (const std::runtime_error& e) {
+    if (std::string(e.what()).find("mp4v") == std::string::npos) throw;
+    GTEST_SKIP() << "OpenCV has no 'mp4v' writer";
+  }
+  const std::string tmp = io::TempPathFor(options.video_path);
+  sink->AddFrame(SmallScene());
+  EXPECT_FALSE(fs::exists(options.video_path));
+  EXPECT_TRUE(fs::exists(tmp));
+  sink->Close();
+  EXPECT_TRUE(fs::exists(options.video_path));
+  EXPECT_FALSE(fs::exists(tmp));
+
+  const fs::path failed = dir / "failed.mp4";
+  options.video_path = failed.string();
+  EXPECT_THROW(
+      {
+        VideoSink doomed(options);
+        doomed.AddFrame(SmallScene());
+        throw std::runtime_error("the run failed");
+      },
+      std::runtime_error);
+  EXPECT_FALSE(fs::exists(failed));
+  EXPECT_FALSE(fs::exists(io::TempPathFor(failed.string())));
 }
 
 TEST(VideoSinkTest, UnwritableFramesDirectoryNamesThePath) {

@@ -33,7 +33,7 @@ const std::vector<Observation>& Corridor3() {
 
 // RMS position error of the trajectory against the truth, after anchoring both at the
 // first scan (the mapper's world frame is the first robot pose).
-double AnchoredRmse(const std::vector<ScanPose>& est, const std::vector<Observation>& truth) {
+double AnchoredRmse(const std::vector<StampedPose>& est, const std::vector<Observation>& truth) {
   const Pose2 T_true_est = *truth.front().T_world_robot_true * est.front().T_world_robot.Inverse();
   double sum = 0.0;
   for (std::size_t i = 0; i < est.size(); ++i) {
@@ -45,7 +45,7 @@ double AnchoredRmse(const std::vector<ScanPose>& est, const std::vector<Observat
 }
 
 struct MapRun {
-  std::vector<ScanPose> trajectory;
+  std::vector<StampedPose> trajectory;
   std::size_t nodes = 0;
   std::size_t edges = 0;
   std::size_t removed = 0;

@@ -11,17 +11,18 @@
 
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
+#include "types/segment.hpp"
 
 namespace lifelong::testing {
 
-struct Segment {
-  Eigen::Vector2d a, b;
-};
 using World = std::vector<Segment>;
 
 inline void AddRectangle(double x0, double y0, double x1, double y1, World* w) {
   const Eigen::Vector2d p[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  for (int i = 0; i < 4; ++i) w->push_back({p[i], p[(i + 1) % 4]});
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector2d& q = p[(i + 1) % 4];
+    w->push_back({p[i].x(), p[i].y(), q.x(), q.y()});
+  }
 }
 
 /// An 8 m x 5 m room, lower-left corner at the origin, with two boxes.
@@ -34,9 +35,7 @@ inline World RoomWorld() {
 }
 
 /// A featureless corridor along x: walls at y = 0 and y = 2, 200 m long.
-inline World CorridorWorld() {
-  return {{{-100.0, 0.0}, {100.0, 0.0}}, {{-100.0, 2.0}, {100.0, 2.0}}};
-}
+inline World CorridorWorld() { return {{-100.0, 0.0, 100.0, 0.0}, {-100.0, 2.0, 100.0, 2.0}}; }
 
 /// A lattice of 0.2 m posts, unrelated to the room.
 inline World PostsWorld() {
@@ -54,10 +53,11 @@ inline double CastRay(const World& w, const Eigen::Vector2d& o, const Eigen::Vec
   };
   double best = std::numeric_limits<double>::infinity();
   for (const Segment& s : w) {
-    const Eigen::Vector2d e = s.b - s.a;
+    const Eigen::Vector2d a(s.x0, s.y0), b(s.x1, s.y1);
+    const Eigen::Vector2d e = b - a;
     const double den = cross(d, e);
     if (std::abs(den) < 1e-12) continue;
-    const double t = cross(s.a - o, e) / den, u = cross(s.a - o, d) / den;
+    const double t = cross(a - o, e) / den, u = cross(a - o, d) / den;
     if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
   }
   return best;

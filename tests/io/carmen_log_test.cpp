@@ -1,48 +1,21 @@
-// Tests for io/carmen_log, io/relations and io/tum on tiny hand-made files whose answers
-// are worked out in the comments, plus the counts of the shared datasets (SOURCES.md).
+// Tests for io/carmen_log (reader and writer) on tiny hand-made files whose answers are
+// worked out in the comments.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <string>
 
+#include "io/atomic_file.hpp"
 #include "io/carmen_log.hpp"
-#include "io/relations.hpp"
-#include "io/tum.hpp"
 #include "sensor/input_error.hpp"
+#include "tests/io/io_test_util.hpp"
 
 namespace lifelong::io {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
-const std::string kData = std::string(LIFELONG_SOURCE_DIR) + "/tests/data/io/";
-const std::string kDatasets = std::string(LIFELONG_SHARED_DIR) + "/datasets/";
-
-std::string TempPath(const std::string& name) { return ::testing::TempDir() + "io_log_" + name; }
-
-std::string WriteText(const std::string& name, const std::string& text) {
-  const std::string path = TempPath(name);
-  std::ofstream(path) << text;
-  return path;
-}
-
-std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-bool Exists(const std::string& path) { return std::ifstream(path).good(); }
-
-void ExpectPose(const Pose2& p, double x, double y, double theta, double tol = 1e-9) {
-  EXPECT_NEAR(p.x, x, tol);
-  EXPECT_NEAR(p.y, y, tol);
-  EXPECT_NEAR(NormalizeAngle(p.theta - theta), 0.0, tol);
-}
+using namespace test_util;  // the io test helpers (tests/io/io_test_util.hpp)
 
 /// Expects ReadCarmenLog to throw an InputError on `line` naming `field`.
 void ExpectLogError(const std::string& text, int line, const std::string& field) {
@@ -205,7 +178,7 @@ TEST(CarmenWrite, RoundTripWithinPrintedPrecision) {
   for (const std::string name : {"rt.clf", "rt.clf.gz"}) {
     const std::string path = TempPath(name);
     WriteSample(path);
-    EXPECT_FALSE(Exists(path + ".tmp"));
+    EXPECT_FALSE(Exists(TempPathFor(path)));
     const CarmenLog log = ReadCarmenLog(path);
     const std::vector<Observation> in = SampleScans();
     ASSERT_EQ(log.observations.size(), in.size());
@@ -252,10 +225,10 @@ TEST(CarmenWrite, UnclosedWriterLeavesNoFileAndBadPathThrows) {
   {
     CarmenWriter writer(path);
     writer.WriteOdometry({1.0, Pose2()});
-    EXPECT_TRUE(Exists(path + ".tmp"));
+    EXPECT_TRUE(Exists(TempPathFor(path)));
   }
   EXPECT_FALSE(Exists(path));
-  EXPECT_FALSE(Exists(path + ".tmp"));
+  EXPECT_FALSE(Exists(TempPathFor(path)));
   EXPECT_THROW(CarmenWriter(TempPath("no_such_dir/x.clf")), InputError);
 }
 
@@ -269,165 +242,6 @@ TEST(CarmenRead, TruncatedGzipThrows) {
   const std::string bytes = ReadBytes(path);
   std::ofstream(path, std::ios::binary) << bytes.substr(0, bytes.size() - 12);  // no trailer
   EXPECT_THROW(ReadCarmenLog(path), InputError);
-}
-
-TEST(Relations, SubtractsOffsetAndKeepsPlanarPart) {
-  const auto rel = ReadRelations(kData + "tiny.relations", 1000.0);
-  ASSERT_EQ(rel.size(), 2u);
-  EXPECT_DOUBLE_EQ(rel[0].t1_s, 0.5);
-  EXPECT_DOUBLE_EQ(rel[0].t2_s, 1.5);
-  ExpectPose(rel[0].T_1_2, 0.1, -0.2, 0.5);
-  EXPECT_DOUBLE_EQ(rel[1].t2_s, 3.0);
-  ExpectPose(rel[1].T_1_2, 1.0, 0.0, -0.25);
-  try {
-    ReadRelations(WriteText("bad.relations", "1 2 0 0 0 0 0 0\n\n1 2 0 x 0 0 0 0\n"), 0.0);
-    ADD_FAILURE();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.line(), 3);
-    EXPECT_EQ(e.field(), "y");
-  }
-  EXPECT_THROW(ReadRelations(WriteText("short.relations", "1 2 0 0 0\n"), 0.0), InputError);
-}
-
-TEST(Tum, WritesFixedFormatAndReadsYawBack) {
-  const std::string path = TempPath("traj.tum");
-  WriteTum(path, {{1000000000.5, Pose2(1.0, 2.0, kPi / 2)}, {2.0, Pose2(-1.5, 0.25, -3.0)}});
-  const std::string text = ReadBytes(path);
-  EXPECT_EQ(text.substr(0, text.find('\n')),
-            "1000000000.500000 1.000000 2.000000 0.000000 0.000000000 0.000000000 0.707106781 "
-            "0.707106781");
-  const auto poses = ReadTum(path);
-  ASSERT_EQ(poses.size(), 2u);
-  EXPECT_DOUBLE_EQ(poses[0].stamp_s, 1000000000.5);
-  ExpectPose(poses[0].T_world_robot, 1.0, 2.0, kPi / 2, 2e-9);
-  ExpectPose(poses[1].T_world_robot, -1.5, 0.25, -3.0, 2e-9);
-  EXPECT_THROW(ReadTum(WriteText("bad.tum", "# c\n1 2 3 0 0 0 0\n")), InputError);
-}
-
-TEST(Relations, ParsesAStreamAndNamesItInErrors) {
-  std::istringstream in("# t1 t2 x y z roll pitch yaw\n10.5 11 0.1 -0.2 9 9 9 0.5\r\n");
-  const auto rel = ParseRelations(in, "mem.relations", 10.0);
-  ASSERT_EQ(rel.size(), 1u);
-  EXPECT_DOUBLE_EQ(rel[0].t1_s, 0.5);
-  EXPECT_DOUBLE_EQ(rel[0].t2_s, 1.0);
-  ExpectPose(rel[0].T_1_2, 0.1, -0.2, 0.5);
-  std::istringstream bad("1 2 0 0 0 0 0 0 0\n");
-  try {
-    ParseRelations(bad, "mem.relations", 0.0);
-    ADD_FAILURE();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "mem.relations");
-    EXPECT_EQ(e.line(), 1);
-  }
-}
-
-TEST(Tum, ParsesAStreamAndNamesItInErrors) {
-  std::istringstream in("1.5 1 2 3 0 0 0.7071067811865476 0.7071067811865476\n");
-  const auto poses = ParseTum(in, "mem.tum");
-  ASSERT_EQ(poses.size(), 1u);
-  EXPECT_DOUBLE_EQ(poses[0].stamp_s, 1.5);
-  ExpectPose(poses[0].T_world_robot, 1.0, 2.0, kPi / 2);
-  std::istringstream bad("1 0 0 0 0 0 0 1\n2 0 0 0 nan 0 0 1\n");
-  try {
-    ParseTum(bad, "mem.tum");
-    ADD_FAILURE();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "mem.tum");
-    EXPECT_EQ(e.line(), 2);
-    EXPECT_EQ(e.field(), "qx");
-  }
-}
-
-// Found by fuzz_tum: squaring components near 1e200 gave inf - inf = NaN yaw.
-TEST(Tum, QuaternionOfAnyNormGivesItsYaw) {
-  const auto yaw = [](const std::string& q) {
-    std::istringstream in("0 0 0 0 " + q + "\n");
-    return ParseTum(in, "q.tum").at(0).T_world_robot.theta;
-  };
-  EXPECT_NEAR(yaw("0 0 1e200 1e200"), kPi / 2, 1e-12);
-  EXPECT_NEAR(yaw("1e300 0 -1e300 1e300"), std::atan2(-2.0, 1.0), 1e-12);
-  EXPECT_NEAR(yaw("0 0 -3e-5 3e-5"), -kPi / 2, 1e-12);
-  for (const char* q : {"0 0 0 0", "0 0 1e-7 0", "0 0 1e-300 1e-300"}) {
-    std::istringstream in(std::string("0 0 0 0 ") + q + "\n");
-    EXPECT_THROW(ParseTum(in, "q.tum"), InputError) << q;
-  }
-}
-
-TEST(Tum, AFolderIsAnInputErrorNotAnEmptyTrajectory) {
-  EXPECT_THROW(ReadTum(::testing::TempDir()), InputError);
-  EXPECT_THROW(ReadRelations(::testing::TempDir(), 0.0), InputError);
-}
-
-// --- shared datasets (SOURCES.md counts) -------------------------------------------------
-
-bool HaveDatasets() { return Exists(kDatasets + "SOURCES.md"); }
-
-/// Largest translation between consecutive scans' odometry poses.
-double MaxStep(const CarmenLog& log) {
-  double worst = 0.0;
-  for (std::size_t i = 1; i < log.observations.size(); ++i) {
-    const Pose2 d = Between(log.observations[i - 1].T_odom_robot, log.observations[i].T_odom_robot);
-    worst = std::max(worst, std::hypot(d.x, d.y));
-  }
-  return worst;
-}
-
-TEST(Datasets, IntelRaw) {
-  if (!HaveDatasets()) GTEST_SKIP() << "shared datasets absent: " << kDatasets;
-  const CarmenLog log = ReadCarmenLog(kDatasets + "intel/intel-raw-first1088s.clf.gz");
-  ASSERT_EQ(log.observations.size(), 5505u);
-  EXPECT_TRUE(log.odometry.empty());
-  EXPECT_FALSE(log.odometry_recovered);
-  EXPECT_GT(log.backward_scan_stamps, 0);  // "a few timestamps run backwards"
-  EXPECT_NEAR(log.observations.front().stamp_s, 0.000246, 1e-9);
-  EXPECT_NEAR(log.observations.back().stamp_s, 1088.61, 0.01);
-  EXPECT_NEAR(log.observations[0].scan.range_max_m, 81.83, 1e-5);
-  EXPECT_EQ(log.observations[0].scan.ranges_m.size(), 180u);
-  EXPECT_LT(MaxStep(log), 1.0);
-}
-
-void CheckCorrected(const std::string& file, std::size_t scans, std::size_t odom,
-                    double range_max) {
-  if (!HaveDatasets()) GTEST_SKIP() << "shared datasets absent: " << kDatasets;
-  const CarmenLog log = ReadCarmenLog(kDatasets + file);
-  EXPECT_TRUE(log.odometry_recovered);
-  ASSERT_EQ(log.observations.size(), scans);
-  EXPECT_EQ(log.skipped.at("NEFF"), static_cast<int>(scans));
-  EXPECT_EQ(log.odometry.size() + static_cast<std::size_t>(log.dropped_odometry), odom);
-  EXPECT_EQ(static_cast<std::size_t>(log.dropped_odometry), scans);
-  EXPECT_NEAR(log.observations[0].scan.range_max_m, range_max, 1e-5);
-  // Keyframes sit ~1 m apart (GMapping's linearUpdate), so allow 1.5 m, never a jump.
-  EXPECT_LT(MaxStep(log), 1.5);
-  // The raw steps differ from the corrected ones by GMapping's small corrections only.
-  CarmenReadOptions off;
-  off.recovery = OdometryRecovery::kOff;
-  const CarmenLog corrected = ReadCarmenLog(kDatasets + file, off);
-  int large = 0;
-  for (std::size_t i = 1; i < scans; ++i) {
-    const Pose2 raw =
-        Between(log.observations[i - 1].T_odom_robot, log.observations[i].T_odom_robot);
-    const Pose2 cor =
-        Between(corrected.observations[i - 1].T_odom_robot, corrected.observations[i].T_odom_robot);
-    large += std::hypot(raw.x - cor.x, raw.y - cor.y) > 0.2 ? 1 : 0;
-  }
-  EXPECT_LT(large, static_cast<int>(scans) / 20);
-  // ... but they add up to a drift: raw odometry ends far from the corrected pose.
-  const Pose2 end =
-      Between(log.observations.back().T_odom_robot, corrected.observations.back().T_odom_robot);
-  EXPECT_GT(std::hypot(end.x, end.y) + std::abs(end.theta), 0.5);
-}
-
-TEST(Datasets, IntelCorrected) {
-  CheckCorrected("intel/intel-corrected.log.gz", 910, 14541, 81.83);
-}
-TEST(Datasets, FhwCorrected) { CheckCorrected("fhw/fhw-corrected.log.gz", 488, 13935, 51.10); }
-
-TEST(Datasets, IntelRelations) {
-  if (!HaveDatasets()) GTEST_SKIP() << "shared datasets absent: " << kDatasets;
-  const auto rel = ReadRelations(kDatasets + "intel/intel.relations", kIntelRelationsTimeOffsetS);
-  ASSERT_EQ(rel.size(), 2984u);
-  EXPECT_NEAR(rel[0].t1_s, 976052905.167303 - 976052857.337284, 1e-6);
-  ExpectPose(rel[0].T_1_2, -0.056990, -0.128430, -1.682210);
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
-// A probability grid as exchanged between slam (producer), io (PGM/PNG files) and eval
-// (metrics, drawing). Row 0 is the lowest y; cell (col,row) covers
-// [origin_x_m + col*res, origin_x_m + (col+1)*res) x [origin_y_m + row*res, ...).
+// A probability grid as exchanged between eval (made from slam's grid map; metrics,
+// drawing), io (PGM + YAML files) and render (a panel's map). Row 0 is the lowest y; cell
+// (col,row) covers [origin_x_m + col*res, origin_x_m + (col+1)*res) x [origin_y_m + row*res, ...).
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
-namespace lifelong::io {
+namespace lifelong {
 
 struct OccupancyGrid {
   int width = 0;               ///< cells along x
@@ -31,4 +31,4 @@ struct OccupancyGrid {
   }
 };
 
-}  // namespace lifelong::io
+}  // namespace lifelong

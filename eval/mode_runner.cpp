@@ -1,0 +1,194 @@
+// One mode of an experiment; see mode_runner.hpp.
+#include "eval/mode_runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "eval/map_quality.hpp"
+#include "eval/mode_csv.hpp"
+#include "eval/resources.hpp"
+#include "eval/run_maps.hpp"
+#include "io/atomic_file.hpp"
+#include "io/graph_file.hpp"
+#include "io/map_file.hpp"
+#include "io/tum.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+}  // namespace
+
+ModeRunner::ModeRunner(slam::PruningMode mode, const ExperimentConfig& config)
+    : mode_(mode), name_(slam::PruningModeName(mode)), config_(config) {
+  slam::MapperConfig mc = config.mapper;
+  mc.pruning.mode = mode;
+  mapper_ = std::make_unique<slam::Mapper>(mc);
+  mapper_->on_observation = [this](const slam::StepStats& s) { Record(s); };
+}
+void ModeRunner::Step(const Observation& obs) {
+  const auto start = Clock::now();
+  mapper_->AddObservation(obs);
+  seconds_ += Seconds(start);
+}
+
+std::string ModeRunner::ProgressDetail() const {
+  std::ostringstream line;
+  line << "nodes " << mapper_->graph().NumNodes() << "  edges "
+       << mapper_->graph().NumEdgesForGamma() << "  loops " << mapper_->loop_closures().size();
+  return line.str();
+}
+
+void ModeRunner::Record(const slam::StepStats& s) {
+  TimelineRow row;
+  row.obs = s.observation_index;
+  row.t_s = s.stamp_s;
+  row.time_ms = s.time_ms;
+  row.nodes = static_cast<int>(s.nodes);
+  row.edges = static_cast<int>(s.edges);
+  row.gamma = s.gamma;
+  row.rss_mb = CurrentRssMb().value_or(0.0);
+  row.graph_bytes = s.graph_bytes;
+  row.loop_closures = s.loop_closures_total;
+  row.optimize_ms = s.optimize_ms;
+  row.nodes_removed = s.nodes_removed_total;
+  timeline_.push_back(row);
+  if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
+}
+
+void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const {
+  const std::vector<bool>& correct = truth.correct_each;
+  std::string text = "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg\n";
+  const auto& loops = mapper_->loop_closures();
+  const double end = timeline_.empty() ? 0.0 : timeline_.back().t_s;
+  const double start = timeline_.empty() ? 0.0 : timeline_.front().t_s;
+  int last_hour = 0, last_hour_correct = 0;
+  char line[160];
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    const bool known = k < correct.size();
+    if (known) {
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%d,%.4f,%.3f\n", loops[k].stamp_current_s,
+                    loops[k].stamp_old_s, loops[k].injected ? 1 : 0, correct[k] ? 1 : 0,
+                    truth.error_m_each[k], truth.error_deg_each[k]);
+    } else {
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,,,\n", loops[k].stamp_current_s,
+                    loops[k].stamp_old_s, loops[k].injected ? 1 : 0);
+    }
+    text += line;
+    if (known && loops[k].stamp_current_s >= end - 3600.0) {
+      ++last_hour;
+      last_hour_correct += correct[k] ? 1 : 0;
+    }
+  }
+  if (summary && end - start > 3600.0 && last_hour > 0) {
+    summary->loop_precision_last_hour = static_cast<double>(last_hour_correct) / last_hour;
+  }
+  io::WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
+}
+
+Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                               const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
+                               ModeSummary* summary) const {
+  std::vector<Pose2> true_poses;
+  std::map<double, Pose2> true_at;
+  for (const Observation& o : stream) {
+    true_poses.push_back(*o.T_world_robot_true);
+    true_at[o.stamp_s] = *o.T_world_robot_true;
+  }
+  const AteResult ate = ComputeAte(estimate, true_poses);
+  summary->ate_rmse_m = ate.rmse_m;
+  const Pose2 T_truth_est = AlignSE2(estimate, true_poses);
+  const BlurResult blur = ComputeBlur(grid, truth.walls, T_truth_est, true_poses);
+  BlurSummary bs;
+  bs.mean_cm = blur.mean_cm;
+  bs.p95_cm = blur.p95_cm;
+  bs.thickness = blur.thickness;
+  if (blur.wall_cells > 0) bs.recall = blur.recall;
+  summary->blur = bs;
+  // Loop closures against the true poses of the observations (every node ever created,
+  // in creation order: the timeline has one row per observation).
+  std::map<double, int> index_of_stamp;
+  std::vector<Pose2> true_nodes;
+  for (const TimelineRow& row : timeline_) {
+    index_of_stamp.emplace(row.t_s, static_cast<int>(true_nodes.size()));
+    true_nodes.push_back(true_at.at(row.t_s));
+  }
+  std::vector<LoopClosure> closures;
+  for (const auto& lc : mapper_->loop_closures()) {
+    closures.push_back({index_of_stamp.at(lc.stamp_old_s), index_of_stamp.at(lc.stamp_current_s),
+                        lc.T_old_current});
+  }
+  const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
+  if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
+  if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
+  WriteLoopsCsv(lcr, summary);
+  return T_truth_est;
+}
+
+ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
+                               const std::optional<GroundTruth>& truth,
+                               const std::vector<Relation>& relations, std::vector<double>* kld,
+                               std::string* map_png) {
+  const auto start = Clock::now();
+  mapper_->Finish();
+  seconds_ += Seconds(start);
+  const fs::path dir = fs::path(config_.out_dir) / name_;
+  fs::create_directories(dir);
+  const slam::Mapper& m = *mapper_;
+
+  ModeSummary summary = SummarizeTimeline(timeline_, first_pass_end_);
+  summary.wall_time_s = seconds_;
+  summary.peak_rss_mb = PeakRssMb();
+  if (m.observations() > 0) {
+    summary.scans_kept_pct =
+        100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
+  }
+  summary.edges_by_kind = EdgesByKind(m.graph());
+  for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
+  if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
+
+  const std::vector<StampedPose> trajectory = m.Trajectory();
+  std::vector<Pose2> estimate;
+  for (const StampedPose& p : trajectory) estimate.push_back(p.T_world_robot);
+  io::WriteTum((dir / "trajectory.tum").string(), trajectory);
+  io::WriteG2o((dir / "graph.g2o").string(), m.graph(), m.values());
+  const OccupancyGrid grid = ToOccupancyGrid(m.map());
+  io::WritePgmMap((dir / "map.pgm").string(), grid);
+  const EntropyResult entropy = ComputeMapEntropy(grid);
+  summary.map_entropy_bits = entropy.entropy_bits;
+  summary.occupied_share = entropy.occupied_share;
+
+  const slam::LoopVerifierStats& lv = m.loop_verification();
+  summary.loop_verification = LoopVerificationSummary{
+      lv.proposed, lv.accepted, lv.rejected, lv.expired, lv.injected, lv.injected_accepted};
+  std::optional<Pose2> T_truth_est;
+  if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
+  if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
+  if (!relations.empty()) {
+    const RelationsResult rr = ComputeRelationsError(trajectory, relations);
+    summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
+                                         rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
+  }
+  WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
+  if (mode_ != slam::PruningMode::kNone) {
+    WriteMarginalizations((dir / "marginalizations.csv").string(), m);
+    WriteSparsifications((dir / "sparsifications.csv").string(), m);
+  }
+  WriteModeFigures(config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()),
+                   T_truth_est,
+                   MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
+  *map_png = name_ + "/map.png";
+  return summary;
+}
+
+}  // namespace lifelong::eval

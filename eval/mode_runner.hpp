@@ -1,0 +1,61 @@
+// One mode of an experiment: its mapper, its timeline and, at the end, its outputs (the
+// <mode>/ folder of the output directory) and its figures of summary.json.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/experiment.hpp"
+#include "eval/metrics.hpp"
+#include "eval/report.hpp"
+#include "slam/mapper.hpp"
+
+namespace lifelong::eval {
+
+class ModeRunner {
+ public:
+  ModeRunner(slam::PruningMode mode, const ExperimentConfig& config);
+
+  const std::string& name() const { return name_; }
+  const slam::Mapper& mapper() const { return *mapper_; }
+  /// Frees the mapper once the mode is finished and written.
+  void Release() { mapper_.reset(); }
+
+  void Step(const Observation& obs);
+
+  /// Counts for the progress line.
+  std::string ProgressDetail() const;
+
+  // Finishes the mapper, writes DIR/<mode>/... and returns the mode's summary.
+  ModeSummary Finish(const std::vector<Observation>& stream,
+                     const std::optional<GroundTruth>& truth,
+                     const std::vector<Relation>& relations, std::vector<double>* kld,
+                     std::string* map_png);
+
+ private:
+  void Record(const slam::StepStats& s);
+
+  /// Writes <mode>/loops.csv (one row per accepted closure, with its truth when known)
+  /// and the precision over the last hour of runs longer than one.
+  void WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const;
+
+  /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame).
+  Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                     const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
+                     ModeSummary* summary) const;
+
+  slam::PruningMode mode_;
+  std::string name_;
+  const ExperimentConfig& config_;
+  std::unique_ptr<slam::Mapper> mapper_;
+  std::vector<TimelineRow> timeline_;
+  std::optional<int> first_pass_end_;
+  double seconds_ = 0.0;
+
+ public:
+  const std::vector<TimelineRow>& timeline() const { return timeline_; }
+};
+
+}  // namespace lifelong::eval

@@ -68,9 +68,15 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
   if (m.loop_verification) {
     const LoopVerificationSummary& v = *m.loop_verification;
-    j["loop_verification"] = {{"proposed", v.proposed}, {"accepted", v.accepted},
-                              {"rejected", v.rejected}, {"expired", v.expired},
-                              {"injected", v.injected}, {"injected_accepted", v.injected_accepted}};
+    json lv = {{"proposed", v.proposed},
+               {"accepted", v.accepted},
+               {"rejected", v.rejected},
+               {"expired", v.expired}};
+    if (v.injection) {
+      lv["injected"] = v.injected;
+      lv["injected_accepted"] = v.injected_accepted;
+    }
+    j["loop_verification"] = lv;
   }
   if (m.relations) {
     const RelationsSummary& r = *m.relations;

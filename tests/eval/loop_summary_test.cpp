@@ -1,0 +1,41 @@
+// summary.json's loop-closure figures: loop_verification (its injected counts only when the
+// false-closure test was on) and loop_precision_last_hour.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "eval/report.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+nlohmann::json ModeJsonOf(const ModeSummary& m) {
+  RunSummary s;
+  s.modes["pruned"] = m;
+  return nlohmann::json::parse(SummaryJsonText(s))["modes"]["pruned"];
+}
+
+TEST(LoopSummary, VerificationCountsWithoutInjection) {
+  ModeSummary m;
+  m.loop_verification = LoopVerificationSummary{40, 31, 2, 7, 0, 0, false};
+  const auto j = ModeJsonOf(m)["loop_verification"];
+  EXPECT_EQ(j["proposed"], 40);
+  EXPECT_EQ(j["accepted"], 31);
+  EXPECT_EQ(j["rejected"], 2);
+  EXPECT_EQ(j["expired"], 7);
+  EXPECT_FALSE(j.contains("injected"));  // not a silent zero: the test was off
+  EXPECT_FALSE(ModeJsonOf(m).contains("loop_precision_last_hour"));
+}
+
+TEST(LoopSummary, InjectedCountsWhenTheTestWasOn) {
+  ModeSummary m;
+  m.loop_verification = LoopVerificationSummary{40, 31, 2, 7, 3, 0, true};
+  m.loop_precision_last_hour = 0.995;
+  const auto j = ModeJsonOf(m);
+  EXPECT_EQ(j["loop_verification"]["injected"], 3);
+  EXPECT_EQ(j["loop_verification"]["injected_accepted"], 0);
+  EXPECT_DOUBLE_EQ(j["loop_precision_last_hour"].get<double>(), 0.995);
+}
+
+}  // namespace
+}  // namespace lifelong::eval

@@ -121,6 +121,8 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Int("submap_span", c.submap_span, 0);
   v.Number("min_score", c.min_score, kUnit);
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
+  v.Number("max_flatness", c.max_flatness, kUnit);
+  v.Number("uniqueness_radius_m", c.uniqueness_radius_m, kPositive);
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);
   v.Int("min_reference_points", c.min_reference_points, 0);
   v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, false); });

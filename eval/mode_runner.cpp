@@ -169,14 +169,16 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.occupied_share = entropy.occupied_share;
 
   const slam::LoopVerifierStats& lv = m.loop_verification();
-  summary.loop_verification =
-      LoopVerificationSummary{lv.proposed,
-                              lv.accepted,
-                              lv.rejected,
-                              lv.expired,
-                              lv.injected,
-                              lv.injected_accepted,
-                              config_.mapper.loops.inject_false_share > 0.0};
+  LoopVerificationSummary verification;
+  verification.proposed = lv.proposed;
+  verification.accepted = lv.accepted;
+  verification.rejected = lv.rejected;
+  verification.expired = lv.expired;
+  verification.not_unique = lv.not_unique;
+  verification.injected = lv.injected;
+  verification.injected_accepted = lv.injected_accepted;
+  verification.injection = config_.mapper.loops.inject_false_share > 0.0;
+  summary.loop_verification = verification;
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);

@@ -71,7 +71,8 @@ json ModeJson(const ModeSummary& m) {
     json lv = {{"proposed", v.proposed},
                {"accepted", v.accepted},
                {"rejected", v.rejected},
-               {"expired", v.expired}};
+               {"expired", v.expired},
+               {"not_unique", v.not_unique}};
     if (v.injection) {
       lv["injected"] = v.injected;
       lv["injected_accepted"] = v.injected_accepted;

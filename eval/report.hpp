@@ -36,7 +36,8 @@ struct RelationsSummary {
 struct LoopVerificationSummary {
   std::int64_t proposed = 0, accepted = 0, rejected = 0, expired = 0;
   std::int64_t injected = 0, injected_accepted = 0;
-  bool injection = false;  ///< the false-closure test was on; else the two are not written
+  std::int64_t not_unique = 0;  ///< matches refused as not locally unique (no hypothesis)
+  bool injection = false;       ///< the false-closure test was on; else the two are not written
 };
 struct KldSummary {
   std::int64_t count = 0;

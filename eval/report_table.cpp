@@ -94,6 +94,8 @@ const std::vector<TableRow>& SummaryTableRows() {
        "share of revisits (1 m, 30 deg of an older node) with a correct loop closure"},
       {kAccuracy, "/loop_precision_last_hour", "loop-closure precision, last hour", "%", 100, false,
        "precision of the closures accepted in the run's last hour (runs over an hour)"},
+      {kAccuracy, "/loop_verification/not_unique", "matches not locally unique", "", 1, false,
+       "loop-closure matches refused before verification: a pose 0.25 m away scores alike"},
       {kAccuracy, "/loop_verification/proposed", "closures proposed", "", 1, false,
        "loop-closure hypotheses from the matcher, before group verification"},
       {kAccuracy, "/loop_verification/accepted", "closures accepted", "", 1, false,

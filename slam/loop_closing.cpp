@@ -105,6 +105,10 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   match_grid.Build(reference, mc);
   const MatchResult match = Match(match_grid, nodes.at(current).points, X_cur, mc);
   if (!match.ok || match.score < lc.min_score || match.ambiguity > lc.max_ambiguity) return false;
+  if (!LocallyUnique(match, nodes.at(current).points)) {
+    verifier.NoteNotUnique();
+    return false;
+  }
 
   // The correction must be plausible under the projected uncertainty of the best candidate.
   const auto best = std::min_element(
@@ -140,6 +144,22 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
     closed = true;
   }
   return closed;
+}
+
+bool Mapper::State::LocallyUnique(const MatchResult& match,
+                                  const std::vector<Eigen::Vector2d>& points) const {
+  const LoopClosingConfig& lc = config.loops;
+  if (lc.max_flatness >= 1.0 || match.score <= 0.0) return true;
+  // A corridor or an aisle scores almost as well a little further along its axis: the
+  // best pose there is one of many, and its error along the axis is unobserved.
+  const Pose2& best = match.T_ref_cur;
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * M_PI / 4.0;
+    const Pose2 shifted(best.x + lc.uniqueness_radius_m * std::cos(a),
+                        best.y + lc.uniqueness_radius_m * std::sin(a), best.theta);
+    if (ScoreAt(match_grid, points, shifted) > lc.max_flatness * match.score) return false;
+  }
+  return true;
 }
 
 void Mapper::State::MaybeInjectFalse(LoopHypothesis* h) {

@@ -69,9 +69,10 @@ struct LoopHypothesis {
 struct LoopVerifierStats {
   int proposed = 0;  ///< hypotheses from the matcher
   int accepted = 0;
-  int rejected = 0;  ///< conflicting with the accepted closures around them
-  int expired = 0;   ///< never confirmed
-  int injected = 0;  ///< wrong closures injected (false-closure test)
+  int rejected = 0;    ///< conflicting with the accepted closures around them
+  int expired = 0;     ///< never confirmed
+  int not_unique = 0;  ///< matches refused before verification: not locally unique
+  int injected = 0;    ///< wrong closures injected (false-closure test)
   int injected_accepted = 0;
 };
 
@@ -86,6 +87,8 @@ class LoopVerifier {
   void Expire(double travelled_m);
   /// Forgets accepted closures involving a removed node (they no longer count as evidence).
   void ForgetNode(NodeId id);
+  /// Counts a match the mapper refused as not locally unique (it never became a hypothesis).
+  void NoteNotUnique() { ++stats_.not_unique; }
   /// True when a pending hypothesis involves the node (pruning must keep it).
   bool IsPending(NodeId id) const;
 

@@ -53,8 +53,12 @@ struct LoopClosingConfig {
   /// The submap holds one visit: candidates observed within this many observations of the
   /// most likely candidate (and their neighbours alike). 0: every candidate.
   int submap_span = 0;
-  double min_score = 0.6;           ///< a good match...
-  double max_ambiguity = 0.85;      ///< ...and an unambiguous one
+  double min_score = 0.6;       ///< a good match...
+  double max_ambiguity = 0.85;  ///< ...and an unambiguous one...
+  /// ...and a locally unique one: no pose uniqueness_radius_m away (8 directions, same
+  /// heading) scores above max_flatness times the best. 1: off.
+  double max_flatness = 0.9;
+  double uniqueness_radius_m = 0.25;
   double consistency_chi2 = 16.27;  ///< 99.9 % gate (3 dof) of the correction
   int min_reference_points = 60;    ///< submap points the search can reach, fewer: no match
   MatcherConfig matcher;            ///< windows are set per attempt

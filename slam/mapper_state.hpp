@@ -83,6 +83,9 @@ struct Mapper::State {
   void AnchorScan(const Observation& obs);
   void Reanchor(std::size_t scan, NodeId anchor);
   bool TryCloseLoop(NodeId current);
+  /// Local uniqueness of a loop-closure match: no pose uniqueness_radius_m away (8
+  /// directions, same heading) scores above max_flatness times the best.
+  bool LocallyUnique(const MatchResult& match, const std::vector<Eigen::Vector2d>& points) const;
   /// The false-closure test: moves every 1/share-th hypothesis by the configured offset.
   void MaybeInjectFalse(LoopHypothesis* h);
   /// Puts a verified closure into the graph (and optimizes when it is far off).

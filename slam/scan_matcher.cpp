@@ -199,6 +199,19 @@ void EvaluateNeighbourhood(const Eval& best, const Lattice& l, Searcher* s) {
 
 }  // namespace
 
+double ScoreAt(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points_in_cur,
+               const Pose2& T_ref_cur) {
+  if (points_in_cur.empty()) return 0.0;
+  double sum = 0.0;
+  for (const Eigen::Vector2d& p : points_in_cur) {
+    double x = 0.0, y = 0.0;
+    T_ref_cur.Apply(p.x(), p.y(), &x, &y);
+    const Eigen::Vector2i c = ref.CellOf({x, y});
+    sum += ref.Likelihood(c.x(), c.y());
+  }
+  return sum / static_cast<double>(points_in_cur.size());
+}
+
 void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2& T_ref_cur_guess,
                   const MatcherConfig& config, std::vector<Eigen::Vector2d>* reference) {
   if (points_in_cur.empty()) {

@@ -105,6 +105,11 @@ struct MatchResult {
 MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points_in_cur,
                   const Pose2& T_ref_cur_guess, const MatcherConfig& config);
 
+/// Match's score of one pose, without a search: the mean likelihood of the points placed at
+/// T_ref_cur (each looked up in the fine cell it falls in).
+double ScoreAt(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points_in_cur,
+               const Pose2& T_ref_cur);
+
 /// Keeps the reference points that can change the match of `points_in_cur` around the
 /// guess: those whose likelihood kernel reaches a table cell that Match would look up for some
 /// rotation and translation of its search lattice (its bounds' blocks included). The match is

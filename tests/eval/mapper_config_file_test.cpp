@@ -44,6 +44,8 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(a.optimize_edge_chi2, b.optimize_edge_chi2);
   EXPECT_EQ(a.optimize_every, b.optimize_every);
   EXPECT_EQ(a.submap_span, b.submap_span);
+  EXPECT_EQ(a.max_flatness, b.max_flatness);
+  EXPECT_EQ(a.uniqueness_radius_m, b.uniqueness_radius_m);
   EXPECT_EQ(a.verify.enabled, b.verify.enabled);
   EXPECT_EQ(a.verify.min_group, b.verify.min_group);
   EXPECT_EQ(a.verify.consistency_chi2, b.verify.consistency_chi2);
@@ -143,6 +145,8 @@ MapperConfig AllChanged() {
   l.max_window_rad = 0.6;
   l.neighbours_per_candidate = 1;
   l.submap_span = 7;
+  l.max_flatness = 0.8;
+  l.uniqueness_radius_m = 0.4;
   l.min_score = 0.7;
   l.max_ambiguity = 0.9;
   l.consistency_chi2 = 11.34;

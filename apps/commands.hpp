@@ -1,5 +1,5 @@
 // The commands that need the whole testbed (simulator, mapper, evaluation, OpenCV,
-// offscreen OpenGL): run, replay and simulate. They live in the module
+// offscreen OpenGL): run, replay, simulate and sweep. They live in the module
 // liblifelong_commands.so, which `lifelong` loads only when one of them is asked for, so
 // that `lifelong optimize` and `--help` start without OpenCV, EGL or OSMesa.
 #pragma once
@@ -26,14 +26,22 @@ struct ReplayArgs {
   std::string command_line;
 };
 
+/// `sweep SPEC -o DIR [-j N]`, or `sweep collect DIR` (collect_only, out = DIR).
+struct SweepArgs {
+  std::string spec, out;
+  int jobs = 0;  ///< 0: the number of cores
+  bool collect_only = false;
+};
+
 /// Each returns the process exit code (0, 1, 2 or 130) after printing any error.
 struct CommandTable {
   int (*run)(const RunArgs&);
   int (*simulate)(const SimulateArgs&);
   int (*replay)(const ReplayArgs&);
+  int (*sweep)(const SweepArgs&);  ///< apps/sweep_command.cpp
 };
 
 /// The module's one exported symbol: `extern "C" const CommandTable* <this>()`.
-inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v1";
+inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v2";
 
 }  // namespace lifelong::apps

@@ -1,4 +1,5 @@
-// liblifelong_commands.so: `lifelong run`, `replay` and `simulate` (apps/commands.hpp).
+// liblifelong_commands.so: `lifelong run`, `replay`, `simulate` (apps/commands.hpp) and
+// `sweep` (apps/sweep_command.cpp).
 // Loaded by the `lifelong` program on demand; it brings the simulator, the evaluation,
 // OpenCV and offscreen OpenGL with it.
 #include <unistd.h>
@@ -12,6 +13,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/sweep_command.hpp"
 #include "eval/console_table.hpp"
 #include "eval/experiment.hpp"
 #include "eval/interrupt.hpp"
@@ -237,12 +239,12 @@ int ReplayCommand(const ReplayArgs& a) {
   });
 }
 
-const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand};
+const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand, SweepCommand};
 
 }  // namespace
 }  // namespace lifelong::apps
 
 extern "C" __attribute__((visibility("default"))) const lifelong::apps::CommandTable*
-lifelong_command_table_v1() {
+lifelong_command_table_v2() {
   return &lifelong::apps::kTable;
 }

@@ -1,6 +1,6 @@
 // lifelong: the command-line front of the testbed. Thin: parses arguments, runs
-// `optimize` itself (slam + io only) and loads liblifelong_commands.so for run, replay and
-// simulate (apps/commands.hpp), so that --help and optimize start without OpenCV or GL.
+// `optimize` itself (slam + io only) and loads liblifelong_commands.so for run, replay,
+// simulate and sweep (apps/commands.hpp), so that --help and optimize start without OpenCV or GL.
 // Exit codes (apps/exit_codes.hpp): 0 success, 2 bad input or usage, 1 internal failure,
 // 130 interrupted.
 #include <dlfcn.h>
@@ -153,6 +153,20 @@ int main(int argc, char** argv) {
                                          "stamps on scan stamps)")
                             ->default_str("detected");
 
+  lifelong::apps::SweepArgs sweep_args;
+  std::string collect_dir;
+  auto* sweep = app.add_subcommand(
+      "sweep", "map scenarios/logs x seeds x settings, one run per cell, then collect");
+  sweep->add_option("spec", sweep_args.spec, "sweep SPEC, YAML (README \"Sweeps\")");
+  sweep->add_option("-o,--out", sweep_args.out,
+                    "sweep directory (cells, runs.csv, aggregate.csv, paired.csv, report.html)");
+  sweep->add_option("-j,--jobs", sweep_args.jobs, "cells run at once")
+      ->check(IntRange(1, 4096))
+      ->default_str("the number of cores");
+  auto* collect = sweep->add_subcommand(
+      "collect", "collect a sweep directory again: CSVs and report.html from its cells");
+  collect->add_option("dir", collect_dir, "sweep directory")->required();
+
   std::string graph_in, graph_out;
   auto* optimize = app.add_subcommand("optimize", "optimize a g2o or TORO pose graph");
   optimize->add_option("graph", graph_in, "g2o or TORO file")->required();
@@ -166,13 +180,21 @@ int main(int argc, char** argv) {
 
   if (const auto unknown = UnknownCommand(argc, argv, app)) {
     std::cerr << "error: unknown command " << *unknown
-              << " (known: run, simulate, replay, optimize; see lifelong --help)\n";
+              << " (known: run, simulate, replay, optimize, sweep; see lifelong --help)\n";
     return 2;
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (*sweep && *collect) {
+    sweep_args.collect_only = true;
+    sweep_args.out = collect_dir;
+  } else if (*sweep && (sweep_args.spec.empty() || sweep_args.out.empty())) {
+    std::cerr << "error: sweep needs a SPEC and -o DIR (lifelong sweep SPEC.yaml -o DIR), or "
+                 "`lifelong sweep collect DIR`\n";
+    return 2;
   }
   const auto never_interrupted = [](const std::exception&) { return false; };
   if (*optimize) {
@@ -190,6 +212,7 @@ int main(int argc, char** argv) {
   if (loaded != 0) return loaded;
   if (*run) return commands->run(run_args);
   if (*simulate) return commands->simulate(sim_args);
+  if (*sweep) return commands->sweep(sweep_args);
   if (*replay) {
     replay_args.offset_given = offset_option->count() > 0;
     return commands->replay(replay_args);

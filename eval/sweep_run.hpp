@@ -1,0 +1,56 @@
+// `lifelong sweep SPEC -o DIR [-j N]`: expands the SPEC (eval/sweep_spec.hpp) into cells
+// (eval/sweep_cells.hpp), runs each cell whose current result is missing as a child
+// process of `program` (a local pool, eval/sweep_pool.hpp), then collects the tables
+// and the report (eval/sweep_collect.hpp, sweep_report.hpp). Layout of DIR:
+//   sweep.json                 the plan (cells, settings, hashes)
+//   inputs/<cell>/scenario.yaml, config.yaml   what the cell's run was given
+//   cells/<cell>/              the run's usual output, + sweep_cell.json when it succeeded
+//   cells/<cell>.run.log       the run's stdout and stderr
+//   runs.csv, aggregate.csv, paired.csv, report.html, sweep_*.png, plot_data/
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "eval/sweep_collect.hpp"
+
+namespace lifelong::eval {
+
+struct SweepOptions {
+  std::string spec;
+  std::string out_dir;
+  std::string program;     ///< the lifelong binary each cell runs
+  std::string program_id;  ///< its version and commit: part of every cell's hash
+  int parallel = 1;
+  std::ostream* progress = nullptr;  ///< one line for the sweep; nullptr: quiet
+  bool terminal = false;             ///< redraw that line in place
+};
+
+struct FailedCell {
+  std::string name;
+  int exit_code = 0;
+  std::string log;  ///< path of its run.log
+};
+
+struct SweepOutcome {
+  int cells = 0;
+  int up_to_date = 0;  ///< not run: their result was there for the same inputs
+  int ran = 0;
+  std::vector<FailedCell> failed;
+  double wall_s = 0.0;
+  SweepTables tables;
+};
+
+/// Checks everything (SPEC, DIR) before any cell runs: InputError then. Throws
+/// eval::Interrupted after Ctrl-C/SIGTERM once the running cells have stopped.
+SweepOutcome RunSweep(const SweepOptions& options);
+
+/// Collects DIR's tables and writes the CSVs and the report; what `sweep collect` does.
+SweepTables CollectSweep(const std::string& dir);
+
+/// "sweep 3/6 cells (1 up to date), 1 failed, elapsed 0:12, ETA 0:08".
+std::string SweepProgressLine(int done, int total, int up_to_date, int failed, double elapsed_s,
+                              double eta_s);
+
+}  // namespace lifelong::eval

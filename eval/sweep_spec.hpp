@@ -1,0 +1,55 @@
+// The SPEC file of `lifelong sweep` (README "Sweeps"): which scenarios and logs to map,
+// with which seeds, modes and mapper settings. Read strictly: an unknown key, an empty
+// list, a missing scenario, world or log, an unknown mode or an unknown mapper setting is
+// a lifelong::InputError naming the SPEC file, the line and the field, before anything runs.
+//
+//   scenarios: [../scenarios/corridor_3.yaml]      # paths relative to the SPEC file
+//   logs: [{log: a.clf.gz, relations: a.relations, relations_offset_s: 0}]
+//   seeds: [1, 2, 3]                   # override each scenario's seed; absent: its own
+//   modes: [standard, pruned]
+//   settings: {pruning.gain_threshold_bits: [0, 5]}   # dotted mapper-config keys
+//   baseline: standard                 # default: the first mode
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lifelong::eval {
+
+/// One scenario or log of the SPEC, its paths resolved against the SPEC's folder.
+struct SweepSource {
+  bool is_log = false;
+  std::string given;                         ///< as written in the SPEC
+  std::string path;                          ///< absolute
+  std::string world_path;                    ///< scenarios: the world file, absolute
+  std::string relations;                     ///< logs: relations file, absolute; empty: none
+  std::optional<double> relations_offset_s;  ///< logs: given offset; absent: detected
+  int line = 0;                              ///< in the SPEC
+};
+
+/// One dotted mapper-config key and the values it takes (YAML scalars, as written).
+struct SweepSetting {
+  std::string key;
+  std::vector<std::string> values;
+  int line = 0;
+};
+
+struct SweepSpec {
+  std::string file;  ///< the SPEC path as given
+  std::vector<SweepSource> sources;
+  std::vector<std::int64_t> seeds;  ///< empty: each scenario keeps its own seed
+  std::vector<std::string> modes;   ///< the baseline first, then the others as given
+  std::string baseline;
+  std::vector<SweepSetting> settings;
+};
+
+/// Reads and checks `path` (see above). Throws lifelong::InputError.
+SweepSpec LoadSweepSpec(const std::string& path);
+
+/// The mapper-config YAML (nested sections) that sets each dotted key to its value:
+/// {"pruning.gain_threshold_bits": "5"} -> "pruning:\n  gain_threshold_bits: 5\n".
+std::string SettingsConfigYaml(const std::vector<std::pair<std::string, std::string>>& settings);
+
+}  // namespace lifelong::eval

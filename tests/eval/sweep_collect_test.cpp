@@ -63,7 +63,10 @@ void WriteCell(const fs::path& dir, const SweepPlanCell& cell, const json& modes
 // Two seeds × one setting value × {standard, pruned}, and a third seed whose result is
 // from other inputs (stale hash): it must not be read.
 fs::path Fabricate() {
-  const fs::path dir = fs::path(::testing::TempDir()) / "sweep_collect_test";
+  // One folder per test: CTest runs the tests of this file in parallel processes.
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       (std::string("sweep_collect_") +
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(dir);
   fs::create_directories(dir);
   SweepPlan plan{"spec.yaml", {"standard", "pruned"}, "standard", {"pruning.radius_m"}, {}};

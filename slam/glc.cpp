@@ -104,6 +104,30 @@ MatrixXd WeightCovariance(const MatrixXd& lambda_y, bool* regularized) {
   return Sym(llt.solve(id));
 }
 
+/// ln|S| from eigenvalues clamped at the smallest positive double: a covariance that
+/// rounding left barely indefinite still ranks (pair weights only).
+double LogDetClamped(const MatrixXd& s) {
+  const VectorXd ev = Eigen::SelfAdjointEigenSolver<MatrixXd>(Sym(s)).eigenvalues();
+  return ev.cwiseMax(std::numeric_limits<double>::min()).array().log().sum();
+}
+
+/// Seed eq. (5.35) for every pair of the 3-blocks of sigma: 1/2 ln(|S_ii||S_jj| / |S_ij,ij|).
+std::vector<WeightedPair> PairWeights(const MatrixXd& sigma) {
+  const int n = static_cast<int>(sigma.rows() / 3);
+  std::vector<double> single;
+  for (int i = 0; i < n; ++i) single.push_back(LogDetClamped(Select(sigma, {i}, {i})));
+  std::vector<WeightedPair> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const double joint = LogDetClamped(Select(sigma, {i, j}, {i, j}));
+      pairs.push_back({i, j,
+                       0.5 * (single[static_cast<std::size_t>(i)] +
+                              single[static_cast<std::size_t>(j)] - joint)});
+    }
+  }
+  return pairs;
+}
+
 }  // namespace
 
 MatrixXd InformativePart(const MatrixXd& lambda, double tolerance, int* rank) {
@@ -138,8 +162,7 @@ GlcFactors GlcChowLiu(const std::vector<NodeId>& nodes, const Values& values,
   const MatrixXd& lambda_y = c.information;
   const int n = static_cast<int>(nodes.size()) - 1;
   const MatrixXd sigma = WeightCovariance(lambda_y, regularized);
-  const std::vector<TreeEdge> tree =
-      OrientTree(n, MaximumSpanningTree(n, MutualInformationPairs(sigma)), 0);
+  const std::vector<TreeEdge> tree = OrientTree(n, MaximumSpanningTree(n, PairWeights(sigma)), 0);
   // The tree's root: its marginal, a factor over {r, n_1}.
   Emit(SubFactor(c, {0}, InformativePart(MarginalInformation(lambda_y, {0}), tolerance)), &out);
   for (const TreeEdge& t : tree) {

@@ -35,12 +35,12 @@ std::size_t IndexOf(const std::vector<NodeId>& index, NodeId n) {
   return static_cast<std::size_t>(it - index.begin());
 }
 
-/// Moore-Penrose inverse of a symmetric PSD matrix (eigenvalues below 1e-12 max dropped).
-MatrixXd PinvPsd(const MatrixXd& m) {
+/// Moore-Penrose inverse of a symmetric PSD matrix (eigenvalues below cut * max dropped).
+MatrixXd PinvPsd(const MatrixXd& m, double cut = 1e-12) {
   if (m.rows() == 0) return m;
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(m);
   const VectorXd ev = eig.eigenvalues();
-  const double tol = 1e-12 * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
+  const double tol = cut * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
   VectorXd inv = VectorXd::Zero(ev.size());
   for (Eigen::Index i = 0; i < ev.size(); ++i) inv(i) = ev(i) > tol ? 1.0 / ev(i) : 0.0;
   return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
@@ -185,7 +185,13 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // z: displacement (node 0 held) whose first-order residuals J z add the missing gradient.
   const Eigen::Index d = now.H.rows() - 3;
   VectorXd z = VectorXd::Zero(now.H.rows());
-  z.tail(d) = PinvPsd(now.H.bottomRightCorner(d, d)) * (g_N - now.g).tail(d);
+  // Jacobi-scaled pseudo-inverse with a 1e-10 cut: a direction the new factors barely
+  // inform (a low-rank GLC conditional) gets no displacement rather than a huge one.
+  const MatrixXd h = now.H.bottomRightCorner(d, d);
+  VectorXd s = VectorXd::Ones(d);
+  for (Eigen::Index i = 0; i < d; ++i) s(i) = h(i, i) > 0.0 ? 1.0 / std::sqrt(h(i, i)) : 1.0;
+  z.tail(d) = s.asDiagonal() * PinvPsd(s.asDiagonal() * h * s.asDiagonal(), 1e-10) *
+              (s.asDiagonal() * (g_N - now.g).tail(d));
   const auto delta = [&](NodeId n) { return z.segment<3>(Block(IndexOf(nodes, n))); };
   // Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
   // the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T

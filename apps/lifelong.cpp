@@ -16,6 +16,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/sparsify_command.hpp"
 #include "io/graph_file.hpp"
 #include "lifelong_build_info.hpp"  // generated: LIFELONG_VERSION, LIFELONG_COMMIT
 #include "sensor/input_error.hpp"
@@ -178,9 +179,24 @@ int main(int argc, char** argv) {
   optimize->add_option("--solver", solver, "CHOLMOD factorization: auto, simplicial, supernodal");
   optimize->add_flag("--no-init", no_init, "skip the linear (LAGO-style) initialization");
 
+  lifelong::apps::SparsifyArgs sparsify_args;
+  sparsify_args.method = "chow-liu";
+  auto* sparsify = app.add_subcommand(
+      "sparsify", "remove nodes from an optimized pose graph and report the global KL divergence");
+  sparsify->add_option("graph", sparsify_args.graph, "g2o or TORO file")->required();
+  sparsify->add_option("-o,--out", sparsify_args.out, "write the sparsified graph (g2o)");
+  sparsify->add_option("--method", sparsify_args.method,
+                       "naive, exact, chow-liu, glc-dense or glc (what replaces a clique)");
+  auto* keep_option = sparsify->add_option("--keep-share", sparsify_args.keep_share,
+                                           "keep this share of the nodes, evenly by id");
+  sparsify->add_option("--remove", sparsify_args.remove, "file of node ids to remove")
+      ->excludes(keep_option);
+  sparsify->add_flag("--zero-residual", sparsify_args.zero_residual,
+                     "new factors measure the optimum itself (drop the marginal's gradient)");
+
   if (const auto unknown = UnknownCommand(argc, argv, app)) {
     std::cerr << "error: unknown command " << *unknown
-              << " (known: run, simulate, replay, optimize, sweep; see lifelong --help)\n";
+              << " (known: run, simulate, replay, optimize, sparsify, sweep; see lifelong --help)\n";
     return 2;
   }
   try {
@@ -201,6 +217,10 @@ int main(int argc, char** argv) {
     return lifelong::apps::Guarded(
         [&] { return OptimizeGraph(graph_in, graph_out, method, solver, no_init); },
         never_interrupted);
+  }
+  if (*sparsify) {
+    return lifelong::apps::Guarded([&] { return lifelong::apps::Sparsify(sparsify_args); },
+                                   never_interrupted);
   }
   const CommandTable* commands = nullptr;
   const int loaded = lifelong::apps::Guarded(

@@ -78,6 +78,28 @@ void PoseGraph::RemoveEdgesWithin(const std::vector<NodeId>& nodes) {
   RebuildAdjacency();
 }
 
+namespace {
+bool CliqueWithin(const CliqueFactor& c, const std::vector<NodeId>& nodes) {
+  return std::all_of(c.nodes.begin(), c.nodes.end(),
+                     [&](NodeId n) { return std::binary_search(nodes.begin(), nodes.end(), n); });
+}
+}  // namespace
+
+std::vector<CliqueFactor> PoseGraph::CliquesWithin(const std::vector<NodeId>& nodes) const {
+  std::vector<CliqueFactor> out;
+  for (const CliqueFactor& c : cliques_) {
+    if (CliqueWithin(c, nodes)) out.push_back(c);
+  }
+  return out;
+}
+
+void PoseGraph::RemoveCliquesWithin(const std::vector<NodeId>& nodes) {
+  cliques_.erase(std::remove_if(cliques_.begin(), cliques_.end(),
+                                [&](const CliqueFactor& c) { return CliqueWithin(c, nodes); }),
+                 cliques_.end());
+  RebuildAdjacency();
+}
+
 void PoseGraph::RebuildAdjacency() {
   for (auto& [node, neighbours] : adjacency_) neighbours.clear();
   for (const PoseEdge& e : edges_) {

@@ -56,6 +56,10 @@ class PoseGraph {
   std::vector<PoseEdge> EdgesWithin(const std::vector<NodeId>& nodes) const;
   /// Removes the pose edges with both ends in `nodes` (ascending ids).
   void RemoveEdgesWithin(const std::vector<NodeId>& nodes);
+  /// The clique factors with every node in `nodes` (ascending ids).
+  std::vector<CliqueFactor> CliquesWithin(const std::vector<NodeId>& nodes) const;
+  /// Removes the clique factors with every node in `nodes` (ascending ids).
+  void RemoveCliquesWithin(const std::vector<NodeId>& nodes);
 
   const std::vector<PoseEdge>& edges() const { return edges_; }
   const std::vector<CliqueFactor>& cliques() const { return cliques_; }

@@ -1,0 +1,122 @@
+#include "apps/sparsify_command.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "io/graph_file.hpp"
+#include "sensor/input_error.hpp"
+#include "slam/global_kl.hpp"
+#include "slam/offline_sparsify.hpp"
+#include "slam/optimizer.hpp"
+#include "slam/sparsifier.hpp"
+
+namespace lifelong::apps {
+namespace {
+
+using slam::NodeId;
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+/// Ids to remove, one or more per line (`#` starts a comment); each must be a node.
+std::vector<NodeId> ReadRemoveFile(const std::string& path, const slam::PoseGraph& graph) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", "cannot open the list of ids to remove");
+  std::vector<NodeId> ids;
+  std::set<NodeId> seen;
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    std::istringstream words(text.substr(0, text.find('#')));
+    for (std::string token; words >> token;) {
+      char* end = nullptr;
+      errno = 0;
+      const long long id = std::strtoll(token.c_str(), &end, 10);
+      if (*end != '\0' || errno == ERANGE) {
+        throw InputError(path, line, "id", "not an integer id: '" + token + "'");
+      }
+      if (!graph.HasNode(id)) {
+        throw InputError(path, line, "id", "node " + token + " is not in the graph");
+      }
+      if (!seen.insert(id).second) {
+        throw InputError(path, line, "id", "node " + token + " is listed twice");
+      }
+      ids.push_back(id);
+    }
+  }
+  return ids;
+}
+
+void PrintNumber(std::ostream& out, const char* key, double v) {
+  out << ",\"" << key << "\":";
+  if (std::isfinite(v)) {
+    out << v;
+  } else {
+    out << "null";
+  }
+}
+
+}  // namespace
+
+int Sparsify(const SparsifyArgs& args) {
+  slam::SparsifierConfig config;
+  config.keep_gradient = !args.zero_residual;
+  const auto sparsifier = slam::MakeSparsifier(args.method, config);
+  if (!sparsifier) {
+    throw InputError(
+        "--method", 0, "",
+        "unknown method '" + args.method + "' (known: " + Join(slam::SparsifierNames()) + ")");
+  }
+  if (args.keep_share && !(*args.keep_share > 0.0 && *args.keep_share <= 1.0)) {
+    std::ostringstream v;
+    v << *args.keep_share;
+    throw InputError("--keep-share", 0, "", "must be in (0, 1], got " + v.str());
+  }
+  if (!args.keep_share && args.remove.empty()) {
+    throw InputError("sparsify", 0, "", "give --keep-share F or --remove FILE");
+  }
+  io::GraphFile file = io::ReadGraphFile(args.graph);
+  if (file.graph.NumNodes() == 0) throw InputError(args.graph, 0, "", "the graph has no vertices");
+  const std::vector<NodeId> remove =
+      args.keep_share ? slam::RemovalForKeepShare(file.graph.NodeIds(), *args.keep_share)
+                      : ReadRemoveFile(args.remove, file.graph);
+  if (remove.size() == file.graph.NumNodes()) {
+    throw InputError(args.remove, 0, "id", "every node would be removed");
+  }
+  slam::OptimizerParams params;  // plain least squares: no robust kernel
+  slam::Optimize(file.graph, &file.values, params);
+  const slam::PoseGraph& full = file.graph;
+  const slam::Values& optimum = file.values;
+  slam::PoseGraph sparse = full;
+  const slam::OfflineSparsifyStats stats =
+      slam::SparsifyOffline(&sparse, optimum, remove, *sparsifier);
+  slam::Values sparse_values;
+  for (NodeId id : sparse.NodeIds()) sparse_values[id] = optimum.at(id);
+  slam::Optimize(sparse, &sparse_values, params);
+  const slam::GlobalKl kl = slam::GlobalKlDivergence(full, optimum, sparse, sparse_values);
+  if (!args.out.empty()) io::WriteG2o(args.out, sparse, sparse_values);
+  std::ostringstream json;
+  json << std::setprecision(10) << "{\"method\":\"" << sparsifier->Name()
+       << "\",\"kept\":" << sparse.NumNodes() << ",\"removed\":" << stats.removed
+       << ",\"edges\":" << sparse.NumEdgesForGamma()
+       << ",\"factors\":" << sparse.edges().size() + sparse.cliques().size();
+  PrintNumber(json, "time_s", stats.time_s);
+  PrintNumber(json, "kld", kl.kl);
+  PrintNumber(json, "kld_mean", kl.mean_term);
+  PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
+  json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
+       << ",\"gradient_kept\":" << (config.keep_gradient ? "true" : "false") << "}\n";
+  std::cout << json.str();
+  return 0;
+}
+
+}  // namespace lifelong::apps

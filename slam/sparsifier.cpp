@@ -1,0 +1,250 @@
+#include "slam/sparsifier.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
+#include "slam/se2.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+using Factory = std::unique_ptr<Sparsifier> (*)(const SparsifierConfig&);
+struct Entry {
+  const char* name;
+  Factory make;
+};
+// The registry: a plain table, no static initialisation (STYLE.md).
+constexpr Entry kRegistry[] = {{"naive", MakeNaiveSparsifier},
+                               {"exact", MakeExactSparsifier},
+                               {"chow-liu", MakeChowLiuSparsifier},
+                               {"glc-dense", MakeGlcDenseSparsifier},
+                               {"glc", MakeGlcSparsifier}};
+
+Eigen::Index Block(std::size_t i) { return static_cast<Eigen::Index>(3 * i); }
+
+std::size_t IndexOf(const std::vector<NodeId>& index, NodeId n) {
+  const auto it = std::find(index.begin(), index.end(), n);
+  if (it == index.end()) throw std::logic_error("sparsifier: node outside the clique");
+  return static_cast<std::size_t>(it - index.begin());
+}
+
+/// Moore-Penrose inverse of a symmetric PSD matrix (eigenvalues below cut * max dropped).
+MatrixXd PinvPsd(const MatrixXd& m, double cut = 1e-12) {
+  if (m.rows() == 0) return m;
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(m);
+  const VectorXd ev = eig.eigenvalues();
+  const double tol = cut * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
+  VectorXd inv = VectorXd::Zero(ev.size());
+  for (Eigen::Index i = 0; i < ev.size(); ++i) inv(i) = ev(i) > tol ? 1.0 / ev(i) : 0.0;
+  return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+/// P = diag(R(angle), 1): how the error of a relative-pose factor turns when its
+/// measurement's heading changes by -angle (see PreserveGradient).
+Matrix3d Turn(double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  Matrix3d p;
+  p << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+  return p;
+}
+
+/// Measurement Z' whose residual at (Xi, Xj) is e:  Z'^-1 Xi^-1 Xj = V2T(e).
+Pose2 MeasurementFor(const Pose2& Xi, const Pose2& Xj, const Eigen::Vector3d& e) {
+  return Between(Xi, Xj) * V2T(e).Inverse();
+}
+
+void AddLinearized(const std::vector<NodeId>& index, const std::vector<NodeId>& factor_nodes,
+                   const MatrixXd& J, const MatrixXd& info, const VectorXd& e, LocalSystem* s) {
+  const MatrixXd jt_info = J.transpose() * info;
+  const MatrixXd h = jt_info * J;
+  const VectorXd g = jt_info * e;
+  for (std::size_t a = 0; a < factor_nodes.size(); ++a) {
+    const Eigen::Index ra = Block(IndexOf(index, factor_nodes[a]));
+    s->g.segment<3>(ra) += g.segment<3>(Block(a));
+    for (std::size_t b = 0; b < factor_nodes.size(); ++b) {
+      const Eigen::Index rb = Block(IndexOf(index, factor_nodes[b]));
+      s->H.block<3, 3>(ra, rb) += h.block<3, 3>(Block(a), Block(b));
+    }
+  }
+}
+
+void AddEdge(const PoseEdge& edge, const Values& values, const std::vector<NodeId>& index,
+             LocalSystem* s) {
+  const Pose2& Xi = values.at(edge.from);
+  const Pose2& Xj = values.at(edge.to);
+  Matrix3d Ji, Jj;
+  RelativeErrorJacobians(Xi, Xj, edge.T_from_to, &Ji, &Jj);
+  MatrixXd J(3, 6);
+  J << Ji, Jj;
+  AddLinearized(index, {edge.from, edge.to}, J, edge.information,
+                RelativeError(Xi, Xj, edge.T_from_to), s);
+}
+
+void AddClique(const CliqueFactor& c, const Values& values, const std::vector<NodeId>& index,
+               LocalSystem* s) {
+  const std::size_t k = c.nodes.size() - 1;
+  const Pose2& Xr = values.at(c.nodes[0]);
+  MatrixXd J = MatrixXd::Zero(Block(k), Block(k + 1));
+  VectorXd e(Block(k));
+  for (std::size_t j = 0; j < k; ++j) {
+    const Pose2& Xn = values.at(c.nodes[j + 1]);
+    Matrix3d Jr, Jn;
+    RelativeErrorJacobians(Xr, Xn, c.T_root_node[j], &Jr, &Jn);
+    J.block<3, 3>(Block(j), 0) = Jr;
+    J.block<3, 3>(Block(j), Block(j + 1)) = Jn;
+    e.segment<3>(Block(j)) = RelativeError(Xr, Xn, c.T_root_node[j]);
+  }
+  AddLinearized(index, c.nodes, J, c.information, e, s);
+}
+
+}  // namespace
+
+std::size_t Replacement::Pairs() const {
+  std::size_t n = edges.size();
+  for (const CliqueFactor& c : cliques) n += c.nodes.size() * (c.nodes.size() - 1) / 2;
+  return n;
+}
+
+std::unique_ptr<Sparsifier> MakeSparsifier(const std::string& name,
+                                           const SparsifierConfig& config) {
+  for (const Entry& e : kRegistry) {
+    if (name == e.name) return e.make(config);
+  }
+  return nullptr;
+}
+
+std::vector<std::string> SparsifierNames() {
+  std::vector<std::string> names;
+  for (const Entry& e : kRegistry) names.emplace_back(e.name);
+  return names;
+}
+
+void ApplyReplacement(PoseGraph* graph, NodeId k, const Replacement& r) {
+  if (r.absorb_edges_within) graph->RemoveEdgesWithin(r.neighbours);
+  if (r.absorb_cliques_within) graph->RemoveCliquesWithin(r.neighbours);
+  graph->RemoveNode(k);
+  for (const PoseEdge& e : r.edges) graph->AddEdge(e);
+  for (const CliqueFactor& c : r.cliques) graph->AddClique(c);
+}
+
+LocalSystem LinearizeClique(const PoseGraph& graph, const Values& values, NodeId k,
+                            bool edges_within, bool cliques_within) {
+  LocalSystem s;
+  const auto& neighbours = graph.Neighbours(k);
+  s.neighbours.assign(neighbours.begin(), neighbours.end());
+  std::vector<NodeId> index{k};
+  index.insert(index.end(), s.neighbours.begin(), s.neighbours.end());
+  s.H = MatrixXd::Zero(Block(index.size()), Block(index.size()));
+  s.g = VectorXd::Zero(Block(index.size()));
+  for (std::size_t e : graph.EdgesOf(k)) AddEdge(graph.edges()[e], values, index, &s);
+  for (std::size_t c : graph.CliquesOf(k)) AddClique(graph.cliques()[c], values, index, &s);
+  if (edges_within) {
+    for (const PoseEdge& e : graph.EdgesWithin(s.neighbours)) AddEdge(e, values, index, &s);
+  }
+  if (cliques_within) {
+    for (const CliqueFactor& c : graph.CliquesWithin(s.neighbours)) {
+      AddClique(c, values, index, &s);
+    }
+  }
+  return s;
+}
+
+void EliminateFirstBlock(const LocalSystem& system, MatrixXd* lambda_N, VectorXd* g_N) {
+  const Eigen::Index n = system.H.rows() - 3;
+  const MatrixXd hkk_inv = PinvPsd(system.H.topLeftCorner(3, 3));
+  const MatrixXd h_nk = system.H.bottomLeftCorner(n, 3);
+  const MatrixXd lambda = system.H.bottomRightCorner(n, n) - h_nk * hkk_inv * h_nk.transpose();
+  *lambda_N = 0.5 * (lambda + lambda.transpose());
+  *g_N = system.g.tail(n) - h_nk * (hkk_inv * system.g.head<3>());
+}
+
+MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,
+                        const std::vector<PoseEdge>& edges,
+                        const std::vector<CliqueFactor>& cliques) {
+  MatrixXd h = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
+  for (const PoseEdge& e : edges) AddEdgeHessian(e, values, nodes, &h);
+  for (const CliqueFactor& c : cliques) AddCliqueHessian(c, values, nodes, &h);
+  return h;
+}
+
+void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, const VectorXd& g_N,
+                      std::vector<PoseEdge>* edges, std::vector<CliqueFactor>* cliques) {
+  if (nodes.size() < 2) return;
+  LocalSystem now;  // Hessian and gradient of the new factors as they stand
+  now.H = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
+  now.g = VectorXd::Zero(Block(nodes.size()));
+  for (const PoseEdge& e : *edges) AddEdge(e, values, nodes, &now);
+  for (const CliqueFactor& c : *cliques) AddClique(c, values, nodes, &now);
+  // z: displacement (node 0 held) whose first-order residuals J z add the missing gradient.
+  const Eigen::Index d = now.H.rows() - 3;
+  VectorXd z = VectorXd::Zero(now.H.rows());
+  // Jacobi-scaled pseudo-inverse with a 1e-10 cut: a direction the new factors barely
+  // inform (a low-rank GLC conditional) gets no displacement rather than a huge one.
+  const MatrixXd h = now.H.bottomRightCorner(d, d);
+  VectorXd s = VectorXd::Ones(d);
+  for (Eigen::Index i = 0; i < d; ++i) s(i) = h(i, i) > 0.0 ? 1.0 / std::sqrt(h(i, i)) : 1.0;
+  z.tail(d) = s.asDiagonal() * PinvPsd(s.asDiagonal() * h * s.asDiagonal(), 1e-10) *
+              (s.asDiagonal() * (g_N - now.g).tail(d));
+  const auto delta = [&](NodeId n) { return z.segment<3>(Block(IndexOf(nodes, n))); };
+  // Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
+  // the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T
+  // and residual P e_t keep J^T Omega J and J^T Omega e_t exactly.
+  for (PoseEdge& edge : *edges) {
+    const Pose2& Xi = values.at(edge.from);
+    const Pose2& Xj = values.at(edge.to);
+    Matrix3d Ji, Jj;
+    RelativeErrorJacobians(Xi, Xj, edge.T_from_to, &Ji, &Jj);
+    const Eigen::Vector3d e = RelativeError(Xi, Xj, edge.T_from_to);
+    const Eigen::Vector3d target = e + Ji * delta(edge.from) + Jj * delta(edge.to);
+    const Matrix3d p = Turn(target.z() - e.z());
+    edge.T_from_to = MeasurementFor(Xi, Xj, p * target);
+    edge.information = p * edge.information * p.transpose();
+  }
+  for (CliqueFactor& c : *cliques) {
+    const Pose2& Xr = values.at(c.nodes[0]);
+    MatrixXd p = MatrixXd::Zero(c.information.rows(), c.information.cols());
+    for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
+      const Pose2& Xn = values.at(c.nodes[j + 1]);
+      Matrix3d Jr, Jn;
+      RelativeErrorJacobians(Xr, Xn, c.T_root_node[j], &Jr, &Jn);
+      const Eigen::Vector3d e = RelativeError(Xr, Xn, c.T_root_node[j]);
+      const Eigen::Vector3d target = e + Jr * delta(c.nodes[0]) + Jn * delta(c.nodes[j + 1]);
+      const Matrix3d pj = Turn(target.z() - e.z());
+      p.block<3, 3>(Block(j), Block(j)) = pj;
+      c.T_root_node[j] = MeasurementFor(Xr, Xn, pj * target);
+    }
+    const MatrixXd info = p * c.information * p.transpose();
+    c.information = 0.5 * (info + info.transpose());
+  }
+}
+
+Replacement FromMarginalization(const MarginalizationResult& m) {
+  Replacement r;
+  r.neighbours = m.neighbours;
+  r.edges = m.edges;
+  if (m.clique) r.cliques.push_back(*m.clique);
+  r.absorb_edges_within = m.absorbed_blanket;
+  r.kl_divergence = m.kl_divergence;
+  r.regularized = m.regularized;
+  return r;
+}
+
+void KeepGradientIfAsked(const SparsifierConfig& config, const PoseGraph& graph,
+                         const Values& values, NodeId k, bool edges_within, bool cliques_within,
+                         Replacement* r) {
+  if (!config.keep_gradient || r->neighbours.size() < 2) return;
+  const LocalSystem local = LinearizeClique(graph, values, k, edges_within, cliques_within);
+  MatrixXd lambda_N;
+  VectorXd g_N;
+  EliminateFirstBlock(local, &lambda_N, &g_N);
+  PreserveGradient(r->neighbours, values, g_N, &r->edges, &r->cliques);
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,117 @@
+// Sparsifiers: what replaces a removed node's elimination clique (DESIGN.md "Methods as
+// parts"). Given the graph, the estimate and a node k, a sparsifier returns the factors that
+// replace k (and, for blanket methods, the factors among k's neighbours N), plus what it
+// lost. One class per method, each in its own file, chosen by name (MakeSparsifier):
+//   naive      star of composed edges through k (marginalization.hpp, kNaive)
+//   exact      one dense root-relative clique over N (kExact, the seed's fill-in)
+//   chow-liu   Chow-Liu tree of relative-pose edges (kChowLiu, the seed's contribution)
+//   glc-dense  GLC (Carlevaris-Bianco, Kaess & Eustice, T-RO 2014): the exact marginal as one
+//              root-shifted linear factor, keeping only its informative directions (glc.hpp)
+//   glc        GLC with the Chow-Liu tree taken in the root-shifted parametrization (glc.hpp)
+//
+// Means. Every factor is linearized at the current estimate x*. The wrapped methods take
+// their measurements from x* (zero residual), as the mapper does. With
+// SparsifierConfig::keep_gradient the measurements are moved (PreserveGradient) so that the
+// replacement's gradient at x* equals that of the exact marginal: then an exact method
+// leaves the optimum where it was, and what a method loses is its information alone.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slam/marginalization.hpp"
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::slam {
+
+struct SparsifierConfig {
+  /// kBlanket: the factors among N (pose edges, and clique factors for glc) are folded into
+  /// the clique's Gaussian and replaced too (chow-liu and glc only; the mapper's default).
+  BlanketPolicy blanket = BlanketPolicy::kBlanket;
+  /// Move the new factors' measurements so they keep the exact marginal's gradient at x*.
+  bool keep_gradient = false;
+  /// GLC: eigenvalues below this fraction of the largest are dropped (informative directions).
+  double eigen_tolerance = 1e-10;
+};
+
+/// What replaces node k: apply with ApplyReplacement.
+struct Replacement {
+  std::vector<NodeId> neighbours;      ///< N, ascending
+  std::vector<PoseEdge> edges;         ///< new relative-pose factors (kind kMarginal)
+  std::vector<CliqueFactor> cliques;   ///< new linear factors (root-relative, pose_graph.hpp)
+  bool absorb_edges_within = false;    ///< remove the pose edges among N first (blanket)
+  bool absorb_cliques_within = false;  ///< remove the clique factors among N first (blanket)
+  /// nats, KL(exact clique marginal || replacement) over N in the gauge of N[0]; 0 for exact
+  /// methods, +inf when the replacement leaves N disconnected.
+  double kl_divergence = 0.0;
+  bool regularized = false;  ///< a near-singular matrix needed a documented diagonal shift
+  /// Pairs for the gamma index: each edge once, each clique over m nodes m(m-1)/2.
+  std::size_t Pairs() const;
+};
+
+class Sparsifier {
+ public:
+  virtual ~Sparsifier() = default;
+  virtual std::string Name() const = 0;
+  /// Node k must exist in graph and values, with all its neighbours.
+  virtual Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const = 0;
+};
+
+/// The sparsifier called `name`, or nullptr when no method has that name.
+std::unique_ptr<Sparsifier> MakeSparsifier(const std::string& name,
+                                           const SparsifierConfig& config = {});
+/// Every known name, in the registry's order.
+std::vector<std::string> SparsifierNames();
+
+/// Removes k (and the factors among N that r absorbed), then adds r's factors.
+void ApplyReplacement(PoseGraph* graph, NodeId k, const Replacement& r);
+
+// ---- Shared by the method files (public for tests). ----
+
+/// The elimination clique of k linearized at `values`: H and gradient g = J^T Omega e over
+/// [x_k, x_N] (block i + 1 is neighbours[i]); optionally with the factors among N.
+struct LocalSystem {
+  std::vector<NodeId> neighbours;
+  Eigen::MatrixXd H;
+  Eigen::VectorXd g;
+};
+LocalSystem LinearizeClique(const PoseGraph& graph, const Values& values, NodeId k,
+                            bool edges_within, bool cliques_within);
+
+/// Eliminates x_k from a LocalSystem: Lambda_N = H_NN - H_Nk H_kk^+ H_kN and
+/// g_N - H_Nk H_kk^+ g_k (pseudo-inverse: exact for PSD H).
+void EliminateFirstBlock(const LocalSystem& system, Eigen::MatrixXd* lambda_N,
+                         Eigen::VectorXd* g_N);
+
+/// Moves the measurements of `edges` and `cliques` (over `nodes`, ascending) so that their
+/// Hessian at `values` is unchanged and their gradient equals `g_N` (when g_N lies in the
+/// range of that Hessian; else its projection): residual e = J z with z = Lambda_q^+ g_N,
+/// each 3-block rotated so the error Jacobian keeps its value (closed form, no iteration).
+void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values,
+                      const Eigen::VectorXd& g_N, std::vector<PoseEdge>* edges,
+                      std::vector<CliqueFactor>* cliques);
+
+/// Hessian of `edges` and `cliques` over `nodes` (ascending) at `values`.
+Eigen::MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,
+                               const std::vector<PoseEdge>& edges,
+                               const std::vector<CliqueFactor>& cliques);
+
+/// The wrapped methods' result as a Replacement (factors unchanged, byte for byte).
+Replacement FromMarginalization(const MarginalizationResult& m);
+/// With config.keep_gradient: PreserveGradient with the exact marginal's gradient of the
+/// clique as LinearizeClique(..., edges_within, cliques_within) sees it.
+void KeepGradientIfAsked(const SparsifierConfig& config, const PoseGraph& graph,
+                         const Values& values, NodeId k, bool edges_within, bool cliques_within,
+                         Replacement* r);
+
+// ---- One factory per method file. ----
+std::unique_ptr<Sparsifier> MakeNaiveSparsifier(const SparsifierConfig& config);
+std::unique_ptr<Sparsifier> MakeExactSparsifier(const SparsifierConfig& config);
+std::unique_ptr<Sparsifier> MakeChowLiuSparsifier(const SparsifierConfig& config);
+std::unique_ptr<Sparsifier> MakeGlcDenseSparsifier(const SparsifierConfig& config);
+std::unique_ptr<Sparsifier> MakeGlcSparsifier(const SparsifierConfig& config);
+
+}  // namespace lifelong::slam

@@ -1,0 +1,114 @@
+// `lifelong sparsify` as a process: its JSON, its output graph and its input errors (exit 2
+// naming the file, line and field).
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code = -1;
+  std::string out;  // stdout only
+  std::string err;
+};
+
+Result Lifelong(const std::string& args) {
+  const fs::path err = fs::path(::testing::TempDir()) / "sparsify_cli_err.txt";
+  const std::string cmd = std::string(LIFELONG_BIN) + " " + args + " 2>" + err.string();
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof(buf), p)) > 0;) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  std::ifstream in(err);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  return r;
+}
+
+/// A ring of 12 poses on a circle with noisy closures: small, loopy, inconsistent.
+fs::path Ring() {
+  const fs::path p = fs::path(::testing::TempDir()) / "sparsify_ring.g2o";
+  std::ofstream out(p);
+  const int n = 12;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2.0 * M_PI * i / n;
+    out << "VERTEX_SE2 " << i << ' ' << 5 * std::cos(a) << ' ' << 5 * std::sin(a) << ' '
+        << a + M_PI / 2 << '\n';
+  }
+  const double step = 2.0 * 5 * std::sin(M_PI / n);
+  for (int i = 0; i < n; ++i) {
+    out << "EDGE_SE2 " << i << ' ' << (i + 1) % n << ' ' << step + 0.01 * (i % 3) << " 0.02 "
+        << 2 * M_PI / n << " 100 0 0 100 0 400\n";
+  }
+  const double phi = 2.0 * M_PI * 3 / n;  // chords i -> i + 3, with a small bias
+  for (int i = 0; i + 3 < n; ++i) {
+    const double chord = 10 * std::sin(phi / 2);
+    out << "EDGE_SE2 " << i << ' ' << i + 3 << ' ' << chord * std::cos(phi / 2) + 0.03 << ' '
+        << chord * std::sin(phi / 2) << ' ' << phi << " 50 0 0 50 0 200\n";
+  }
+  return p;
+}
+
+TEST(SparsifyCli, PrintsOneJsonObjectAndWritesTheKeptGraph) {
+  const fs::path graph = Ring();
+  const fs::path out = fs::path(::testing::TempDir()) / "sparsify_out.g2o";
+  for (const char* method : {"naive", "exact", "chow-liu", "glc-dense", "glc"}) {
+    fs::remove(out);
+    const Result r = Lifelong("sparsify " + graph.string() + " --method " + method +
+                              " --keep-share 0.5 -o " + out.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["method"], method);
+    EXPECT_EQ(j["kept"], 6);
+    EXPECT_EQ(j["removed"], 6);
+    EXPECT_GE(j["time_s"].get<double>(), 0.0);
+    ASSERT_TRUE(j["kld"].is_number()) << method;
+    const double kld = j["kld"];
+    if (std::string(method) == "exact" || std::string(method) == "glc-dense") {
+      EXPECT_LT(kld, 1e-6) << method;
+    } else {
+      EXPECT_GT(kld, 1e-6) << method;
+    }
+    std::ifstream in(out);
+    std::string line;
+    int vertices = 0;
+    while (std::getline(in, line)) vertices += line.rfind("VERTEX_SE2 ", 0) == 0 ? 1 : 0;
+    EXPECT_EQ(vertices, 6) << method;
+  }
+}
+
+TEST(SparsifyCli, BadInputExitsTwoNamingTheField) {
+  const fs::path graph = Ring();
+  Result r = Lifelong("sparsify " + graph.string() + " --method glc --keep-share 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--keep-share"), std::string::npos) << r.err;
+  r = Lifelong("sparsify " + graph.string() + " --method glc --keep-share 1.5");
+  EXPECT_EQ(r.code, 2);
+  r = Lifelong("sparsify " + graph.string() + " --method dense --keep-share 0.5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("glc-dense"), std::string::npos) << r.err;  // lists the known ones
+  const fs::path list = fs::path(::testing::TempDir()) / "sparsify_remove.txt";
+  std::ofstream(list) << "1 2\n# comment\n3 99\n";
+  r = Lifelong("sparsify " + graph.string() + " --method exact --remove " + list.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(list.string() + ":3: field 'id'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("99"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  std::ofstream(list) << "1 2 3\n";
+  r = Lifelong("sparsify " + graph.string() + " --method exact --remove " + list.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["kept"], 9);
+}
+
+}  // namespace

@@ -1,0 +1,130 @@
+#include "slam/sparsifier.hpp"
+
+#include <cstring>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "slam/marginalization.hpp"
+#include "slam/se2.hpp"
+#include "tests/slam/marginalization_graphs.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using namespace test_util;  // tests/slam/marginalization_graphs.hpp
+
+bool SameBytes(const Pose2& a, const Pose2& b) {
+  return a.x == b.x && a.y == b.y && a.theta == b.theta;
+}
+
+/// 1/2 sum e^T Omega e of the factors at v.
+double Cost(const std::vector<PoseEdge>& edges, const std::vector<CliqueFactor>& cliques,
+            const Values& v) {
+  double c = 0.0;
+  for (const PoseEdge& e : edges) {
+    const Eigen::Vector3d r = RelativeError(v.at(e.from), v.at(e.to), e.T_from_to);
+    c += 0.5 * r.dot(e.information * r);
+  }
+  for (const CliqueFactor& f : cliques) {
+    VectorXd r(f.information.rows());
+    for (std::size_t j = 0; j + 1 < f.nodes.size(); ++j) {
+      r.segment<3>(static_cast<Eigen::Index>(3 * j)) =
+          RelativeError(v.at(f.nodes[0]), v.at(f.nodes[j + 1]), f.T_root_node[j]);
+    }
+    c += 0.5 * r.dot(f.information * r);
+  }
+  return c;
+}
+
+/// A star around 0 whose measurements disagree with the estimate (nonzero residuals).
+PoseGraph NoisyStar(const Values& v, std::mt19937* rng) {
+  PoseGraph g = Star(v, {1, 2, 3, 4}, {{1, 3}}, rng);
+  PoseGraph noisy;
+  for (NodeId id : g.NodeIds()) noisy.AddNode(id);
+  std::normal_distribution<double> n(0.0, 0.05);
+  for (PoseEdge e : g.edges()) {
+    e.T_from_to = e.T_from_to * Pose2(n(*rng), n(*rng), n(*rng));
+    noisy.AddEdge(e);
+  }
+  return noisy;
+}
+
+TEST(Sparsifier, RegistryNamesEveryMethod) {
+  EXPECT_EQ(SparsifierNames(),
+            (std::vector<std::string>{"naive", "exact", "chow-liu", "glc-dense", "glc"}));
+  for (const std::string& name : SparsifierNames()) {
+    const auto s = MakeSparsifier(name);
+    ASSERT_NE(s, nullptr) << name;
+    EXPECT_EQ(s->Name(), name);
+  }
+  EXPECT_EQ(MakeSparsifier("chow_liu"), nullptr);
+}
+
+TEST(Sparsifier, WrappersGiveTheMappersFactorsByteForByte) {
+  std::mt19937 rng(41);
+  const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
+  const PoseGraph g = NoisyStar(v, &rng);
+  const std::pair<const char*, MarginalizationMethod> methods[] = {
+      {"naive", MarginalizationMethod::kNaive},
+      {"exact", MarginalizationMethod::kExact},
+      {"chow-liu", MarginalizationMethod::kChowLiu}};
+  for (const auto& [name, method] : methods) {
+    const MarginalizationResult m = Marginalize(g, v, 0, method, BlanketPolicy::kBlanket);
+    const Replacement r = MakeSparsifier(name)->Replace(g, v, 0);
+    ASSERT_EQ(r.edges.size(), m.edges.size()) << name;
+    for (std::size_t i = 0; i < m.edges.size(); ++i) {
+      EXPECT_TRUE(SameBytes(r.edges[i].T_from_to, m.edges[i].T_from_to)) << name;
+      EXPECT_EQ(0, std::memcmp(r.edges[i].information.data(), m.edges[i].information.data(),
+                               9 * sizeof(double)));
+    }
+    ASSERT_EQ(r.cliques.size(), m.clique ? 1u : 0u) << name;
+    if (m.clique) {
+      EXPECT_TRUE(r.cliques[0].information == m.clique->information);
+    }
+    EXPECT_EQ(r.kl_divergence, m.kl_divergence) << name;
+    EXPECT_EQ(r.absorb_edges_within, m.absorbed_blanket) << name;
+    EXPECT_EQ(r.Pairs(), m.num_pairs) << name;
+  }
+}
+
+TEST(Sparsifier, KeepGradientKeepsTheHessianAndMatchesTheMarginalsGradient) {
+  std::mt19937 rng(43);
+  const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
+  const PoseGraph g = NoisyStar(v, &rng);
+  SparsifierConfig config;
+  config.keep_gradient = true;
+  for (const std::string& name : SparsifierNames()) {
+    const bool blanket = name == "chow-liu" || name == "glc" || name == "glc-dense";
+    const bool cliques = name == "glc" || name == "glc-dense";
+    MatrixXd lambda_N;
+    VectorXd g_N;
+    EliminateFirstBlock(LinearizeClique(g, v, 0, blanket, cliques), &lambda_N, &g_N);
+    const Replacement plain = MakeSparsifier(name)->Replace(g, v, 0);
+    const Replacement kept = MakeSparsifier(name, config)->Replace(g, v, 0);
+    const std::vector<NodeId>& n = kept.neighbours;
+    EXPECT_TRUE(FactorsHessian(n, v, kept.edges, kept.cliques)
+                    .isApprox(FactorsHessian(n, v, plain.edges, plain.cliques), 1e-9))
+        << name;
+    VectorXd grad(3 * static_cast<Eigen::Index>(n.size()));  // central differences
+    for (Eigen::Index c = 0; c < grad.size(); ++c) {
+      Values plus = v, minus = v;
+      const NodeId id = n[static_cast<std::size_t>(c / 3)];
+      Eigen::Vector3d d = Eigen::Vector3d::Zero();
+      d(c % 3) = 1e-6;
+      plus[id] = V2T(T2V(v.at(id)) + d);
+      minus[id] = V2T(T2V(v.at(id)) - d);
+      grad(c) =
+          (Cost(kept.edges, kept.cliques, plus) - Cost(kept.edges, kept.cliques, minus)) / 2e-6;
+    }
+    // Every replacement here spans N (definite with node 0 held), so the whole gradient of
+    // the exact marginal is kept, whatever the method lost in information.
+    EXPECT_TRUE(grad.isApprox(g_N, 1e-5)) << name << "\n" << (grad - g_N).transpose();
+    EXPECT_GT(g_N.norm(), 1e-3);  // the test has something to keep
+  }
+}
+
+}  // namespace
+}  // namespace lifelong::slam

@@ -195,8 +195,9 @@ int main(int argc, char** argv) {
                      "new factors measure the optimum itself (drop the marginal's gradient)");
 
   if (const auto unknown = UnknownCommand(argc, argv, app)) {
-    std::cerr << "error: unknown command " << *unknown
-              << " (known: run, simulate, replay, optimize, sparsify, sweep; see lifelong --help)\n";
+    std::cerr
+        << "error: unknown command " << *unknown
+        << " (known: run, simulate, replay, optimize, sparsify, sweep; see lifelong --help)\n";
     return 2;
   }
   try {

@@ -153,6 +153,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   for (const auto& r : runners) summary.mode_order.push_back(r->name());
   ModeTimelines timelines;
   std::map<std::string, std::vector<double>> kld;
+  std::map<std::string, std::vector<LoopCurvePoint>> loop_curves;
   ReportPage page;
   // Evaluates a mode, writes its outputs and frees its mapper.
   auto finish = [&](ModeRunner* r) {
@@ -161,6 +162,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
     timelines[r->name()] = r->timeline();
     if (!kl.empty()) kld[r->name()] = std::move(kl);
+    if (!r->loop_curve().empty()) loop_curves[r->name()] = r->loop_curve();
     page.maps[r->name()] = map_png;
     r->Release();
   };
@@ -195,6 +197,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   const PlotResult plots = PlotTimelines(timelines, config.out_dir, plot_config);
   if (!kld.empty()) PlotKld(kld, config.out_dir);
+  if (!loop_curves.empty()) PlotLoopCurves(loop_curves, config.out_dir);
   if (!plots.ok) Progress(config, "warning: no figures: " + plots.error + "\n");
   ThrowIfInterrupted();
   summary.wall_time_s = Seconds(start);

@@ -218,6 +218,9 @@ LoopClosureResult ComputeLoopClosureStats(const std::vector<LoopClosure>& closur
     if (newer - older >= config.min_index_gap) recalled[static_cast<std::size_t>(newer)] = true;
   }
   const std::vector<bool> revisit = RevisitNodes(true_nodes, config);
+  r.revisit_each = revisit;
+  r.recalled_each.assign(revisit.size(), false);
+  for (std::size_t k = 0; k < revisit.size(); ++k) r.recalled_each[k] = revisit[k] && recalled[k];
   for (std::size_t k = 0; k < revisit.size(); ++k) {
     if (!revisit[k]) continue;
     ++r.revisit_nodes;

@@ -105,6 +105,8 @@ struct LoopClosureResult {
   std::vector<bool> correct_each;    ///< per closure, in the order given
   std::vector<double> error_m_each;  ///< per closure: translation error, m
   std::vector<double> error_deg_each;  ///< per closure: rotation error, deg
+  std::vector<bool> revisit_each;      ///< per node: a revisit by the definition above
+  std::vector<bool> recalled_each;     ///< per node: a revisit with a correct closure
 };
 
 /// Precision = share of accepted closures that are correct. Recall = share of revisit

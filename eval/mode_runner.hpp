@@ -39,23 +39,29 @@ class ModeRunner {
 
   /// Writes <mode>/loops.csv (one row per accepted closure, with its truth when known)
   /// and the precision over the last hour of runs longer than one.
+  /// Cumulative loop precision and recall per observation, from the closures' truth.
+  std::vector<LoopCurvePoint> LoopCurve(const LoopClosureResult& truth) const;
   void WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const;
 
-  /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame).
+  /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame);
+  /// also fills loop_curve().
   Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
                      const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
-                     ModeSummary* summary) const;
+                     ModeSummary* summary);
 
   slam::PruningMode mode_;
   std::string name_;
   const ExperimentConfig& config_;
   std::unique_ptr<slam::Mapper> mapper_;
   std::vector<TimelineRow> timeline_;
+  std::vector<LoopCurvePoint> loop_curve_;
   std::optional<int> first_pass_end_;
   double seconds_ = 0.0;
 
  public:
   const std::vector<TimelineRow>& timeline() const { return timeline_; }
+  /// Loop precision and recall over the run (ground truth only; empty otherwise).
+  const std::vector<LoopCurvePoint>& loop_curve() const { return loop_curve_; }
 };
 
 }  // namespace lifelong::eval

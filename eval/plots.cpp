@@ -256,4 +256,40 @@ PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode
   return r;
 }
 
+PlotResult PlotLoopCurves(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
+                          const std::string& out_dir, const PlotConfig& config) {
+  PlotResult r;
+  if (curves.empty()) {
+    r.error = "no loop-closure curves to plot";
+    return r;
+  }
+  const std::string terminal = Prepare(out_dir, config, &r);
+  if (terminal.empty()) return r;
+  std::map<std::string, std::string> files;
+  for (const auto& [mode, curve] : curves) {
+    const fs::path p = fs::path(out_dir) / "plot_data" / ("loops_" + SafeName(mode) + ".dat");
+    std::ostringstream out;
+    out << "# t_s precision recall accepted revisits (NaN: not yet defined)\n";
+    for (const LoopCurvePoint& q : curve) {
+      out << q.t_s << ' ' << (q.accepted > 0 ? std::to_string(q.precision) : "NaN") << ' '
+          << (q.revisits > 0 ? std::to_string(q.recall) : "NaN") << ' ' << q.accepted << ' '
+          << q.revisits << '\n';
+    }
+    if (!WritePlotFile(p, out.str(), &r)) return r;
+    files[mode] = p.string();
+  }
+  const auto column = [](int col) {
+    return [col](const std::string& c, const std::string& file, const std::string& t) {
+      return file + " using 1:" + std::to_string(col) + " with lines lw 2 lc rgb " + c + " title " +
+             t;
+    };
+  };
+  const Figure f{"loop_closing",
+                 "robot time [s]",
+                 {{"loop-closure precision, cumulative", false, column(2)},
+                  {"loop-closure recall, cumulative", false, column(3)}}};
+  r.ok = Render(f, files, out_dir, terminal, config, &r);
+  return r;
+}
+
 }  // namespace lifelong::eval

@@ -43,6 +43,11 @@ PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_
 PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode,
                    const std::string& out_dir, const PlotConfig& config = {});
 
+/// Writes loop_closing.png: cumulative loop-closure precision (top) and recall (bottom)
+/// of each mode over robot time; points before the first closure (revisit) are left out.
+PlotResult PlotLoopCurves(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
+                          const std::string& out_dir, const PlotConfig& config = {});
+
 /// True when `gnuplot` runs; fills *terminal with "pngcairo" or "png" when given.
 bool GnuplotAvailable(const std::string& gnuplot, std::string* terminal = nullptr);
 

@@ -82,6 +82,19 @@ TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "pruned-exact" / "timeline.csv"));
   EXPECT_TRUE(fs::exists(dir / "kld.png"));
+  // Loop closing over time ends at the summary's precision.
+  EXPECT_TRUE(fs::exists(dir / "loop_closing.png"));
+  {
+    std::ifstream dat(dir / "plot_data" / "loops_standard.dat");
+    std::string line, last;
+    while (std::getline(dat, line)) last = line;
+    std::istringstream fields(last);
+    double t = 0.0, precision = 0.0;
+    fields >> t >> precision;
+    const auto first = nlohmann::json::parse(Read(dir / "summary.json"));
+    EXPECT_NEAR(precision, first["modes"]["standard"]["loop_precision"].get<double>(), 1e-6);
+    EXPECT_TRUE(fs::exists(dir / "standard" / "loops.csv"));
+  }
   // The table: modes in --modes order, the baseline first, units in the headers.
   const auto standard_row = r.output.find("\nstandard (base)");
   const auto pruned_row = r.output.find("\npruned ");

@@ -22,6 +22,7 @@
 #include "eval/resources.hpp"
 #include "eval/run_maps.hpp"
 #include "eval/staged_output.hpp"
+#include "eval/stopwatch.hpp"
 #include "eval/video.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
@@ -34,11 +35,6 @@ namespace lifelong::eval {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 void Progress(const ExperimentConfig& c, const std::string& line) {
   if (c.progress) *c.progress << line << std::flush;

@@ -12,6 +12,7 @@
 #include "eval/mode_csv.hpp"
 #include "eval/resources.hpp"
 #include "eval/run_maps.hpp"
+#include "eval/stopwatch.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -21,11 +22,6 @@ namespace lifelong::eval {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 }  // namespace
 

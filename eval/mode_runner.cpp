@@ -58,6 +58,12 @@ void ModeRunner::Record(const slam::StepStats& s) {
   row.loop_closures = s.loop_closures_total;
   row.optimize_ms = s.optimize_ms;
   row.nodes_removed = s.nodes_removed_total;
+  row.match_ms = s.match_ms;
+  row.loop_ms = s.loop_ms;
+  row.backend_ms = s.backend_ms;
+  row.map_update_ms = s.map_update_ms;
+  row.gain_ms = s.gain_ms;
+  row.marginalize_ms = s.marginalize_ms;
   timeline_.push_back(row);
   if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
 }

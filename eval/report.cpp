@@ -88,6 +88,7 @@ json ModeJson(const ModeSummary& m) {
                       {"rot_std_deg", r.rot_std_deg}};
   }
   if (m.kld) j["kld"] = {{"count", m.kld->count}, {"mean", m.kld->mean}, {"max", m.kld->max}};
+  if (!m.stage_ms.empty()) j["stage_ms"] = m.stage_ms;
   Put(j, "map_entropy_bits", m.map_entropy_bits);
   Put(j, "occupied_share", m.occupied_share);
   return j;
@@ -146,7 +147,27 @@ ModeSummary SummarizeTimeline(const std::vector<TimelineRow>& rows,
   m.gamma_final = rows.back().gamma;
   m.graph_bytes_final = static_cast<std::int64_t>(rows.back().graph_bytes);
   m.peak_rss_mb = rss;
+  m.stage_ms = StageTotals(rows);
   return m;
+}
+
+std::map<std::string, double> StageTotals(const std::vector<TimelineRow>& rows) {
+  std::map<std::string, double> t;
+  for (const char* k : {"matching", "loop_closing", "optimization", "map_update", "gains",
+                        "marginalization", "other"}) {
+    t[k] = 0.0;
+  }
+  for (const TimelineRow& r : rows) {
+    t["matching"] += r.match_ms;
+    t["loop_closing"] += r.loop_ms;
+    t["optimization"] += r.backend_ms;
+    t["map_update"] += r.map_update_ms;
+    t["gains"] += r.gain_ms;
+    t["marginalization"] += r.marginalize_ms;
+    t["other"] += r.time_ms - (r.match_ms + r.loop_ms + r.backend_ms + r.map_update_ms + r.gain_ms +
+                               r.marginalize_ms);
+  }
+  return t;
 }
 
 std::optional<KldSummary> SummarizeKld(const std::vector<double>& kl_values) {
@@ -184,12 +205,14 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
   // The contract's columns, then this project's additions (documented in README).
   std::string text =
       "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures,optimize_ms,"
-      "nodes_removed\n";
-  char line[256];
+      "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms\n";
+  char line[384];
   for (const TimelineRow& r : rows) {
-    std::snprintf(line, sizeof(line), "%d,%.6f,%.6g,%d,%d,%.9g,%.6g,%zu,%d,%.6g,%d\n", r.obs, r.t_s,
-                  r.time_ms, r.nodes, r.edges, r.gamma, r.rss_mb, r.graph_bytes, r.loop_closures,
-                  r.optimize_ms, r.nodes_removed);
+    std::snprintf(line, sizeof(line),
+                  "%d,%.6f,%.6g,%d,%d,%.9g,%.6g,%zu,%d,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                  r.obs, r.t_s, r.time_ms, r.nodes, r.edges, r.gamma, r.rss_mb, r.graph_bytes,
+                  r.loop_closures, r.optimize_ms, r.nodes_removed, r.match_ms, r.loop_ms,
+                  r.backend_ms, r.map_update_ms, r.gain_ms, r.marginalize_ms);
     text += line;
   }
   io::WriteFileAtomically(path, text);

@@ -67,6 +67,9 @@ struct ModeSummary {
   std::optional<LoopVerificationSummary> loop_verification;
   std::optional<RelationsSummary> relations;  ///< with --relations
   std::optional<KldSummary> kld;              ///< marginalizing modes
+  /// Mapper time by stage over the run, ms: matching, loop_closing, optimization,
+  /// map_update, gains, marginalization, other (bookkeeping: time_ms minus the rest).
+  std::map<std::string, double> stage_ms;
   std::optional<double> map_entropy_bits;
   std::optional<double> occupied_share;
 };
@@ -105,6 +108,9 @@ std::optional<TimeStats> ComputeTimeStats(const std::vector<TimelineRow>& rows,
 /// and peak_rss_mb (max rss_mb of the rows; overwrite it with PeakRssMb() if preferred).
 ModeSummary SummarizeTimeline(const std::vector<TimelineRow>& rows,
                               std::optional<int> first_pass_end_obs);
+
+/// Mapper time by stage summed over a timeline (ModeSummary::stage_ms).
+std::map<std::string, double> StageTotals(const std::vector<TimelineRow>& rows);
 
 /// KL statistics over the divergences of a mode's marginalizations; absent when empty.
 std::optional<KldSummary> SummarizeKld(const std::vector<double>& kl_values);

@@ -16,6 +16,7 @@ namespace {
 using nlohmann::json;
 
 constexpr double kKiB = 1.0 / 1024.0;
+constexpr double kSecondsPerMs = 1e-3;
 
 const char kRuntime[] = "Runtime";
 const char kGraph[] = "Graph and memory";
@@ -62,6 +63,20 @@ const std::vector<TableRow>& SummaryTableRows() {
        true, "mean over the first pass (first forth-and-back cycle, or every tour place once)"},
       {kRuntime, "/time_per_obs_ms/last10_mean", "time per observation, last 10 %", "ms", 1, true,
        "mean over the last tenth of the observations: the cost once the area is mapped"},
+      {kRuntime, "/stage_ms/matching", "time in matching", "s", kSecondsPerMs, true,
+       "incremental scan matching and insertion of the new scan into the map"},
+      {kRuntime, "/stage_ms/loop_closing", "time in loop closing", "s", kSecondsPerMs, true,
+       "candidates, loop-closure matching, uniqueness and group verification"},
+      {kRuntime, "/stage_ms/optimization", "time in optimization", "s", kSecondsPerMs, true,
+       "the back-end (sparse least squares) alone"},
+      {kRuntime, "/stage_ms/map_update", "time in map update", "s", kSecondsPerMs, true,
+       "re-rendering scans whose nodes an optimization moved"},
+      {kRuntime, "/stage_ms/gains", "time in information gains", "s", kSecondsPerMs, true,
+       "information gain of the neighbourhood scans (pruned modes)"},
+      {kRuntime, "/stage_ms/marginalization", "time in removal and sparsification", "s",
+       kSecondsPerMs, true, "marginalizing nodes out and keeping the edge budget"},
+      {kRuntime, "/stage_ms/other", "time in other", "s", kSecondsPerMs, true,
+       "bookkeeping: the mapper time not in a stage above"},
       {kGraph, "/nodes_final", "nodes, final", "", 1, true, "graph nodes at the end"},
       {kGraph, "/nodes_max", "nodes, maximum", "", 1, true, "most graph nodes at any time"},
       {kGraph, "/nodes_after_first_pass", "nodes after the first pass", "", 1, true,

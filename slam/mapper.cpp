@@ -102,9 +102,19 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     }
   }
   s.step = &stats;
+  const auto ms_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
+  auto t = std::chrono::steady_clock::now();
   s.AddSequentialNode(obs, &stats);
+  stats.match_ms = ms_since(t);
   const NodeId current = s.last_node;
-  if (s.config.loops.enabled && s.graph.NumNodes() > 1) stats.loop_closed = s.TryCloseLoop(current);
+  if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
+    const double nested = stats.backend_ms + stats.map_update_ms;
+    t = std::chrono::steady_clock::now();
+    stats.loop_closed = s.TryCloseLoop(current);
+    stats.loop_ms = ms_since(t) - (stats.backend_ms + stats.map_update_ms - nested);
+  }
   if (s.config.pruning.mode != PruningMode::kNone) s.Prune(current);
 
   s.step = nullptr;
@@ -216,15 +226,19 @@ void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
 }
 
 void Mapper::State::OptimizeAndSyncMap() {
+  using Ms = std::chrono::duration<double, std::milli>;
   const auto start = std::chrono::steady_clock::now();
   const OptimizerSummary summary = Optimize(graph, &values, config.optimizer);
+  const auto optimized = std::chrono::steady_clock::now();
   closures_since_optimize = 0;
   SyncMap();
   if (step) {
+    const auto end = std::chrono::steady_clock::now();
     step->optimized = true;
     step->optimizer_iterations += summary.iterations;
-    step->optimize_ms +=
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    step->optimize_ms += Ms(end - start).count();
+    step->backend_ms += Ms(optimized - start).count();
+    step->map_update_ms += Ms(end - optimized).count();
   }
 }
 
@@ -261,6 +275,7 @@ const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
 }
 
 double Mapper::State::Gain(NodeId id) {
+  const ScopedMs timer(step ? &step->gain_ms : nullptr);
   const std::vector<CellUpdate>& cells = Touched(id);
   NodeData& data = nodes.at(id);
   data.gain_bits = map.InformationGain(cells);

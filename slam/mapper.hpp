@@ -40,6 +40,12 @@ struct StepStats {
   bool loop_closed = false;
   bool optimized = false;
   double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update
+  /// time_ms by stage (ms, exclusive; what is left is bookkeeping): incremental matching
+  /// and insertion of the new scan, loop closing (candidates, matching, verification), the
+  /// back-end alone, map updates after it, information gains, marginalization and
+  /// sparsification.
+  double match_ms = 0.0, loop_ms = 0.0, backend_ms = 0.0, map_update_ms = 0.0;
+  double gain_ms = 0.0, marginalize_ms = 0.0;
   int optimizer_iterations = 0;
 };
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -44,6 +45,26 @@ struct NodeData {
   double gain_bits = 0.0;           ///< information gain when last computed...
   bool gain_valid = false;          ///< ...still exact unless a map change shares a block
   Footprint footprint;              ///< of `touched` (kept when the list is freed)
+};
+
+/// Adds the wall time of its scope, in ms, to *total (nothing when total is null): the
+/// per-stage times of StepStats.
+class ScopedMs {
+ public:
+  explicit ScopedMs(double* total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~ScopedMs() {
+    if (total_) {
+      *total_ +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+              .count();
+    }
+  }
+  ScopedMs(const ScopedMs&) = delete;
+  ScopedMs& operator=(const ScopedMs&) = delete;
+
+ private:
+  double* total_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 /// Where a scan of the stream is held: relative to an anchor node.

@@ -95,6 +95,27 @@ TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
     EXPECT_NEAR(precision, first["modes"]["standard"]["loop_precision"].get<double>(), 1e-6);
     EXPECT_TRUE(fs::exists(dir / "standard" / "loops.csv"));
   }
+  // Per-stage times: non-negative and within the observation's time.
+  {
+    std::ifstream csv(dir / "pruned" / "timeline.csv");
+    std::string line;
+    std::getline(csv, line);
+    int rows = 0;
+    while (std::getline(csv, line)) {
+      std::vector<double> v;
+      std::istringstream fields(line);
+      for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+      ASSERT_EQ(v.size(), 17u) << line;
+      double stages = 0.0;
+      for (std::size_t k = 11; k < 17; ++k) {
+        EXPECT_GE(v[k], -1e-6) << line;
+        stages += v[k];
+      }
+      EXPECT_LE(stages, v[2] + 1e-3) << line;
+      ++rows;
+    }
+    EXPECT_GT(rows, 100);
+  }
   // The table: modes in --modes order, the baseline first, units in the headers.
   const auto standard_row = r.output.find("\nstandard (base)");
   const auto pruned_row = r.output.find("\npruned ");

@@ -188,8 +188,11 @@ SlurmSweepOutcome RunSlurmSweep(const SweepOptions& o, const SlurmOptions& slurm
   io::WriteFileAtomically(r.script, SlurmScript(prepared.to_run, dir, o.program, slurm));
   r.job_id = Submit(r.script);
   if (!slurm.wait) return r;
-
   std::ostream* out = o.progress;
+  if (out) {
+    *out << "slurm job " << r.job_id << " submitted: " << prepared.to_run.size()
+         << " array tasks, script " << r.script << " (Ctrl-C cancels it)\n";
+  }
   std::set<long> reported;
   int failed = 0, misses = 0;
   const long tasks = static_cast<long>(prepared.to_run.size());

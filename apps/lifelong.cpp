@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
       ->default_str("the partition's");
   sweep
       ->add_option("--sbatch-arg", sweep_args.sbatch_args,
-                   "--slurm: one more sbatch option, e.g. --mem=2G (repeatable)")
+                   "--slurm: one more #SBATCH option, as --sbatch-arg=--mem=2G (repeatable)")
       ->allow_extra_args(false);
   sweep->add_flag("--no-wait", sweep_args.no_wait,
                   "--slurm: submit, print the job id and return (collect later)");

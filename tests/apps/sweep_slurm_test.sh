@@ -46,7 +46,7 @@ print(*[x.getsockname()[1] for x in s])')
 hw=$(slurmd -C | head -n 1)
 cpus=$(sed -n 's/.* CPUs=\([0-9]*\).*/\1/p' <<<"$hw")
 mem=$(sed -n 's/.* RealMemory=\([0-9]*\).*/\1/p' <<<"$hw")
-[ -n "$cpus" ] && [ -n "$mem" ] || skip "slurmd -C gives no CPUs/RealMemory: $hw"
+if [ -z "$cpus" ] || [ -z "$mem" ]; then skip "slurmd -C gives no CPUs/RealMemory: $hw"; fi
 cat >"$t/slurm.conf" <<CONF
 ClusterName=lifelongtest
 SlurmctldHost=localhost
@@ -145,9 +145,19 @@ grep -q "^#SBATCH --mem=100$" "$t/fail/sweep.sbatch" || fail "no --sbatch-arg li
 grep -q "^task [0-9]*_1 (cell broken-seed3) FAILED (exit 2), see $t/fail/cells/broken-seed3.run.log and $t/fail/cells/slurm-[0-9]*_1.out$" \
   "$t/fail.out.log" || fail "the failed task is not reported with its exit code and logs"
 grep -q "broken_world.yaml" "$t/fail/cells/broken-seed3.run.log" || fail "the run.log does not name the broken file"
+cat "$t/fail/sweep.sbatch"
 grep -q "^failed: broken-seed3 (exit 2), log $t/fail/cells/broken-seed3.run.log$" "$t/fail.out.log" ||
   fail "no failed line"
 grep -q "collected 1 runs of 1 cells (1 cells without a result)" "$t/fail.out.log" || fail "the good cell is not collected"
+
+# Repaired, only that cell is submitted again: array task 0 runs plan cell 1.
+cp "$src/worlds/corridor.yaml" "$t/broken_world.yaml"
+"$bin" sweep "$t/spec2.yaml" -o "$t/fail" --slurm >"$t/repair.out.log" 2>&1 || fail "the repaired sweep failed"
+grep -q "submitted slurm job [0-9]*: 1 of 2 cells (1 up to date)" "$t/repair.out.log" ||
+  fail "the repaired sweep did not submit exactly the failed cell: $(cat "$t/repair.out.log")"
+grep -q "^#SBATCH --array=0-0$" "$t/fail/sweep.sbatch" || fail "sweep.sbatch is no 1-task array"
+grep -q "^cells=(1)$" "$t/fail/sweep.sbatch" || fail "sweep.sbatch does not map task 0 to cell 1"
+grep -q "collected 2 runs of 2 cells$" "$t/repair.out.log" || fail "the repaired sweep did not collect both cells"
 
 # --no-wait submits and returns; once the job has ended, collect gives the same table.
 "$bin" sweep "$t/spec.yaml" -o "$t/later" --slurm --no-wait >"$t/later.out.log" 2>&1 || fail "--no-wait failed"

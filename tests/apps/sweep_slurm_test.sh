@@ -23,7 +23,11 @@ cleanup() {
     for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
     kill -9 "$p" 2>/dev/null
   done
-  [ -f "$t/munged.pid" ] && kill "$(cat "$t/munged.pid")" 2>/dev/null
+  if [ -f "$t/munged.pid" ]; then  # it writes its seed file as it exits: wait for that
+    m=$(cat "$t/munged.pid")
+    kill "$m" 2>/dev/null
+    for _ in $(seq 50); do kill -0 "$m" 2>/dev/null || break; sleep 0.1; done
+  fi
   rm -rf "$t"
 }
 trap cleanup EXIT

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace lifelong::apps {
 
@@ -31,6 +32,12 @@ struct SweepArgs {
   std::string spec, out;
   int jobs = 0;  ///< 0: the number of cores
   bool collect_only = false;
+  bool slurm = false;  ///< run the cells as a Slurm job array (eval/sweep_slurm.hpp)
+  std::string partition, time;
+  std::vector<std::string> sbatch_args;
+  bool no_wait = false;
+  std::string run_cell_dir;  ///< `sweep run-cell DIR INDEX` (a Slurm task); empty: not
+  long run_cell_index = -1;
 };
 
 /// Each returns the process exit code (0, 1, 2 or 130) after printing any error.
@@ -42,6 +49,6 @@ struct CommandTable {
 };
 
 /// The module's one exported symbol: `extern "C" const CommandTable* <this>()`.
-inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v2";
+inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v3";
 
 }  // namespace lifelong::apps

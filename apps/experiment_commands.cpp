@@ -245,6 +245,6 @@ const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand, SweepComma
 }  // namespace lifelong::apps
 
 extern "C" __attribute__((visibility("default"))) const lifelong::apps::CommandTable*
-lifelong_command_table_v2() {
+lifelong_command_table_v3() {
   return &lifelong::apps::kTable;
 }

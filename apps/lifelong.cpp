@@ -164,6 +164,23 @@ int main(int argc, char** argv) {
   sweep->add_option("-j,--jobs", sweep_args.jobs, "cells run at once")
       ->check(IntRange(1, 4096))
       ->default_str("the number of cores");
+  sweep->add_flag("--slurm", sweep_args.slurm,
+                  "run the cells as a Slurm job array (sbatch), wait for it, then collect");
+  sweep->add_option("--partition", sweep_args.partition, "--slurm: the partition")
+      ->default_str("the cluster's default");
+  sweep->add_option("--time", sweep_args.time, "--slurm: time limit per cell, HH:MM:SS")
+      ->default_str("the partition's");
+  sweep
+      ->add_option("--sbatch-arg", sweep_args.sbatch_args,
+                   "--slurm: one more #SBATCH option, as --sbatch-arg=--mem=2G (repeatable)")
+      ->allow_extra_args(false);
+  sweep->add_flag("--no-wait", sweep_args.no_wait,
+                  "--slurm: submit, print the job id and return (collect later)");
+  auto* run_cell = sweep->add_subcommand("run-cell", "one cell of DIR/sweep.json (a Slurm task)");
+  run_cell->group("");  // hidden: what sweep.sbatch runs
+  run_cell->add_option("dir", sweep_args.run_cell_dir, "sweep directory")->required();
+  run_cell->add_option("index", sweep_args.run_cell_index, "cell index in DIR/sweep.json")
+      ->required();
   auto* collect = sweep->add_subcommand(
       "collect", "collect a sweep directory again: CSVs and report.html from its cells");
   collect->add_option("dir", collect_dir, "sweep directory")->required();
@@ -205,7 +222,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (*sweep && *collect) {
+  const bool slurm_only = !sweep_args.partition.empty() || !sweep_args.time.empty() ||
+                          !sweep_args.sbatch_args.empty() || sweep_args.no_wait;
+  if (*sweep && !sweep_args.slurm && slurm_only) {
+    std::cerr << "error: --partition, --time, --sbatch-arg and --no-wait need --slurm\n";
+    return 2;
+  }
+  if (*sweep && *run_cell) {
+  } else if (*sweep && *collect) {
     sweep_args.collect_only = true;
     sweep_args.out = collect_dir;
   } else if (*sweep && (sweep_args.spec.empty() || sweep_args.out.empty())) {

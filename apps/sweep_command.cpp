@@ -1,4 +1,5 @@
-// `lifelong sweep SPEC -o DIR [-j N]` and `lifelong sweep collect DIR` (README "Sweeps").
+// `lifelong sweep SPEC -o DIR [-j N | --slurm ...]`, `lifelong sweep collect DIR` and the
+// hidden `lifelong sweep run-cell DIR INDEX` of a Slurm array task (README "Sweeps").
 #include "apps/sweep_command.hpp"
 
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include "eval/interrupt.hpp"
 #include "eval/progress.hpp"
 #include "eval/sweep_run.hpp"
+#include "eval/sweep_slurm.hpp"
 
 namespace lifelong::apps {
 namespace {
@@ -25,7 +27,48 @@ void PrintTables(const eval::SweepTables& t, const std::string& dir) {
   std::cout << "\nwrote " << dir << "/runs.csv, aggregate.csv, paired.csv and report.html\n";
 }
 
+std::string ProgramId() {
+  const eval::BuildInfo build = eval::GetBuildInfo();
+  return build.version + " " + build.commit;
+}
+
+void PrintFailed(const std::vector<eval::FailedCell>& failed) {
+  for (const eval::FailedCell& f : failed) {
+    std::cout << "failed: " << f.name << " (exit " << f.exit_code << "), log " << f.log << "\n";
+  }
+}
+
+int SlurmSweep(const SweepArgs& a, const eval::SweepOptions& o) {
+  eval::SlurmOptions slurm;
+  slurm.partition = a.partition;
+  slurm.time = a.time;
+  slurm.sbatch_args = a.sbatch_args;
+  slurm.wait = !a.no_wait;
+  const eval::SlurmSweepOutcome r = eval::RunSlurmSweep(o, slurm);
+  if (r.job_id.empty()) {
+    std::cout << "all " << r.sweep.cells << " cells up to date: nothing submitted\n";
+    if (slurm.wait) PrintTables(r.sweep.tables, a.out);
+    return 0;
+  }
+  std::cout << "submitted slurm job " << r.job_id << ": " << r.submitted << " of " << r.sweep.cells
+            << " cells (" << r.sweep.up_to_date << " up to date), script " << r.script << "\n";
+  if (!slurm.wait) {
+    std::cout << "when it has ended (squeue -j " << r.job_id
+              << " lists nothing): lifelong sweep collect " << a.out << "\n";
+    return 0;
+  }
+  std::cout << "ran " << r.sweep.ran << " of " << r.sweep.cells << " cells (" << r.sweep.up_to_date
+            << " up to date) in " << eval::FormatDuration(r.sweep.wall_s) << " as slurm job "
+            << r.job_id << "\n";
+  PrintTables(r.sweep.tables, a.out);
+  PrintFailed(r.sweep.failed);
+  return r.sweep.failed.empty() ? 0 : 1;
+}
+
 int Sweep(const SweepArgs& a) {
+  if (!a.run_cell_dir.empty()) {
+    return eval::RunSweepCell(a.run_cell_dir, a.run_cell_index, ProgramId(), std::cout);
+  }
   if (a.collect_only) {
     PrintTables(eval::CollectSweep(a.out), a.out);
     return 0;
@@ -34,20 +77,18 @@ int Sweep(const SweepArgs& a) {
   o.spec = a.spec;
   o.out_dir = a.out;
   o.program = fs::read_symlink("/proc/self/exe").string();
-  const eval::BuildInfo build = eval::GetBuildInfo();
-  o.program_id = build.version + " " + build.commit;
-  o.parallel =
-      a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.program_id = ProgramId();
   o.progress = &std::cerr;
   o.terminal = ::isatty(STDERR_FILENO) == 1;
+  if (a.slurm) return SlurmSweep(a, o);
+  o.parallel =
+      a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const eval::SweepOutcome r = eval::RunSweep(o);
   std::cout << "ran " << r.ran << " of " << r.cells << " cells (" << r.up_to_date
             << " up to date) in " << eval::FormatDuration(r.wall_s) << " with -j " << o.parallel
             << "\n";
   PrintTables(r.tables, a.out);
-  for (const eval::FailedCell& f : r.failed) {
-    std::cout << "failed: " << f.name << " (exit " << f.exit_code << "), log " << f.log << "\n";
-  }
+  PrintFailed(r.failed);
   return r.failed.empty() ? 0 : 1;
 }
 

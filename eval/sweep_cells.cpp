@@ -126,7 +126,7 @@ SweepPlan ExpandSweep(const SweepSpec& spec, const std::string& program) {
     if (!source.is_log) seeds.insert(seeds.end(), spec.seeds.begin(), spec.seeds.end());
     for (const auto& seed : seeds) {
       for (const Settings& settings : combinations) {
-        SweepPlanCell cell{"", source.given, source.is_log, seed, settings, ""};
+        SweepPlanCell cell{"", source.given, source.is_log, seed, settings, "", {}, ""};
         cell.name = CellName(source, cell, full_keys);
         const std::string config = SettingsConfigYaml(settings);
         try {  // a combination can break a rule one value alone keeps (min <= max)

@@ -34,11 +34,14 @@ std::string SweepPlanToJson(const SweepPlan& plan) {
                      {"is_log", c.is_log},
                      {"seed", c.seed ? json(*c.seed) : json(nullptr)},
                      {"settings", settings},
-                     {"hash", c.hash}});
+                     {"hash", c.hash},
+                     {"argv", c.argv},
+                     {"log", c.log}});
   }
   const json j = {{"spec", plan.spec},
                   {"modes", plan.modes},
                   {"baseline", plan.baseline},
+                  {"program_id", plan.program_id},
                   {"setting_keys", plan.setting_keys},
                   {"cells", cells}};
   return j.dump(1) + "\n";
@@ -51,6 +54,7 @@ SweepPlan SweepPlanFromJson(const std::string& text, const std::string& file) {
     plan.spec = j.at("spec").get<std::string>();
     plan.modes = j.at("modes").get<std::vector<std::string>>();
     plan.baseline = j.at("baseline").get<std::string>();
+    plan.program_id = j.value("program_id", std::string());
     plan.setting_keys = j.at("setting_keys").get<std::vector<std::string>>();
     for (const json& c : j.at("cells")) {
       SweepPlanCell cell;
@@ -63,6 +67,8 @@ SweepPlan SweepPlanFromJson(const std::string& text, const std::string& file) {
         cell.settings.emplace_back(key, c.at("settings").at(key).get<std::string>());
       }
       cell.hash = c.at("hash").get<std::string>();
+      cell.argv = c.value("argv", std::vector<std::string>{});
+      cell.log = c.value("log", std::string());
       plan.cells.push_back(std::move(cell));
     }
   } catch (const json::exception& e) {

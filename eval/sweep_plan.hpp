@@ -24,6 +24,10 @@ struct SweepPlanCell {
   std::optional<std::int64_t> seed;  ///< absent: the scenario's own seed (or a log)
   std::vector<std::pair<std::string, std::string>> settings;  ///< key, value; SPEC order
   std::string hash;  ///< of the cell's inputs and the program (sweep_cells.hpp)
+  /// The cell's command line (absolute paths) and its log: what the local pool and
+  /// `lifelong sweep run-cell DIR INDEX` (a Slurm task) run. Empty in older plans.
+  std::vector<std::string> argv;
+  std::string log;
 };
 
 struct SweepPlan {
@@ -32,6 +36,7 @@ struct SweepPlan {
   std::string baseline;
   std::vector<std::string> setting_keys;
   std::vector<SweepPlanCell> cells;
+  std::string program_id;  ///< version and commit of the program that wrote the plan
 };
 
 /// Name of the file in a finished cell's directory that records its inputs' hash.

@@ -90,52 +90,97 @@ SweepTables CollectSweep(const std::string& dir) {
   return tables;
 }
 
-SweepOutcome RunSweep(const SweepOptions& o) {
+PreparedSweep PrepareSweep(const SweepOptions& o) {
   const SweepSpec spec = LoadSweepSpec(o.spec);
-  const SweepPlan plan = ExpandSweep(spec, o.program_id);
-  const fs::path dir(o.out_dir);
+  PreparedSweep p;
+  p.plan = ExpandSweep(spec, o.program_id);
+  p.plan.program_id = o.program_id;
+  const fs::path dir = fs::absolute(o.out_dir);
   PrepareOutput(dir);
-  io::WriteFileAtomically((dir / "sweep.json").string(), SweepPlanToJson(plan));
-
-  SweepOutcome outcome;
-  outcome.cells = static_cast<int>(plan.cells.size());
-  std::vector<PoolJob> jobs;
-  std::vector<const SweepPlanCell*> job_cells;
-  for (const SweepPlanCell& cell : plan.cells) {
+  for (std::size_t i = 0; i < p.plan.cells.size(); ++i) {
+    SweepPlanCell& cell = p.plan.cells[i];
+    const fs::path inputs = dir / "inputs" / cell.name;
     const fs::path cell_dir = dir / "cells" / cell.name;
+    cell.argv = CellCommand(o.program, spec, cell, (inputs / "scenario.yaml").string(),
+                            (inputs / "config.yaml").string(), cell_dir.string());
+    cell.log = (dir / "cells" / (cell.name + ".run.log")).string();
     if (FinishedCellHash(cell_dir.string()) == cell.hash) {
-      ++outcome.up_to_date;
+      ++p.up_to_date;
       continue;
     }
-    const fs::path inputs = dir / "inputs" / cell.name;
     fs::create_directories(inputs);
     const CellInputs in = MakeCellInputs(spec, cell);
     if (!cell.is_log)
       io::WriteFileAtomically((inputs / "scenario.yaml").string(), in.scenario_yaml);
     io::WriteFileAtomically((inputs / "config.yaml").string(), in.config_yaml);
-    const std::string scenario = fs::absolute(inputs / "scenario.yaml").string();
-    const std::string config = fs::absolute(inputs / "config.yaml").string();
-    jobs.push_back(
-        {CellCommand(o.program, spec, cell, scenario, config, fs::absolute(cell_dir).string()),
-         (dir / "cells" / (cell.name + ".run.log")).string()});
-    job_cells.push_back(&cell);
+    p.to_run.push_back(i);
   }
+  io::WriteFileAtomically((dir / "sweep.json").string(), SweepPlanToJson(p.plan));
+  return p;
+}
+
+void StampCell(const std::string& dir, const SweepPlanCell& cell) {
+  io::WriteFileAtomically((fs::path(dir) / "cells" / cell.name / kCellStampFile).string(),
+                          "{\"hash\": \"" + cell.hash + "\"}\n");
+}
+
+int RunSweepCell(const std::string& dir, long index, const std::string& program_id,
+                 std::ostream& out) {
+  const SweepPlan plan = ReadSweepPlan(dir);
+  const std::string where = (fs::path(dir) / "sweep.json").string();
+  if (index < 0 || index >= static_cast<long>(plan.cells.size())) {
+    throw InputError(where, 0, "cells",
+                     "has no cell " + std::to_string(index) + " (it has " +
+                         std::to_string(plan.cells.size()) + ")");
+  }
+  if (plan.program_id != program_id) {
+    throw InputError(where, 0, "program_id",
+                     "the plan was written by lifelong " + plan.program_id + ", this is " +
+                         program_id + ": its hashes would not describe this program's results");
+  }
+  const SweepPlanCell& cell = plan.cells[static_cast<std::size_t>(index)];
+  if (cell.argv.empty()) throw InputError(where, 0, "argv", "cell " + cell.name + " has none");
+  if (FinishedCellHash((fs::path(dir) / "cells" / cell.name).string()) == cell.hash) {
+    out << "cell " << cell.name << " is up to date\n";
+    return 0;
+  }
+  out << "cell " << cell.name << ": " << cell.argv.front() << " " << cell.argv[1] << " ..., log "
+      << cell.log << std::endl;
+  PoolOptions pool;
+  pool.stop = [] { return InterruptRequested(); };
+  const PoolJobResult r = RunProcessPool({{cell.argv, cell.log}}, pool).front();
+  ThrowIfInterrupted();
+  if (r.exit_code == 0) StampCell(dir, cell);
+  out << "cell " << cell.name << " exit " << r.exit_code << " after " << FormatDuration(r.wall_s)
+      << "\n";
+  return r.exit_code;
+}
+
+SweepOutcome RunSweep(const SweepOptions& o) {
+  const PreparedSweep prepared = PrepareSweep(o);
+  const SweepPlan& plan = prepared.plan;
+  const fs::path dir(o.out_dir);
+
+  SweepOutcome outcome;
+  outcome.cells = static_cast<int>(plan.cells.size());
+  outcome.up_to_date = prepared.up_to_date;
+  std::vector<PoolJob> jobs;
+  for (std::size_t i : prepared.to_run) jobs.push_back({plan.cells[i].argv, plan.cells[i].log});
 
   SweepProgress progress(o, outcome.cells, outcome.up_to_date);
   PoolOptions pool;
   pool.parallel = o.parallel;
   pool.stop = [] { return InterruptRequested(); };
   pool.on_done = [&](std::size_t i, const PoolJobResult& r) {
-    const SweepPlanCell& cell = *job_cells[i];
+    const SweepPlanCell& cell = plan.cells[prepared.to_run[i]];
     ++outcome.ran;
     std::string note;
     if (r.exit_code == 0) {
-      io::WriteFileAtomically((dir / "cells" / cell.name / kCellStampFile).string(),
-                              "{\"hash\": \"" + cell.hash + "\"}\n");
+      StampCell(dir.string(), cell);
     } else {
-      outcome.failed.push_back({cell.name, r.exit_code, jobs[i].log_path});
+      outcome.failed.push_back({cell.name, r.exit_code, cell.log});
       note = "cell " + cell.name + " failed (exit " + std::to_string(r.exit_code) + "), see " +
-             jobs[i].log_path;
+             cell.log;
     }
     progress.Done(r.exit_code != 0, r.wall_s, note);
   };

@@ -9,6 +9,7 @@
 //   runs.csv, aggregate.csv, paired.csv, report.html, sweep_*.png, plot_data/
 #pragma once
 
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -41,6 +42,27 @@ struct SweepOutcome {
   double wall_s = 0.0;
   SweepTables tables;
 };
+
+/// The plan with every cell's command and log (absolute paths), and the cells to run.
+struct PreparedSweep {
+  SweepPlan plan;
+  std::vector<std::size_t> to_run;  ///< plan cells whose current result is missing
+  int up_to_date = 0;
+};
+
+/// Checks the SPEC and DIR, writes DIR/sweep.json and the inputs of every cell to run:
+/// what both the local pool and a Slurm job array run from. Throws InputError.
+PreparedSweep PrepareSweep(const SweepOptions& options);
+
+/// Records that `cell` succeeded: DIR/cells/<name>/sweep_cell.json with its hash.
+void StampCell(const std::string& dir, const SweepPlanCell& cell);
+
+/// `lifelong sweep run-cell DIR INDEX` (a Slurm array task): runs plan cell INDEX exactly
+/// as the local pool does (its command, its log, the stamp on success); nothing when it
+/// is up to date. Refuses a plan written by another program version. Returns the cell's
+/// exit code. Throws InputError, eval::Interrupted.
+int RunSweepCell(const std::string& dir, long index, const std::string& program_id,
+                 std::ostream& out);
 
 /// Checks everything (SPEC, DIR) before any cell runs: InputError then. Throws
 /// eval::Interrupted after Ctrl-C/SIGTERM once the running cells have stopped.

@@ -9,6 +9,8 @@ packages=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libyaml-cp
 packages+=(libopenblas0-serial python3)
 # The report test (tests/eval/report_browser_test.py) opens report.html in a real browser.
 packages+=(chromium)
+# The Slurm test (tests/apps/sweep_slurm_test.sh) starts its own munged, slurmctld and slurmd.
+packages+=(slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

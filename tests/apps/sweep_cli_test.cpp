@@ -150,4 +150,60 @@ TEST(SweepCli, AnOutputDirectoryThatHoldsNoSweepIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "cells"));
 }
 
+// `sweep run-cell DIR INDEX` is what a Slurm array task runs (eval/sweep_slurm.hpp): the
+// cell's command from sweep.json, its log and its stamp, nothing when it is up to date, and
+// never a plan written by another program.
+TEST(SweepCli, RunCellRunsOneCellOfThePlanAsThePoolDoes) {
+  const fs::path dir = Fresh("run_cell");
+  std::ofstream(dir / "spec.yaml")
+      << "scenarios: [" << kSource
+      << "/scenarios/corridor_3.yaml]\nseeds: [4]\nmodes: [standard]\n";
+  const fs::path out = dir / "out";
+  Result r = Lifelong("sweep " + (dir / "spec.yaml").string() + " -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path cell = out / "cells" / "corridor_3-seed4";
+  const std::string summary = Read(cell / "summary.json");
+  const auto summary_time = fs::last_write_time(cell / "summary.json");
+  const std::string stamp = Read(cell / "sweep_cell.json");
+  ASSERT_FALSE(stamp.empty());
+
+  r = Lifelong("sweep run-cell " + out.string() + " 0");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("cell corridor_3-seed4 is up to date"), std::string::npos) << r.output;
+
+  fs::remove(cell / "sweep_cell.json");
+  fs::remove(out / "cells" / "corridor_3-seed4.run.log");
+  r = Lifelong("sweep run-cell " + out.string() + " 0");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(Read(cell / "sweep_cell.json"), stamp);
+  EXPECT_TRUE(fs::exists(out / "cells" / "corridor_3-seed4.run.log"));
+  // It ran again (a new summary.json) with the same inputs: the same graph.
+  const auto nodes = [](const std::string& json) {
+    const std::size_t at = json.find("\"nodes_final\"");
+    return at == std::string::npos ? std::string() : json.substr(at, json.find(',', at) - at);
+  };
+  EXPECT_FALSE(nodes(summary).empty());
+  EXPECT_EQ(nodes(Read(cell / "summary.json")), nodes(summary));
+  EXPECT_NE(fs::last_write_time(cell / "summary.json"), summary_time);
+
+  r = Lifelong("sweep run-cell " + out.string() + " 1");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("has no cell 1 (it has 1)"), std::string::npos) << r.output;
+
+  std::string plan = Read(out / "sweep.json");
+  const std::size_t at = plan.find("\"program_id\": \"") + 15;
+  plan.insert(at, "other ");
+  std::ofstream(out / "sweep.json") << plan;
+  r = Lifelong("sweep run-cell " + out.string() + " 0");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("the plan was written by lifelong other "), std::string::npos)
+      << r.output;
+}
+
+TEST(SweepCli, SlurmOptionsNeedSlurm) {
+  const Result r = Lifelong("sweep spec.yaml -o out --no-wait");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("need --slurm"), std::string::npos) << r.output;
+}
+
 }  // namespace

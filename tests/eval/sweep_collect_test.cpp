@@ -69,14 +69,16 @@ fs::path Fabricate() {
                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(dir);
   fs::create_directories(dir);
-  SweepPlan plan{"spec.yaml", {"standard", "pruned"}, "standard", {"pruning.radius_m"}, {}};
+  SweepPlan plan{"spec.yaml", {"standard", "pruned"}, "standard", {"pruning.radius_m"}, {}, ""};
   for (int seed : {1, 2, 3}) {
     plan.cells.push_back({"c" + std::to_string(seed),
                           "corridor_3.yaml",
                           false,
                           seed,
                           {{"pruning.radius_m", "2.5"}},
-                          "h" + std::to_string(seed)});
+                          "h" + std::to_string(seed),
+                          {},
+                          ""});
   }
   std::ofstream(dir / "sweep.json") << SweepPlanToJson(plan);
   // seed 1: standard 10 nodes, pruned 6; blur only in standard; seed 2: 14 / 7.

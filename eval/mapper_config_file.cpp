@@ -123,6 +123,8 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
   v.Number("max_flatness", c.max_flatness, kUnit);
   v.Number("uniqueness_radius_m", c.uniqueness_radius_m, kPositive);
+  v.Number("refine_window_m", c.refine_window_m, kNonNegative);
+  v.Number("refine_window_rad", c.refine_window_rad, kPositive);
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);
   v.Int("min_reference_points", c.min_reference_points, 0);
   v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, false); });

@@ -130,11 +130,12 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
       old = c.id;
     }
   }
+  const MatchResult pair = RefineAgainstNode(old, nodes.at(current).points, match);
   LoopHypothesis h;
   h.old = old;
   h.current = current;
-  h.T_old_current = Between(values.at(old), match.T_ref_cur);
-  h.information = RotateIntoFrame(match.information, match.T_ref_cur.theta);
+  h.T_old_current = Between(values.at(old), pair.T_ref_cur);
+  h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
   h.covariance = h.information.inverse();
   h.travelled_m = nodes.at(current).travelled_m;
   MaybeInjectFalse(&h);
@@ -144,6 +145,24 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
     closed = true;
   }
   return closed;
+}
+
+MatchResult Mapper::State::RefineAgainstNode(NodeId old, const std::vector<Eigen::Vector2d>& points,
+                                             const MatchResult& submap_match) {
+  const LoopClosingConfig& lc = config.loops;
+  if (lc.refine_window_m <= 0.0) return submap_match;
+  // The submap holds several nodes whose estimates may disagree by what the map still gets
+  // wrong; the edge goes to `old` alone, so it is measured against old's scan alone,
+  // in a narrow window around the submap's answer.
+  std::vector<Eigen::Vector2d> reference = ToWorld(nodes.at(old).points, values.at(old));
+  MatcherConfig mc = lc.matcher;
+  mc.linear_window_m = lc.refine_window_m;
+  mc.angular_window_rad = lc.refine_window_rad;
+  CropToSearch(points, submap_match.T_ref_cur, mc, &reference);
+  if (static_cast<int>(reference.size()) < lc.min_reference_points / 2) return submap_match;
+  match_grid.Build(reference, mc);
+  const MatchResult pair = Match(match_grid, points, submap_match.T_ref_cur, mc);
+  return pair.ok && pair.score >= lc.min_score ? pair : submap_match;
 }
 
 bool Mapper::State::LocallyUnique(const MatchResult& match,

@@ -13,17 +13,6 @@ namespace {
 
 double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
 
-std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T) {
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(points.size());
-  for (const Eigen::Vector2d& p : points) {
-    double x = 0.0, y = 0.0;
-    T.Apply(p.x(), p.y(), &x, &y);
-    out.emplace_back(x, y);
-  }
-  return out;
-}
-
 // Information of the odometry fallback edge, in the edge's error frame.
 Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
   const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * Norm(delta);
@@ -82,6 +71,17 @@ Eigen::Matrix3d RotateIntoFrame(const Eigen::Matrix3d& m, double theta_rad) {
   const double c = std::cos(theta_rad), s = std::sin(theta_rad);
   T.block<2, 2>(0, 0) << c, s, -s, c;  // R^T
   return T * m * T.transpose();
+}
+
+std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size());
+  for (const Eigen::Vector2d& p : points) {
+    double x = 0.0, y = 0.0;
+    T.Apply(p.x(), p.y(), &x, &y);
+    out.emplace_back(x, y);
+  }
+  return out;
 }
 
 Mapper::Mapper(const MapperConfig& config) : state_(std::make_unique<State>(config)) {}

@@ -59,6 +59,10 @@ struct LoopClosingConfig {
   /// heading) scores above max_flatness times the best. 1: off.
   double max_flatness = 0.9;
   double uniqueness_radius_m = 0.25;
+  /// The edge is measured against the attached node's scan alone, in this window around
+  /// the submap's answer (0: the submap match is the edge).
+  double refine_window_m = 0.0;
+  double refine_window_rad = 0.05;
   double consistency_chi2 = 16.27;  ///< 99.9 % gate (3 dof) of the correction
   int min_reference_points = 60;    ///< submap points the search can reach, fewer: no match
   MatcherConfig matcher;            ///< windows are set per attempt

@@ -107,6 +107,10 @@ struct Mapper::State {
   /// Local uniqueness of a loop-closure match: no pose uniqueness_radius_m away (8
   /// directions, same heading) scores above max_flatness times the best.
   bool LocallyUnique(const MatchResult& match, const std::vector<Eigen::Vector2d>& points) const;
+  /// The submap match measured again against node `old`'s scan alone (loops.refine_window_m);
+  /// the submap match itself when that fails.
+  MatchResult RefineAgainstNode(NodeId old, const std::vector<Eigen::Vector2d>& points,
+                                const MatchResult& submap_match);
   /// The false-closure test: moves every 1/share-th hypothesis by the configured offset.
   void MaybeInjectFalse(LoopHypothesis* h);
   /// Puts a verified closure into the graph (and optimizes when it is far off).
@@ -139,6 +143,9 @@ struct Mapper::State {
   /// the most; at most a few per call. (The pruned graph is small: every node is considered.)
   void KeepEdgeBudget();
 };
+
+/// Points of the robot frame in the world frame of pose T.
+std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T);
 
 /// Inclusive cell box of an increment list, and whether two boxes share a cell.
 CellBounds BoxOf(const std::vector<CellUpdate>& cells);

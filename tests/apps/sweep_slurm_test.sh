@@ -111,7 +111,7 @@ ls "$t"/slurm/cells/slurm-*_1.out >/dev/null || fail "no task output file"
 # Same figures as the local pool, except those that measure the machine.
 python3 - "$t/local/aggregate.csv" "$t/slurm/aggregate.csv" <<'PY' || fail "aggregate.csv differs"
 import csv, re, sys
-machine = re.compile(r"^(wall_time_s|peak_rss_mb|time_per_obs_ms/)")
+machine = re.compile(r"^(wall_time_s|peak_rss_mb|time_per_obs_ms/|stage_ms/)")
 def table(path):
     rows = list(csv.reader(open(path)))
     keep = [i for i, h in enumerate(rows[0]) if not machine.search(h)]
@@ -178,7 +178,7 @@ done
 cmp "$t/slurm/aggregate.csv" "$t/later/aggregate.csv" >/dev/null ||
   python3 - "$t/slurm/aggregate.csv" "$t/later/aggregate.csv" <<'PY' || fail "--no-wait's aggregate.csv differs"
 import csv, re, sys
-machine = re.compile(r"^(wall_time_s|peak_rss_mb|time_per_obs_ms/)")
+machine = re.compile(r"^(wall_time_s|peak_rss_mb|time_per_obs_ms/|stage_ms/)")
 def table(path):
     rows = list(csv.reader(open(path)))
     keep = [i for i, h in enumerate(rows[0]) if not machine.search(h)]

@@ -36,6 +36,11 @@ namespace lifelong::slam {
 /// *rank (optional) receives the number kept.
 Eigen::MatrixXd InformativePart(const Eigen::MatrixXd& lambda, double tolerance,
                                 int* rank = nullptr);
+/// The same with the cut at tolerance * max(largest eigenvalue, reference): a part of a
+/// larger information (a GLC conditional) is judged against the whole (reference = its
+/// largest eigenvalue), so a part that is rounding noise comes out as exactly 0.
+Eigen::MatrixXd InformativeAbove(const Eigen::MatrixXd& lambda, double tolerance, double reference,
+                                 int* rank = nullptr);
 
 /// Steps 1-3: the dense GLC factor (root-shifted, informative part only). For m = 2 with a
 /// definite information it is returned as an edge instead (the same error and information).

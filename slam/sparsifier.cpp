@@ -188,8 +188,13 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // Jacobi-scaled pseudo-inverse with a 1e-10 cut: a direction the new factors barely
   // inform (a low-rank GLC conditional) gets no displacement rather than a huge one.
   const MatrixXd h = now.H.bottomRightCorner(d, d);
-  VectorXd s = VectorXd::Ones(d);
-  for (Eigen::Index i = 0; i < d; ++i) s(i) = h(i, i) > 0.0 ? 1.0 / std::sqrt(h(i, i)) : 1.0;
+  // A coordinate the factors inform only at rounding level (relative to the best informed
+  // one) gets scale 0, so the scaling cannot blow rounding noise up to unit information.
+  const double h_max = d > 0 ? h.diagonal().maxCoeff() : 0.0;
+  VectorXd s = VectorXd::Zero(d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    if (h(i, i) > 1e-12 * h_max) s(i) = 1.0 / std::sqrt(h(i, i));
+  }
   z.tail(d) = s.asDiagonal() * PinvPsd(s.asDiagonal() * h * s.asDiagonal(), 1e-10) *
               (s.asDiagonal() * (g_N - now.g).tail(d));
   const auto delta = [&](NodeId n) { return z.segment<3>(Block(IndexOf(nodes, n))); };
@@ -207,18 +212,29 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
     edge.T_from_to = MeasurementFor(Xi, Xj, p * target);
     edge.information = p * edge.information * p.transpose();
   }
+  // A low-rank clique factor (GLC) keeps its target residual in its row space: the part
+  // along the null space of its information adds no gradient at x* but, once measured,
+  // would turn into informative error as soon as the nodes move (GLC keeps the residual
+  // of a rank-deficient factor in the span of its informative eigenvectors).
   for (CliqueFactor& c : *cliques) {
     const Pose2& Xr = values.at(c.nodes[0]);
-    MatrixXd p = MatrixXd::Zero(c.information.rows(), c.information.cols());
+    const Eigen::Index rows = c.information.rows();
+    VectorXd e(rows), target(rows);
     for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
       const Pose2& Xn = values.at(c.nodes[j + 1]);
       Matrix3d Jr, Jn;
       RelativeErrorJacobians(Xr, Xn, c.T_root_node[j], &Jr, &Jn);
-      const Eigen::Vector3d e = RelativeError(Xr, Xn, c.T_root_node[j]);
-      const Eigen::Vector3d target = e + Jr * delta(c.nodes[0]) + Jn * delta(c.nodes[j + 1]);
-      const Matrix3d pj = Turn(target.z() - e.z());
+      e.segment<3>(Block(j)) = RelativeError(Xr, Xn, c.T_root_node[j]);
+      target.segment<3>(Block(j)) =
+          e.segment<3>(Block(j)) + Jr * delta(c.nodes[0]) + Jn * delta(c.nodes[j + 1]);
+    }
+    target = PinvPsd(c.information, 1e-10) * (c.information * target);  // row-space projection
+    MatrixXd p = MatrixXd::Zero(rows, rows);
+    for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
+      const Pose2& Xn = values.at(c.nodes[j + 1]);
+      const Matrix3d pj = Turn(target(Block(j) + 2) - e(Block(j) + 2));
       p.block<3, 3>(Block(j), Block(j)) = pj;
-      c.T_root_node[j] = MeasurementFor(Xr, Xn, pj * target);
+      c.T_root_node[j] = MeasurementFor(Xr, Xn, pj * target.segment<3>(Block(j)));
     }
     const MatrixXd info = p * c.information * p.transpose();
     c.information = 0.5 * (info + info.transpose());

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -26,6 +28,8 @@ constexpr Entry kRegistry[] = {{"naive", MakeNaiveSparsifier},
                                {"chow-liu", MakeChowLiuSparsifier},
                                {"glc-dense", MakeGlcDenseSparsifier},
                                {"glc", MakeGlcSparsifier}};
+
+constexpr double kMaxHeadingResidual = 3.0;  ///< rad, see PreserveGradient
 
 Eigen::Index Block(std::size_t i) { return static_cast<Eigen::Index>(3 * i); }
 
@@ -195,8 +199,48 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   for (Eigen::Index i = 0; i < d; ++i) {
     if (h(i, i) > 1e-12 * h_max) s(i) = 1.0 / std::sqrt(h(i, i));
   }
-  z.tail(d) = s.asDiagonal() * PinvPsd(s.asDiagonal() * h * s.asDiagonal(), 1e-10) *
-              (s.asDiagonal() * (g_N - now.g).tail(d));
+  // When the whole displacement would move a factor's heading residual by over 3 rad, each
+  // direction that does so alone (a gradient along a barely informed direction) is dropped: the
+  // target heading residual must stay inside (-pi, pi], or the measurement that should carry
+  // it wraps and the moved factors no longer keep the gradient at x* (intel at keep share 0.1: a
+  // direction with eigenvalue 4e-10 of the largest asked for ~650 rad). That part of the gradient
+  // is lost. Translation residuals have no such limit (exact at first order however large), nor
+  // have common rotations of all nodes (no factor's heading residual changes).
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (from, to) blocks of factors
+  for (const PoseEdge& e : *edges) pairs.emplace_back(IndexOf(nodes, e.from), IndexOf(nodes, e.to));
+  for (const CliqueFactor& c : *cliques) {
+    for (std::size_t j = 1; j < c.nodes.size(); ++j) {
+      pairs.emplace_back(IndexOf(nodes, c.nodes[0]), IndexOf(nodes, c.nodes[j]));
+    }
+  }
+  const auto heading_residual = [&](const VectorXd& step) {  // largest over the factors
+    double turn = 0.0;
+    for (const auto& [a, c] : pairs) {
+      const double ta = a == 0 ? 0.0 : step(Block(a) - 1);  // step omits node 0's block
+      const double tc = c == 0 ? 0.0 : step(Block(c) - 1);
+      turn = std::max(turn, std::abs(tc - ta));
+    }
+    return turn;
+  };
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(s.asDiagonal() * h * s.asDiagonal());
+  const VectorXd b = s.asDiagonal() * (g_N - now.g).tail(d);
+  const double cut = 1e-10 * std::max(d > 0 ? eig.eigenvalues().maxCoeff() : 0.0, 1e-300);
+  std::vector<VectorXd> steps;
+  VectorXd full = VectorXd::Zero(d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    const double lambda = eig.eigenvalues()(i);
+    if (!(lambda > cut)) continue;
+    steps.push_back(s.asDiagonal() * eig.eigenvectors().col(i) *
+                    (eig.eigenvectors().col(i).dot(b) / lambda));
+    full += steps.back();
+  }
+  if (heading_residual(full) <= kMaxHeadingResidual) {
+    z.tail(d) = full;  // the whole gradient (directions may cancel each other's turns)
+  } else {
+    for (const VectorXd& step : steps) {
+      if (heading_residual(step) <= kMaxHeadingResidual) z.tail(d) += step;
+    }
+  }
   const auto delta = [&](NodeId n) { return z.segment<3>(Block(IndexOf(nodes, n))); };
   // Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
   // the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T

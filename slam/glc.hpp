@@ -22,6 +22,10 @@
 //     does not depend on y_p (an independent pair) becomes a factor over {r, n_c}.
 //     Where chow-liu (marginalization.hpp) conditions one node's pose on another's, GLC
 //     conditions poses relative to r on each other: its factors are ternary through r.
+//     Each factor keeps the directions above tolerance * (largest eigenvalue of Lambda_y),
+//     so a conditional of a low-rank Lambda_y that is rounding noise comes out as 0 and is
+//     dropped (as iSAM skips a factor with no rank). sparsifier_glc.cpp falls back to the
+//     dense factor when the tree misses an informative direction of the marginal.
 #pragma once
 
 #include <vector>

@@ -78,6 +78,7 @@ CliqueFactor SubFactor(const CliqueFactor& c, const std::vector<int>& vars,
 
 /// Adds a factor, as a relative-pose edge when it is binary with a definite information.
 void Emit(const CliqueFactor& f, GlcFactors* out) {
+  if (f.information.isZero(0.0)) return;  // no informative direction: no factor (as iSAM)
   if (f.nodes.size() == 2 && f.information.llt().info() == Eigen::Success) {
     PoseEdge e;
     e.from = f.nodes[0];
@@ -131,9 +132,14 @@ std::vector<WeightedPair> PairWeights(const MatrixXd& sigma) {
 }  // namespace
 
 MatrixXd InformativePart(const MatrixXd& lambda, double tolerance, int* rank) {
+  return InformativeAbove(lambda, tolerance, 0.0, rank);
+}
+
+MatrixXd InformativeAbove(const MatrixXd& lambda, double tolerance, double reference, int* rank) {
+  if (lambda.rows() == 0) return lambda;
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Sym(lambda));
   VectorXd ev = eig.eigenvalues();
-  const double cut = tolerance * std::max(ev.maxCoeff(), 0.0);
+  const double cut = tolerance * std::max({ev.maxCoeff(), reference, 0.0});
   int kept = 0;
   for (Index i = 0; i < ev.size(); ++i) {
     if (ev(i) > cut && ev(i) > 0.0) {
@@ -161,10 +167,18 @@ GlcFactors GlcChowLiu(const std::vector<NodeId>& nodes, const Values& values,
   const CliqueFactor c = RootShifted(nodes, values, lambda_N, tolerance);
   const MatrixXd& lambda_y = c.information;
   const int n = static_cast<int>(nodes.size()) - 1;
+  // Directions are informative relative to the clique, not to each factor: a conditional
+  // of a low-rank Lambda_y can be pure rounding (~1e-16 of Lambda_y), which a cut relative
+  // to its own largest eigenvalue would keep as information (issue #12).
+  const double reference =
+      Eigen::SelfAdjointEigenSolver<MatrixXd>(lambda_y).eigenvalues().maxCoeff();
+  const auto informative = [&](const MatrixXd& m) {
+    return InformativeAbove(m, tolerance, reference);
+  };
   const MatrixXd sigma = WeightCovariance(lambda_y, regularized);
   const std::vector<TreeEdge> tree = OrientTree(n, MaximumSpanningTree(n, PairWeights(sigma)), 0);
   // The tree's root: its marginal, a factor over {r, n_1}.
-  Emit(SubFactor(c, {0}, InformativePart(MarginalInformation(lambda_y, {0}), tolerance)), &out);
+  Emit(SubFactor(c, {0}, informative(MarginalInformation(lambda_y, {0}))), &out);
   for (const TreeEdge& t : tree) {
     const MatrixXd m = MarginalInformation(lambda_y, {t.parent, t.child});
     const MatrixXd m_p = m.topLeftCorner<3, 3>() - m.topRightCorner<3, 3>() *
@@ -172,9 +186,8 @@ GlcFactors GlcChowLiu(const std::vector<NodeId>& nodes, const Values& values,
                                                        m.bottomLeftCorner<3, 3>();
     MatrixXd f = m;
     f.topLeftCorner<3, 3>() -= m_p;
-    f = InformativePart(f, tolerance);
-    const double scale = f.cwiseAbs().maxCoeff();
-    const bool independent = f.topRows<3>().cwiseAbs().maxCoeff() <= 1e-12 * scale;
+    f = informative(f);
+    const bool independent = f.topRows<3>().cwiseAbs().maxCoeff() <= 1e-12 * reference;
     if (independent) {
       Emit(SubFactor(c, {t.child}, f.bottomRightCorner<3, 3>()), &out);
     } else {

@@ -22,6 +22,10 @@
 //     does not depend on y_p (an independent pair) becomes a factor over {r, n_c}.
 //     Where chow-liu (marginalization.hpp) conditions one node's pose on another's, GLC
 //     conditions poses relative to r on each other: its factors are ternary through r.
+//     Each factor keeps the directions above tolerance * (largest eigenvalue of Lambda_y),
+//     so a conditional of a low-rank Lambda_y that is rounding noise comes out as 0 and is
+//     dropped (as iSAM skips a factor with no rank). sparsifier_glc.cpp falls back to the
+//     dense factor when the tree misses an informative direction of the marginal.
 #pragma once
 
 #include <vector>
@@ -36,6 +40,11 @@ namespace lifelong::slam {
 /// *rank (optional) receives the number kept.
 Eigen::MatrixXd InformativePart(const Eigen::MatrixXd& lambda, double tolerance,
                                 int* rank = nullptr);
+/// The same with the cut at tolerance * max(largest eigenvalue, reference): a part of a
+/// larger information (a GLC conditional) is judged against the whole (reference = its
+/// largest eigenvalue), so a part that is rounding noise comes out as exactly 0.
+Eigen::MatrixXd InformativeAbove(const Eigen::MatrixXd& lambda, double tolerance, double reference,
+                                 int* rank = nullptr);
 
 /// Steps 1-3: the dense GLC factor (root-shifted, informative part only). For m = 2 with a
 /// definite information it is returned as an edge instead (the same error and information).

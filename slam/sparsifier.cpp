@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -26,6 +28,8 @@ constexpr Entry kRegistry[] = {{"naive", MakeNaiveSparsifier},
                                {"chow-liu", MakeChowLiuSparsifier},
                                {"glc-dense", MakeGlcDenseSparsifier},
                                {"glc", MakeGlcSparsifier}};
+
+constexpr double kMaxHeadingResidual = 3.0;  ///< rad, see PreserveGradient
 
 Eigen::Index Block(std::size_t i) { return static_cast<Eigen::Index>(3 * i); }
 
@@ -188,10 +192,55 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // Jacobi-scaled pseudo-inverse with a 1e-10 cut: a direction the new factors barely
   // inform (a low-rank GLC conditional) gets no displacement rather than a huge one.
   const MatrixXd h = now.H.bottomRightCorner(d, d);
-  VectorXd s = VectorXd::Ones(d);
-  for (Eigen::Index i = 0; i < d; ++i) s(i) = h(i, i) > 0.0 ? 1.0 / std::sqrt(h(i, i)) : 1.0;
-  z.tail(d) = s.asDiagonal() * PinvPsd(s.asDiagonal() * h * s.asDiagonal(), 1e-10) *
-              (s.asDiagonal() * (g_N - now.g).tail(d));
+  // A coordinate the factors inform only at rounding level (relative to the best informed
+  // one) gets scale 0, so the scaling cannot blow rounding noise up to unit information.
+  const double h_max = d > 0 ? h.diagonal().maxCoeff() : 0.0;
+  VectorXd s = VectorXd::Zero(d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    if (h(i, i) > 1e-12 * h_max) s(i) = 1.0 / std::sqrt(h(i, i));
+  }
+  // When the whole displacement would move a factor's heading residual by over 3 rad, each
+  // direction that does so alone (a gradient along a barely informed direction) is dropped: the
+  // target heading residual must stay inside (-pi, pi], or the measurement that should carry
+  // it wraps and the moved factors no longer keep the gradient at x* (intel at keep share 0.1: a
+  // direction with eigenvalue 4e-10 of the largest asked for ~650 rad). That part of the gradient
+  // is lost. Translation residuals have no such limit (exact at first order however large), nor
+  // have common rotations of all nodes (no factor's heading residual changes).
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (from, to) blocks of factors
+  for (const PoseEdge& e : *edges) pairs.emplace_back(IndexOf(nodes, e.from), IndexOf(nodes, e.to));
+  for (const CliqueFactor& c : *cliques) {
+    for (std::size_t j = 1; j < c.nodes.size(); ++j) {
+      pairs.emplace_back(IndexOf(nodes, c.nodes[0]), IndexOf(nodes, c.nodes[j]));
+    }
+  }
+  const auto heading_residual = [&](const VectorXd& step) {  // largest over the factors
+    double turn = 0.0;
+    for (const auto& [a, c] : pairs) {
+      const double ta = a == 0 ? 0.0 : step(Block(a) - 1);  // step omits node 0's block
+      const double tc = c == 0 ? 0.0 : step(Block(c) - 1);
+      turn = std::max(turn, std::abs(tc - ta));
+    }
+    return turn;
+  };
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(s.asDiagonal() * h * s.asDiagonal());
+  const VectorXd b = s.asDiagonal() * (g_N - now.g).tail(d);
+  const double cut = 1e-10 * std::max(d > 0 ? eig.eigenvalues().maxCoeff() : 0.0, 1e-300);
+  std::vector<VectorXd> steps;
+  VectorXd full = VectorXd::Zero(d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    const double lambda = eig.eigenvalues()(i);
+    if (!(lambda > cut)) continue;
+    steps.push_back(s.asDiagonal() * eig.eigenvectors().col(i) *
+                    (eig.eigenvectors().col(i).dot(b) / lambda));
+    full += steps.back();
+  }
+  if (heading_residual(full) <= kMaxHeadingResidual) {
+    z.tail(d) = full;  // the whole gradient (directions may cancel each other's turns)
+  } else {
+    for (const VectorXd& step : steps) {
+      if (heading_residual(step) <= kMaxHeadingResidual) z.tail(d) += step;
+    }
+  }
   const auto delta = [&](NodeId n) { return z.segment<3>(Block(IndexOf(nodes, n))); };
   // Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
   // the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T
@@ -207,18 +256,29 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
     edge.T_from_to = MeasurementFor(Xi, Xj, p * target);
     edge.information = p * edge.information * p.transpose();
   }
+  // A low-rank clique factor (GLC) keeps its target residual in its row space: the part
+  // along the null space of its information adds no gradient at x* but, once measured,
+  // would turn into informative error as soon as the nodes move (GLC keeps the residual
+  // of a rank-deficient factor in the span of its informative eigenvectors).
   for (CliqueFactor& c : *cliques) {
     const Pose2& Xr = values.at(c.nodes[0]);
-    MatrixXd p = MatrixXd::Zero(c.information.rows(), c.information.cols());
+    const Eigen::Index rows = c.information.rows();
+    VectorXd e(rows), target(rows);
     for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
       const Pose2& Xn = values.at(c.nodes[j + 1]);
       Matrix3d Jr, Jn;
       RelativeErrorJacobians(Xr, Xn, c.T_root_node[j], &Jr, &Jn);
-      const Eigen::Vector3d e = RelativeError(Xr, Xn, c.T_root_node[j]);
-      const Eigen::Vector3d target = e + Jr * delta(c.nodes[0]) + Jn * delta(c.nodes[j + 1]);
-      const Matrix3d pj = Turn(target.z() - e.z());
+      e.segment<3>(Block(j)) = RelativeError(Xr, Xn, c.T_root_node[j]);
+      target.segment<3>(Block(j)) =
+          e.segment<3>(Block(j)) + Jr * delta(c.nodes[0]) + Jn * delta(c.nodes[j + 1]);
+    }
+    target = PinvPsd(c.information, 1e-10) * (c.information * target);  // row-space projection
+    MatrixXd p = MatrixXd::Zero(rows, rows);
+    for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
+      const Pose2& Xn = values.at(c.nodes[j + 1]);
+      const Matrix3d pj = Turn(target(Block(j) + 2) - e(Block(j) + 2));
       p.block<3, 3>(Block(j), Block(j)) = pj;
-      c.T_root_node[j] = MeasurementFor(Xr, Xn, pj * target);
+      c.T_root_node[j] = MeasurementFor(Xr, Xn, pj * target.segment<3>(Block(j)));
     }
     const MatrixXd info = p * c.information * p.transpose();
     c.information = 0.5 * (info + info.transpose());

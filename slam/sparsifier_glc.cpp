@@ -1,6 +1,10 @@
 // Sparsifier "glc": Chow-Liu tree of root-shifted GLC factors (glc.hpp steps 1, 2 and 4).
 // Linearizes k's clique itself (with the factors among N under BlanketPolicy::kBlanket, as
 // GLC removes intra-clique factors), so it also replaces earlier GLC factors within N.
+// When the tree is not definite on the marginal's informative directions (infinite KL), the
+// dense GLC factor replaces it.
+#include <cmath>
+
 #include "slam/glc.hpp"
 #include "slam/sparsifier.hpp"
 
@@ -28,6 +32,16 @@ class GlcSparsifier final : public Sparsifier {
     r.cliques = std::move(factors.cliques);
     r.kl_divergence = InformativeKl(lambda_N, FactorsHessian(nodes, values, r.edges, r.cliques),
                                     config_.eigen_tolerance);
+    if (!std::isfinite(r.kl_divergence)) {
+      // The tree misses informative directions of the marginal (a low-rank Lambda_y that
+      // couples three or more relative poses at once, which no pairwise tree expresses):
+      // keep the exact dense GLC factor instead, of the same (low) rank (issue #12).
+      factors = GlcDense(nodes, values, lambda_N, config_.eigen_tolerance);
+      r.edges = std::move(factors.edges);
+      r.cliques = std::move(factors.cliques);
+      r.kl_divergence = InformativeKl(lambda_N, FactorsHessian(nodes, values, r.edges, r.cliques),
+                                      config_.eigen_tolerance);
+    }
     if (config_.keep_gradient) PreserveGradient(nodes, values, g_N, &r.edges, &r.cliques);
     return r;
   }

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "slam/marginalization.hpp"
+#include "slam/se2.hpp"
 #include "slam/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
@@ -124,6 +125,50 @@ TEST(GlcDense, LowRankMarginalKeepsItsRankWithoutAPrior) {
   int rank = 0;
   InformativePart(ToCliqueFactor({1, 2, 3}, v, lambda).information, 1e-10, &rank);
   EXPECT_EQ(rank, 4);
+}
+
+TEST(GlcChowLiu, RankThreeCliquesKeepTheGradientWithinTheirRowSpace) {
+  // Issue #12: k = 0 is tied to {1, 2} and {3, 4} only by two rank-3 ternary factors (as
+  // GLC conditionals leave them), with residuals. The marginal over {1, 2, 3, 4} has rank 3
+  // and couples three relative poses at once, which no pairwise tree expresses: the tree's
+  // conditionals came out as rounding noise (~1e-14) and keeping the gradient through them
+  // moved their measurements by ~1e14. The replacement must stay finite and small.
+  std::mt19937 rng(7);
+  const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
+  PoseGraph g;
+  for (NodeId id : {0, 1, 2, 3, 4}) g.AddNode(id);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  for (const std::vector<NodeId>& nodes : {std::vector<NodeId>{1, 2, 0}, {3, 4, 0}}) {
+    CliqueFactor c;
+    c.nodes = nodes;
+    for (std::size_t j = 1; j < nodes.size(); ++j) {
+      c.T_root_node.push_back(Between(v.at(nodes[0]), v.at(nodes[j])) *
+                              Pose2(noise(rng), noise(rng), noise(rng)));
+    }
+    const MatrixXd b = MatrixXd::Random(3, 6) * 3.0;
+    c.information = b.transpose() * b;  // rank 3 of 6
+    g.AddClique(c);
+  }
+  SparsifierConfig config;
+  config.keep_gradient = true;
+  const Replacement r = MakeSparsifier("glc", config)->Replace(g, v, 0);
+  MatrixXd lambda_N;
+  Eigen::VectorXd g_N;
+  EliminateFirstBlock(LinearizeClique(g, v, 0, true, true), &lambda_N, &g_N);
+  EXPECT_EQ(Rank(lambda_N), 3);
+  EXPECT_TRUE(std::isfinite(r.kl_divergence));
+  const MatrixXd back = FactorsHessian(r.neighbours, v, r.edges, r.cliques);
+  EXPECT_TRUE(back.isApprox(lambda_N, 1e-8)) << back - lambda_N;
+  for (const CliqueFactor& c : r.cliques) {
+    for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
+      const Eigen::Vector3d e =
+          RelativeError(v.at(c.nodes[0]), v.at(c.nodes[j + 1]), c.T_root_node[j]);
+      EXPECT_LT(e.norm(), 1.0) << "a measurement moved far: " << e.transpose();
+    }
+  }
+  for (const PoseEdge& e : r.edges) {
+    EXPECT_LT(RelativeError(v.at(e.from), v.at(e.to), e.T_from_to).norm(), 1.0);
+  }
 }
 
 TEST(InformativeKl, MatchesGaugeFixedKlWhenDefinite) {

@@ -110,8 +110,8 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
                 "nodes_max", "edges_max", "nodes_after_first_pass", "gamma_final", "scans_kept_pct",
                 "peak_rss_mb", "graph_bytes_final", "blur", "ate_rmse_m", "loop_precision",
                 "loop_recall", "relations", "kld", "map_entropy_bits", "occupied_share",
-                // our extension of the contract (README)
-                "edges_by_kind"}));
+                // our extensions of the contract (README)
+                "edges_by_kind", "stage_ms"}));
   EXPECT_EQ(m["edges_by_kind"]["marginal"], 4);
   EXPECT_EQ(Keys(m["time_per_obs_ms"]),
             (std::set<std::string>{"mean", "p50", "p95", "max", "first_pass_mean", "last10_mean"}));
@@ -164,9 +164,9 @@ TEST(TimelineCsvTest, HeaderAndRows) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures,optimize_ms,"
-            "nodes_removed");
+            "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms");
   std::getline(in, line);
-  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0,0,0");
+  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0,0,0,0,0,0,0,0,0");
   int more = 0;
   while (std::getline(in, line)) ++more;
   EXPECT_EQ(more, 2);

@@ -58,12 +58,7 @@ void ModeRunner::Record(const slam::StepStats& s) {
   row.loop_closures = s.loop_closures_total;
   row.optimize_ms = s.optimize_ms;
   row.nodes_removed = s.nodes_removed_total;
-  row.match_ms = s.match_ms;
-  row.loop_ms = s.loop_ms;
-  row.backend_ms = s.backend_ms;
-  row.map_update_ms = s.map_update_ms;
-  row.gain_ms = s.gain_ms;
-  row.marginalize_ms = s.marginalize_ms;
+  row.stages = s.stages;
   timeline_.push_back(row);
   if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
 }
@@ -199,17 +194,8 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
 
-  const slam::LoopVerifierStats& lv = m.loop_verification();
-  LoopVerificationSummary verification;
-  verification.proposed = lv.proposed;
-  verification.accepted = lv.accepted;
-  verification.rejected = lv.rejected;
-  verification.expired = lv.expired;
-  verification.not_unique = lv.not_unique;
-  verification.injected = lv.injected;
-  verification.injected_accepted = lv.injected_accepted;
-  verification.injection = config_.mapper.loops.inject_false_share > 0.0;
-  summary.loop_verification = verification;
+  summary.loop_verification =
+      LoopVerificationSummary{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0};
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);

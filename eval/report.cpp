@@ -67,13 +67,13 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "loop_recall", m.loop_recall);
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
   if (m.loop_verification) {
-    const LoopVerificationSummary& v = *m.loop_verification;
+    const slam::LoopVerifierStats& v = m.loop_verification->counts;
     json lv = {{"proposed", v.proposed},
                {"accepted", v.accepted},
                {"rejected", v.rejected},
                {"expired", v.expired},
                {"not_unique", v.not_unique}};
-    if (v.injection) {
+    if (m.loop_verification->injection) {
       lv["injected"] = v.injected;
       lv["injected_accepted"] = v.injected_accepted;
     }
@@ -158,14 +158,13 @@ std::map<std::string, double> StageTotals(const std::vector<TimelineRow>& rows) 
     t[k] = 0.0;
   }
   for (const TimelineRow& r : rows) {
-    t["matching"] += r.match_ms;
-    t["loop_closing"] += r.loop_ms;
-    t["optimization"] += r.backend_ms;
-    t["map_update"] += r.map_update_ms;
-    t["gains"] += r.gain_ms;
-    t["marginalization"] += r.marginalize_ms;
-    t["other"] += r.time_ms - (r.match_ms + r.loop_ms + r.backend_ms + r.map_update_ms + r.gain_ms +
-                               r.marginalize_ms);
+    t["matching"] += r.stages.match_ms;
+    t["loop_closing"] += r.stages.loop_ms;
+    t["optimization"] += r.stages.backend_ms;
+    t["map_update"] += r.stages.map_update_ms;
+    t["gains"] += r.stages.gain_ms;
+    t["marginalization"] += r.stages.marginalize_ms;
+    t["other"] += r.time_ms - r.stages.Sum();
   }
   return t;
 }
@@ -211,8 +210,9 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
     std::snprintf(line, sizeof(line),
                   "%d,%.6f,%.6g,%d,%d,%.9g,%.6g,%zu,%d,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
                   r.obs, r.t_s, r.time_ms, r.nodes, r.edges, r.gamma, r.rss_mb, r.graph_bytes,
-                  r.loop_closures, r.optimize_ms, r.nodes_removed, r.match_ms, r.loop_ms,
-                  r.backend_ms, r.map_update_ms, r.gain_ms, r.marginalize_ms);
+                  r.loop_closures, r.optimize_ms, r.nodes_removed, r.stages.match_ms,
+                  r.stages.loop_ms, r.stages.backend_ms, r.stages.map_update_ms, r.stages.gain_ms,
+                  r.stages.marginalize_ms);
     text += line;
   }
   io::WriteFileAtomically(path, text);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "eval/types.hpp"
+#include "slam/loop_verifier.hpp"
 #include "slam/pose_graph.hpp"
 
 namespace lifelong::eval {
@@ -34,10 +35,8 @@ struct RelationsSummary {
 /// Loop-closure verification counts (slam/loop_verifier.hpp); summary.json's
 /// "loop_verification".
 struct LoopVerificationSummary {
-  std::int64_t proposed = 0, accepted = 0, rejected = 0, expired = 0;
-  std::int64_t injected = 0, injected_accepted = 0;
-  std::int64_t not_unique = 0;  ///< matches refused as not locally unique (no hypothesis)
-  bool injection = false;       ///< the false-closure test was on; else the two are not written
+  slam::LoopVerifierStats counts;
+  bool injection = false;  ///< the false-closure test was on; else injected* are not written
 };
 struct KldSummary {
   std::int64_t count = 0;

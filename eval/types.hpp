@@ -5,6 +5,8 @@
 
 #include <cstddef>
 
+#include "types/stage_times.hpp"
+
 namespace lifelong::eval {
 
 /// One row of `<mode>/timeline.csv` (DESIGN.md output contract), one per observation.
@@ -30,10 +32,7 @@ struct TimelineRow {
   int loop_closures = 0;        ///< loop closures accepted so far (cumulative)
   double optimize_ms = 0.0;     ///< ms of time_ms spent optimizing and updating the map
   int nodes_removed = 0;        ///< nodes removed so far (cumulative)
-  /// time_ms by stage (slam::StepStats): matching and insertion, loop closing, back-end,
-  /// map update, information gains, removal and sparsification; ms.
-  double match_ms = 0.0, loop_ms = 0.0, backend_ms = 0.0, map_update_ms = 0.0;
-  double gain_ms = 0.0, marginalize_ms = 0.0;
+  StageTimes stages;            ///< time_ms by stage (slam::StepStats::stages)
 };
 
 }  // namespace lifelong::eval

@@ -107,13 +107,14 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   };
   auto t = std::chrono::steady_clock::now();
   s.AddSequentialNode(obs, &stats);
-  stats.match_ms = ms_since(t);
+  stats.stages.match_ms = ms_since(t);
   const NodeId current = s.last_node;
   if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
-    const double nested = stats.backend_ms + stats.map_update_ms;
+    const double nested = stats.stages.backend_ms + stats.stages.map_update_ms;
     t = std::chrono::steady_clock::now();
     stats.loop_closed = s.TryCloseLoop(current);
-    stats.loop_ms = ms_since(t) - (stats.backend_ms + stats.map_update_ms - nested);
+    stats.stages.loop_ms =
+        ms_since(t) - (stats.stages.backend_ms + stats.stages.map_update_ms - nested);
   }
   if (s.config.pruning.mode != PruningMode::kNone) s.Prune(current);
 
@@ -237,8 +238,8 @@ void Mapper::State::OptimizeAndSyncMap() {
     step->optimized = true;
     step->optimizer_iterations += summary.iterations;
     step->optimize_ms += Ms(end - start).count();
-    step->backend_ms += Ms(optimized - start).count();
-    step->map_update_ms += Ms(end - optimized).count();
+    step->stages.backend_ms += Ms(optimized - start).count();
+    step->stages.map_update_ms += Ms(end - optimized).count();
   }
 }
 
@@ -275,7 +276,7 @@ const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
 }
 
 double Mapper::State::Gain(NodeId id) {
-  const ScopedMs timer(step ? &step->gain_ms : nullptr);
+  const ScopedMs timer(step ? &step->stages.gain_ms : nullptr);
   const std::vector<CellUpdate>& cells = Touched(id);
   NodeData& data = nodes.at(id);
   data.gain_bits = map.InformationGain(cells);

@@ -20,6 +20,7 @@
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
 #include "slam/pose_graph.hpp"
+#include "types/stage_times.hpp"
 #include "types/stamped_pose.hpp"
 
 namespace lifelong::slam {
@@ -40,12 +41,7 @@ struct StepStats {
   bool loop_closed = false;
   bool optimized = false;
   double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update
-  /// time_ms by stage (ms, exclusive; what is left is bookkeeping): incremental matching
-  /// and insertion of the new scan, loop closing (candidates, matching, verification), the
-  /// back-end alone, map updates after it, information gains, marginalization and
-  /// sparsification.
-  double match_ms = 0.0, loop_ms = 0.0, backend_ms = 0.0, map_update_ms = 0.0;
-  double gain_ms = 0.0, marginalize_ms = 0.0;
+  StageTimes stages;         ///< time_ms by stage
   int optimizer_iterations = 0;
 };
 

@@ -153,7 +153,7 @@ void Mapper::State::Prune(NodeId current) {
 }
 
 void Mapper::State::KeepEdgeBudget() {
-  const ScopedMs timer(step ? &step->marginalize_ms : nullptr);
+  const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
   // The nodes within `hops` edges of `centre`, ascending.
   const auto ball = [this](NodeId centre, int hops) {
     std::set<NodeId> in{centre}, frontier{centre};
@@ -216,7 +216,7 @@ void Mapper::State::KeepEdgeBudget() {
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
-  const ScopedMs timer(step ? &step->marginalize_ms : nullptr);
+  const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
   verifier.ForgetNode(id);
   const MarginalizationResult result =
       Marginalize(graph, values, id, MethodOf(config.pruning.mode), config.pruning.blanket);

@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "slam/glc.hpp"
 #include "slam/se2.hpp"
 
 namespace lifelong::slam {
@@ -305,6 +306,26 @@ void KeepGradientIfAsked(const SparsifierConfig& config, const PoseGraph& graph,
   VectorXd g_N;
   EliminateFirstBlock(local, &lambda_N, &g_N);
   PreserveGradient(r->neighbours, values, g_N, &r->edges, &r->cliques);
+}
+
+bool MarginalToReplace(const SparsifierConfig& config, const PoseGraph& graph, const Values& values,
+                       NodeId k, Replacement* r, CliqueMarginal* m) {
+  const bool within = config.blanket == BlanketPolicy::kBlanket;
+  const LocalSystem local = LinearizeClique(graph, values, k, within, within);
+  r->neighbours = local.neighbours;
+  if (r->neighbours.size() < 2) return false;
+  r->absorb_edges_within = r->absorb_cliques_within = within;
+  EliminateFirstBlock(local, &m->lambda_N, &m->g_N);
+  return true;
+}
+
+void SetFactors(const SparsifierConfig& config, const Values& values, const CliqueMarginal& m,
+                std::vector<PoseEdge> edges, std::vector<CliqueFactor> cliques, Replacement* r) {
+  r->edges = std::move(edges);
+  r->cliques = std::move(cliques);
+  r->kl_divergence =
+      InformativeKl(m.lambda_N, FactorsHessian(r->neighbours, values, r->edges, r->cliques),
+                    config.eigen_tolerance);
 }
 
 }  // namespace lifelong::slam

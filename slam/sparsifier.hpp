@@ -99,6 +99,21 @@ Eigen::MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& v
                                const std::vector<PoseEdge>& edges,
                                const std::vector<CliqueFactor>& cliques);
 
+/// The exact marginal of k's clique, for the methods that build their factors from it
+/// (glc-dense, glc): LinearizeClique with the factors among N when config.blanket is
+/// kBlanket (they are replaced too), then EliminateFirstBlock. Sets r's neighbours and
+/// absorb flags; false when k is a leaf (fewer than two neighbours: it simply drops out).
+struct CliqueMarginal {
+  Eigen::MatrixXd lambda_N;
+  Eigen::VectorXd g_N;
+};
+bool MarginalToReplace(const SparsifierConfig& config, const PoseGraph& graph, const Values& values,
+                       NodeId k, Replacement* r, CliqueMarginal* m);
+/// r's factors become `edges` and `cliques`, with r.kl_divergence their InformativeKl
+/// (glc.hpp) against m.lambda_N.
+void SetFactors(const SparsifierConfig& config, const Values& values, const CliqueMarginal& m,
+                std::vector<PoseEdge> edges, std::vector<CliqueFactor> cliques, Replacement* r);
+
 /// The wrapped methods' result as a Replacement (factors unchanged, byte for byte).
 Replacement FromMarginalization(const MarginalizationResult& m);
 /// With config.keep_gradient: PreserveGradient with the exact marginal's gradient of the

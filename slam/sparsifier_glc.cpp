@@ -16,33 +16,20 @@ class GlcSparsifier final : public Sparsifier {
   explicit GlcSparsifier(const SparsifierConfig& config) : config_(config) {}
   std::string Name() const override { return "glc"; }
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
-    const bool within = config_.blanket == BlanketPolicy::kBlanket;
-    const LocalSystem local = LinearizeClique(graph, values, k, within, within);
     Replacement r;
-    r.neighbours = local.neighbours;
-    if (r.neighbours.size() < 2) return r;  // a leaf drops out
-    r.absorb_edges_within = r.absorb_cliques_within = within;
-    Eigen::MatrixXd lambda_N;
-    Eigen::VectorXd g_N;
-    EliminateFirstBlock(local, &lambda_N, &g_N);
-    const std::vector<NodeId>& nodes = r.neighbours;
-    GlcFactors factors =
-        GlcChowLiu(nodes, values, lambda_N, config_.eigen_tolerance, &r.regularized);
-    r.edges = std::move(factors.edges);
-    r.cliques = std::move(factors.cliques);
-    r.kl_divergence = InformativeKl(lambda_N, FactorsHessian(nodes, values, r.edges, r.cliques),
-                                    config_.eigen_tolerance);
+    CliqueMarginal m;
+    if (!MarginalToReplace(config_, graph, values, k, &r, &m)) return r;
+    const double tol = config_.eigen_tolerance;
+    GlcFactors f = GlcChowLiu(r.neighbours, values, m.lambda_N, tol, &r.regularized);
+    SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
     if (!std::isfinite(r.kl_divergence)) {
       // The tree misses informative directions of the marginal (a low-rank Lambda_y that
       // couples three or more relative poses at once, which no pairwise tree expresses):
       // keep the exact dense GLC factor instead, of the same (low) rank (issue #12).
-      factors = GlcDense(nodes, values, lambda_N, config_.eigen_tolerance);
-      r.edges = std::move(factors.edges);
-      r.cliques = std::move(factors.cliques);
-      r.kl_divergence = InformativeKl(lambda_N, FactorsHessian(nodes, values, r.edges, r.cliques),
-                                      config_.eigen_tolerance);
+      f = GlcDense(r.neighbours, values, m.lambda_N, tol);
+      SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
     }
-    if (config_.keep_gradient) PreserveGradient(nodes, values, g_N, &r.edges, &r.cliques);
+    if (config_.keep_gradient) PreserveGradient(r.neighbours, values, m.g_N, &r.edges, &r.cliques);
     return r;
   }
 

@@ -12,22 +12,12 @@ class GlcDenseSparsifier final : public Sparsifier {
   explicit GlcDenseSparsifier(const SparsifierConfig& config) : config_(config) {}
   std::string Name() const override { return "glc-dense"; }
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
-    const bool within = config_.blanket == BlanketPolicy::kBlanket;
-    const LocalSystem local = LinearizeClique(graph, values, k, within, within);
     Replacement r;
-    r.neighbours = local.neighbours;
-    if (r.neighbours.size() < 2) return r;  // a leaf drops out
-    r.absorb_edges_within = r.absorb_cliques_within = within;
-    Eigen::MatrixXd lambda_N;
-    Eigen::VectorXd g_N;
-    EliminateFirstBlock(local, &lambda_N, &g_N);
-    const std::vector<NodeId>& nodes = r.neighbours;
-    GlcFactors factors = GlcDense(nodes, values, lambda_N, config_.eigen_tolerance);
-    r.edges = std::move(factors.edges);
-    r.cliques = std::move(factors.cliques);
-    r.kl_divergence = InformativeKl(lambda_N, FactorsHessian(nodes, values, r.edges, r.cliques),
-                                    config_.eigen_tolerance);
-    if (config_.keep_gradient) PreserveGradient(nodes, values, g_N, &r.edges, &r.cliques);
+    CliqueMarginal m;
+    if (!MarginalToReplace(config_, graph, values, k, &r, &m)) return r;
+    GlcFactors f = GlcDense(r.neighbours, values, m.lambda_N, config_.eigen_tolerance);
+    SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
+    if (config_.keep_gradient) PreserveGradient(r.neighbours, values, m.g_N, &r.edges, &r.cliques);
     return r;
   }
 

@@ -18,39 +18,23 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run_lifelong.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
+using lifelong::test::Lifelong;
+using lifelong::test::Result;
+using lifelong::test::Read;
 const std::string kBin = LIFELONG_BIN;
 const std::string kSource = LIFELONG_SOURCE_DIR;
 const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";
-
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-Result Lifelong(const std::string& args) {
-  const std::string cmd = kBin + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof(buf), p)) > 0;) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
 
 fs::path Fresh(const std::string& name) {
   const fs::path p = fs::path(::testing::TempDir()) / ("cli_" + name);
   fs::remove_all(p);
   return p;
-}
-
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 // No DIR.partial-* is left beside DIR.

@@ -1,6 +1,7 @@
 // `lifelong sparsify` as a process: its JSON, its output graph and its input errors (exit 2
 // naming the file, line and field).
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -22,8 +23,14 @@ struct Result {
   std::string err;
 };
 
+/// A file of this process in the test temp directory: ctest runs the tests of this file as
+/// parallel processes, which must not share one.
+fs::path Temp(const std::string& name) {
+  return fs::path(::testing::TempDir()) / ("sparsify_" + std::to_string(getpid()) + "_" + name);
+}
+
 Result Lifelong(const std::string& args) {
-  const fs::path err = fs::path(::testing::TempDir()) / "sparsify_cli_err.txt";
+  const fs::path err = Temp("cli_err.txt");
   const std::string cmd = std::string(LIFELONG_BIN) + " " + args + " 2>" + err.string();
   Result r;
   FILE* p = popen(cmd.c_str(), "r");
@@ -38,7 +45,7 @@ Result Lifelong(const std::string& args) {
 
 /// A ring of 12 poses on a circle with noisy closures: small, loopy, inconsistent.
 fs::path Ring() {
-  const fs::path p = fs::path(::testing::TempDir()) / "sparsify_ring.g2o";
+  const fs::path p = Temp("ring.g2o");
   std::ofstream out(p);
   const int n = 12;
   for (int i = 0; i < n; ++i) {
@@ -62,7 +69,7 @@ fs::path Ring() {
 
 TEST(SparsifyCli, PrintsOneJsonObjectAndWritesTheKeptGraph) {
   const fs::path graph = Ring();
-  const fs::path out = fs::path(::testing::TempDir()) / "sparsify_out.g2o";
+  const fs::path out = Temp("out.g2o");
   for (const char* method : {"naive", "exact", "chow-liu", "glc-dense", "glc"}) {
     fs::remove(out);
     const Result r = Lifelong("sparsify " + graph.string() + " --method " + method +
@@ -98,7 +105,7 @@ TEST(SparsifyCli, BadInputExitsTwoNamingTheField) {
   r = Lifelong("sparsify " + graph.string() + " --method dense --keep-share 0.5");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("glc-dense"), std::string::npos) << r.err;  // lists the known ones
-  const fs::path list = fs::path(::testing::TempDir()) / "sparsify_remove.txt";
+  const fs::path list = Temp("remove.txt");
   std::ofstream(list) << "1 2\n# comment\n3 99\n";
   r = Lifelong("sparsify " + graph.string() + " --method exact --remove " + list.string());
   EXPECT_EQ(r.code, 2);

@@ -11,35 +11,16 @@
 #include <sstream>
 #include <string>
 
+#include "run_lifelong.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBin = LIFELONG_BIN;
+using lifelong::test::Lifelong;
+using lifelong::test::Result;
+using lifelong::test::Read;
 const std::string kSource = LIFELONG_SOURCE_DIR;
-
-struct Result {
-  int code = -1;
-  std::string output;
-};
-
-Result Lifelong(const std::string& args) {
-  const std::string cmd = kBin + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof(buf), p)) > 0;) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
-
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 fs::path Fresh(const std::string& name) {
   const fs::path p = fs::path(::testing::TempDir()) / ("sweep_cli_" + name);

@@ -17,7 +17,7 @@ nlohmann::json ModeJsonOf(const ModeSummary& m) {
 
 TEST(LoopSummary, VerificationCountsWithoutInjection) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{40, 31, 2, 7, 0, 0, 5, false};
+  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0}, false};
   const auto j = ModeJsonOf(m)["loop_verification"];
   EXPECT_EQ(j["proposed"], 40);
   EXPECT_EQ(j["accepted"], 31);
@@ -30,7 +30,7 @@ TEST(LoopSummary, VerificationCountsWithoutInjection) {
 
 TEST(LoopSummary, InjectedCountsWhenTheTestWasOn) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{40, 31, 2, 7, 3, 0, 5, true};
+  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 3, 0}, true};
   m.loop_precision_last_hour = 0.995;
   const auto j = ModeJsonOf(m);
   EXPECT_EQ(j["loop_verification"]["injected"], 3);

@@ -16,12 +16,12 @@ TimelineRow Row(double time, double match, double loop, double backend, double m
                 double marg) {
   TimelineRow r;
   r.time_ms = time;
-  r.match_ms = match;
-  r.loop_ms = loop;
-  r.backend_ms = backend;
-  r.map_update_ms = map;
-  r.gain_ms = gain;
-  r.marginalize_ms = marg;
+  r.stages.match_ms = match;
+  r.stages.loop_ms = loop;
+  r.stages.backend_ms = backend;
+  r.stages.map_update_ms = map;
+  r.stages.gain_ms = gain;
+  r.stages.marginalize_ms = marg;
   return r;
 }
 

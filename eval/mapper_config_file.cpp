@@ -42,7 +42,8 @@ constexpr EnumName<OptimizerMethod> kMethods[] = {{"lm", OptimizerMethod::kLeven
                                                   {"gn", OptimizerMethod::kGaussNewton}};
 constexpr EnumName<RobustKernel> kKernels[] = {{"none", RobustKernel::kNone},
                                                {"huber", RobustKernel::kHuber},
-                                               {"cauchy", RobustKernel::kCauchy}};
+                                               {"cauchy", RobustKernel::kCauchy},
+                                               {"dcs", RobustKernel::kDcs}};
 constexpr EnumName<LinearSolver> kSolvers[] = {{"auto", LinearSolver::kAuto},
                                                {"simplicial", LinearSolver::kSimplicial},
                                                {"supernodal", LinearSolver::kSupernodal}};

@@ -4,7 +4,7 @@
 // Layout: one section per nested struct of slam::MapperConfig, keys equal to the C++ field
 // names (configs/default.yaml documents every key with its default, unit and meaning):
 //   keyframes, incremental (+ matcher), loops (+ matcher), pruning, grid, optimizer, map_update
-// Enums by name: optimizer.method lm|gn, optimizer.robust_kernel none|huber|cauchy,
+// Enums by name: optimizer.method lm|gn, optimizer.robust_kernel none|huber|cauchy|dcs,
 // optimizer.linear_solver auto|simplicial|supernodal.
 // Not in the file: pruning.mode (chosen with --modes), loops.matcher's two windows (set per
 // attempt from loops.{min,max}_window_*), optimizer.anchor (always the oldest node).

@@ -65,8 +65,9 @@ void ModeRunner::Record(const slam::StepStats& s) {
 
 void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const {
   const std::vector<bool>& correct = truth.correct_each;
-  std::string text = "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg\n";
+  std::string text = "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg,final_chi2\n";
   const auto& loops = mapper_->loop_closures();
+  const std::vector<std::optional<double>> chi2 = mapper_->LoopEdgeChi2();
   const double end = timeline_.empty() ? 0.0 : timeline_.back().t_s;
   const double start = timeline_.empty() ? 0.0 : timeline_.front().t_s;
   int last_hour = 0, last_hour_correct = 0;
@@ -74,14 +75,19 @@ void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summ
   for (std::size_t k = 0; k < loops.size(); ++k) {
     const bool known = k < correct.size();
     if (known) {
-      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%d,%.4f,%.3f\n", loops[k].stamp_current_s,
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%d,%.4f,%.3f,", loops[k].stamp_current_s,
                     loops[k].stamp_old_s, loops[k].injected ? 1 : 0, correct[k] ? 1 : 0,
                     truth.error_m_each[k], truth.error_deg_each[k]);
     } else {
-      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,,,\n", loops[k].stamp_current_s,
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,,,,", loops[k].stamp_current_s,
                     loops[k].stamp_old_s, loops[k].injected ? 1 : 0);
     }
     text += line;
+    if (chi2[k]) {
+      std::snprintf(line, sizeof(line), "%.4g", *chi2[k]);
+      text += line;
+    }
+    text += '\n';
     if (known && loops[k].stamp_current_s >= end - 3600.0) {
       ++last_hour;
       last_hour_correct += correct[k] ? 1 : 0;
@@ -194,8 +200,12 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
 
-  summary.loop_verification =
-      LoopVerificationSummary{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0};
+  summary.loop_verification = LoopVerificationSummary{
+      m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0, 0};
+  for (const std::optional<double>& chi2 : m.LoopEdgeChi2()) {
+    if (chi2 && *chi2 > config_.mapper.loops.suspect_chi2)
+      ++summary.loop_verification->switched_off;
+  }
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);

@@ -68,11 +68,9 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
   if (m.loop_verification) {
     const slam::LoopVerifierStats& v = m.loop_verification->counts;
-    json lv = {{"proposed", v.proposed},
-               {"accepted", v.accepted},
-               {"rejected", v.rejected},
-               {"expired", v.expired},
-               {"not_unique", v.not_unique}};
+    json lv = {{"proposed", v.proposed},     {"accepted", v.accepted},
+               {"rejected", v.rejected},     {"expired", v.expired},
+               {"not_unique", v.not_unique}, {"switched_off", m.loop_verification->switched_off}};
     if (m.loop_verification->injection) {
       lv["injected"] = v.injected;
       lv["injected_accepted"] = v.injected_accepted;

@@ -37,6 +37,9 @@ struct RelationsSummary {
 struct LoopVerificationSummary {
   slam::LoopVerifierStats counts;
   bool injection = false;  ///< the false-closure test was on; else injected* are not written
+  /// Accepted closures whose edge, still in the graph at the end, has a chi2 above
+  /// loops.suspect_chi2: the back-end's kernel is switching them off.
+  std::int64_t switched_off = 0;
 };
 struct KldSummary {
   std::int64_t count = 0;

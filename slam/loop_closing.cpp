@@ -4,7 +4,11 @@
 // unambiguous and consistent with the projected uncertainty.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include <Eigen/LU>
 
@@ -216,6 +220,24 @@ void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
       closures_since_optimize >= lc.optimize_every) {
     OptimizeAndSyncMap();
   }
+}
+
+std::vector<std::optional<double>> Mapper::LoopEdgeChi2() const {
+  const State& s = *state_;
+  std::map<std::pair<NodeId, NodeId>, double> chi2;  // (old, current) -> chi2
+  for (const PoseEdge& edge : s.graph.edges()) {
+    if (edge.kind != EdgeKind::kLoop) continue;
+    const Eigen::Vector3d e =
+        RelativeError(s.values.at(edge.from), s.values.at(edge.to), edge.T_from_to);
+    chi2[{edge.from, edge.to}] = e.dot(edge.information * e);
+  }
+  std::vector<std::optional<double>> out;
+  out.reserve(s.loops.size());
+  for (const LoopClosureRecord& r : s.loops) {
+    const auto it = chi2.find({r.old, r.current});
+    out.push_back(it == chi2.end() ? std::nullopt : std::optional<double>(it->second));
+  }
+  return out;
 }
 
 std::set<NodeId> Mapper::State::UnsettledNodes() const {

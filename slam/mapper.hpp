@@ -14,6 +14,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "sensor/observation.hpp"
@@ -96,6 +97,10 @@ class Mapper {
   /// The pose of the latest scan (as Trajectory().back(), without building the whole list).
   StampedPose LastScanPose() const;
   const std::vector<LoopClosureRecord>& loop_closures() const;
+  /// For each of loop_closures(): its edge's chi2 e^T Omega e at the current estimate, or
+  /// nullopt when the edge is no longer in the graph (marginalized). Above
+  /// loops.suspect_chi2 the back-end's kernel is switching it off.
+  std::vector<std::optional<double>> LoopEdgeChi2() const;
   /// Counts of the loop-closure verification (proposed, accepted, rejected, ...).
   const LoopVerifierStats& loop_verification() const;
   const std::vector<MarginalizationRecord>& marginalizations() const;

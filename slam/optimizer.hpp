@@ -17,7 +17,13 @@
 // Robust kernels (IRLS) act on edges with `robust = true`: with s = e^T Omega e,
 //   Huber:  rho(s) = s                    (s <= d^2),  2 d sqrt(s) - d^2  otherwise
 //   Cauchy: rho(s) = d^2 log(1 + s / d^2)
-// and the edge is weighted by rho'(s). The reported chi2 is the robust cost sum rho(s)
+//   DCS:    rho(s) = s (s <= Phi),  Phi (3 s - Phi) / (s + Phi) otherwise, Phi = d^2
+// and the edge is weighted by rho'(s). DCS is dynamic covariance scaling (Agarwal, Tipaldi,
+// Spinello, Stachniss & Burgard, ICRA 2013): its weight rho'(s) = min(1, 2 Phi/(Phi + s))^2
+// is the paper's scaling factor squared (eq. 15 applied to Omega), the closed form of a
+// switchable constraint's optimal switch (Suenderhauf & Protzel 2012) with prior Phi, so a
+// closure that disagrees with the rest is switched off (weight ~ 4 Phi^2 / s^2), not just
+// down-weighted as by Cauchy (~ d^2 / s). The reported chi2 is the robust cost sum rho(s)
 // (identical to sum e^T Omega e when no robust edge is active).
 #pragma once
 
@@ -30,7 +36,7 @@
 
 namespace lifelong::slam {
 
-enum class RobustKernel : std::uint8_t { kNone, kHuber, kCauchy };
+enum class RobustKernel : std::uint8_t { kNone, kHuber, kCauchy, kDcs };
 enum class OptimizerMethod : std::uint8_t { kLevenbergMarquardt, kGaussNewton };
 enum class LinearSolver : std::uint8_t { kAuto, kSimplicial, kSupernodal };
 

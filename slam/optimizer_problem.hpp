@@ -32,6 +32,11 @@ inline KernelValue ApplyKernel(double s, bool robust, const OptimizerParams& par
     const double r = std::sqrt(s);
     return {2.0 * params.robust_delta * r - d2, params.robust_delta / r};
   }
+  if (params.robust_kernel == RobustKernel::kDcs) {  // Phi = d^2 (optimizer.hpp)
+    if (s <= d2) return {s, 1.0};
+    const double scale = 2.0 * d2 / (d2 + s);
+    return {d2 * (3.0 * s - d2) / (s + d2), scale * scale};
+  }
   return {d2 * std::log1p(s / d2), 1.0 / (1.0 + s / d2)};  // Cauchy
 }
 

@@ -17,20 +17,21 @@ nlohmann::json ModeJsonOf(const ModeSummary& m) {
 
 TEST(LoopSummary, VerificationCountsWithoutInjection) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0}, false};
+  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0}, false, 2};
   const auto j = ModeJsonOf(m)["loop_verification"];
   EXPECT_EQ(j["proposed"], 40);
   EXPECT_EQ(j["accepted"], 31);
   EXPECT_EQ(j["rejected"], 2);
   EXPECT_EQ(j["expired"], 7);
   EXPECT_EQ(j["not_unique"], 5);
+  EXPECT_EQ(j["switched_off"], 2);
   EXPECT_FALSE(j.contains("injected"));  // not a silent zero: the test was off
   EXPECT_FALSE(ModeJsonOf(m).contains("loop_precision_last_hour"));
 }
 
 TEST(LoopSummary, InjectedCountsWhenTheTestWasOn) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 3, 0}, true};
+  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 3, 0}, true, 0};
   m.loop_precision_last_hour = 0.995;
   const auto j = ModeJsonOf(m);
   EXPECT_EQ(j["loop_verification"]["injected"], 3);

@@ -48,7 +48,7 @@ std::vector<lifelong::slam::PruningMode> ParseModes(const std::string& list) {
     lifelong::slam::PruningMode mode;
     if (!lifelong::slam::ParsePruningMode(name, &mode)) {
       throw InputError("--modes", 0, name,
-                       "unknown mode (known: standard, pruned, pruned-exact, pruned-naive)");
+                       "unknown mode (known: " + lifelong::slam::PruningModeList() + ")");
     }
     if (std::find(modes.begin(), modes.end(), mode) != modes.end()) {
       throw InputError("--modes", 0, name, "mode named twice");

@@ -20,6 +20,7 @@
 #include "io/graph_file.hpp"
 #include "lifelong_build_info.hpp"  // generated: LIFELONG_VERSION, LIFELONG_COMMIT
 #include "sensor/input_error.hpp"
+#include "slam/mapper_config.hpp"
 #include "slam/optimizer.hpp"
 
 namespace {
@@ -119,9 +120,9 @@ int main(int argc, char** argv) {
   run->add_option("scenario", run_args.scenario, "scenario YAML");
   run->add_option("-o,--out", run_args.out,
                   "output directory (replaced only when the run is complete)");
-  run->add_option("--modes", run_args.modes,
-                  "comma-separated: standard,pruned,pruned-exact,pruned-naive; the first is the "
-                  "baseline");
+  run->add_option(
+      "--modes", run_args.modes,
+      "comma-separated, of " + lifelong::slam::PruningModeList() + "; the first is the baseline");
   run->add_option("--config", run_args.config, "mapper settings, YAML (see configs/default.yaml)");
   run->add_option("--video", run_args.video, "write a video of the run (mp4)");
   run->add_option("--frames", run_args.frames, "write PNG frames of the run into this directory");

@@ -11,6 +11,8 @@
 #include <utility>
 
 #include "sensor/input_error.hpp"
+#include "slam/removal_policy.hpp"
+#include "slam/sparsifier.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -169,6 +171,8 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Int("node_budget", c.pruning.node_budget, 0);
     s.Number("max_edges_per_node", c.pruning.max_edges_per_node, kNonNegative);
     s.Enum("blanket", c.pruning.blanket, kBlankets);
+    s.Choice("policy", c.pruning.policy, slam::RemovalPolicyNames(), false);
+    s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
   });
   v.Section("grid", [&](auto& s) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);
@@ -269,6 +273,26 @@ class Reader {
     Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
   }
 
+  /// One of `names` (or, with allow_empty, an empty string or nothing: "").
+  void Choice(const char* key, std::string& value, const std::vector<std::string>& names,
+              bool allow_empty) {
+    const YAML::Node n = Take(key);
+    if (!n) return;
+    if (allow_empty && (n.IsNull() || (n.IsScalar() && n.Scalar().empty()))) {
+      value.clear();
+      return;
+    }
+    std::string choices;
+    for (const std::string& name : names) {
+      if (n.IsScalar() && n.Scalar() == name) {
+        value = name;
+        return;
+      }
+      choices += (choices.empty() ? "" : ", ") + name;
+    }
+    Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
+  }
+
   /// lo <= hi once both are read; blames hi when the file gives it, else lo.
   void Ordered(const char* lo_key, double lo, const char* hi_key, double hi) {
     if (lo <= hi) return;
@@ -346,6 +370,9 @@ class Writer {
     for (const auto& [name, e] : names) {
       if (e == value) Put(key, name);
     }
+  }
+  void Choice(const char* key, const std::string& value, const std::vector<std::string>&, bool) {
+    out_ << YAML::Key << key << YAML::Value << YAML::DoubleQuoted << value;
   }
   void Ordered(const char*, double, const char*, double) {}
 

@@ -153,7 +153,7 @@ class SpecReader {
       slam::PruningMode mode;
       if (!slam::ParsePruningMode(name, &mode)) {
         Fail(list[i], field,
-             "unknown mode '" + name + "' (known: standard, pruned, pruned-exact, pruned-naive)");
+             "unknown mode '" + name + "' (known: " + slam::PruningModeList() + ")");
       }
       if (std::count(spec->modes.begin(), spec->modes.end(), name)) {
         Fail(list[i], field, "mode named twice");

@@ -22,34 +22,6 @@ Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& del
 
 }  // namespace
 
-bool ParsePruningMode(const std::string& name, PruningMode* mode) {
-  if (name == "standard")
-    *mode = PruningMode::kNone;
-  else if (name == "pruned")
-    *mode = PruningMode::kChowLiu;
-  else if (name == "pruned-exact")
-    *mode = PruningMode::kExact;
-  else if (name == "pruned-naive")
-    *mode = PruningMode::kNaive;
-  else
-    return false;
-  return true;
-}
-
-std::string PruningModeName(PruningMode mode) {
-  switch (mode) {
-    case PruningMode::kNone:
-      return "standard";
-    case PruningMode::kChowLiu:
-      return "pruned";
-    case PruningMode::kExact:
-      return "pruned-exact";
-    case PruningMode::kNaive:
-      return "pruned-naive";
-  }
-  return "unknown";
-}
-
 MapperConfig DefaultMapperConfig() {
   MapperConfig c;
   // Warm-started Gauss-Newton: near the optimum it needs no damping, and every LM trial

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "slam/grid_map.hpp"
 #include "slam/loop_verifier.hpp"
@@ -12,17 +13,26 @@
 
 namespace lifelong::slam {
 
-/// How (and whether) the mapper removes nodes. kNone is the standard approach.
+/// How (and whether) the mapper removes nodes: a mode names a removal policy and a
+/// sparsifier (DESIGN.md "Methods as parts"); kNone is the standard approach.
 enum class PruningMode : std::uint8_t {
   kNone,     ///< `standard`: never removes a node
-  kChowLiu,  ///< `pruned`: information-gain removal + Chow-Liu tree marginalization
+  kChowLiu,  ///< `pruned`: information gain + Chow-Liu tree marginalization (the seed)
   kExact,    ///< `pruned-exact`: the same removal, exact marginalization (dense cliques)
   kNaive,    ///< `pruned-naive`: delete and reconnect by composing constraints
+  kGlc,      ///< `pruned-glc`: the same removal, sparse GLC factors (glc.hpp)
 };
 
-/// Parses "standard", "pruned", "pruned-exact", "pruned-naive"; false when unknown.
+/// Parses a mode's name (PruningModeNames); false when unknown.
 bool ParsePruningMode(const std::string& name, PruningMode* mode);
 std::string PruningModeName(PruningMode mode);
+/// Every mode's name: standard, pruned, pruned-exact, ...
+std::vector<std::string> PruningModeNames();
+/// The names joined by ", ", for error messages and help.
+std::string PruningModeList();
+/// The sparsifier (sparsifier.hpp) a mode uses when pruning.sparsifier does not name one;
+/// empty for kNone.
+std::string ModeSparsifier(PruningMode mode);
 
 struct KeyframeConfig {
   double min_translation_m = 0.5;  ///< an observation is taken after this much motion...
@@ -98,6 +108,10 @@ struct PruningConfig {
   double max_edges_per_node = 2.0;
   /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
   BlanketPolicy blanket = BlanketPolicy::kBlanket;
+  /// Which node goes (removal_policy.hpp): information-gain (the seed) or node-budget.
+  std::string policy = "information-gain";
+  /// What replaces its clique (sparsifier.hpp); empty: the mode's (ModeSparsifier).
+  std::string sparsifier;
 };
 
 struct MapperConfig {

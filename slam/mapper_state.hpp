@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <set>
 #include <vector>
 
@@ -15,7 +16,9 @@
 #include "slam/loop_verifier.hpp"
 #include "slam/mapper.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/removal_policy.hpp"
 #include "slam/scan_matcher.hpp"
+#include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
 
@@ -76,7 +79,8 @@ struct ScanAnchor {
 };
 
 struct Mapper::State {
-  explicit State(const MapperConfig& c) : config(c), map(c.grid), verifier(c.loops.verify) {}
+  /// std::invalid_argument when the config names an unknown policy or sparsifier.
+  explicit State(const MapperConfig& c);
 
   MapperConfig config;
   PoseGraph graph;
@@ -99,6 +103,9 @@ struct Mapper::State {
   ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
   LoopVerifier verifier;     ///< loop closures wait here until a group confirms them
   int loop_hypotheses = 0;   ///< closures proposed by the matcher so far
+  /// Pruned modes: which node goes and what replaces its clique (null in standard mode).
+  std::unique_ptr<RemovalPolicy> policy;
+  std::unique_ptr<Sparsifier> sparsifier;
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);

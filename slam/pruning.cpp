@@ -6,27 +6,30 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
+#include <stdexcept>
+#include <string>
 
 #include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
 #include "slam/marginalization.hpp"
 
 namespace lifelong::slam {
-namespace {
+namespace {}  // namespace
 
-MarginalizationMethod MethodOf(PruningMode mode) {
-  switch (mode) {
-    case PruningMode::kExact:
-      return MarginalizationMethod::kExact;
-    case PruningMode::kNaive:
-      return MarginalizationMethod::kNaive;
-    default:
-      return MarginalizationMethod::kChowLiu;
-  }
+Mapper::State::State(const MapperConfig& c) : config(c), map(c.grid), verifier(c.loops.verify) {
+  if (c.pruning.mode == PruningMode::kNone) return;
+  policy =
+      MakeRemovalPolicy(c.pruning.policy, {c.pruning.gain_threshold_bits, c.pruning.node_budget});
+  if (!policy) throw std::invalid_argument("unknown removal policy '" + c.pruning.policy + "'");
+  const std::string name =
+      c.pruning.sparsifier.empty() ? ModeSparsifier(c.pruning.mode) : c.pruning.sparsifier;
+  SparsifierConfig sc;
+  sc.blanket = c.pruning.blanket;
+  sparsifier = MakeSparsifier(name, sc);
+  if (!sparsifier) throw std::invalid_argument("unknown sparsifier '" + name + "'");
 }
-
-}  // namespace
 
 CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
   CellBounds b;
@@ -124,15 +127,11 @@ void Mapper::State::Prune(NodeId current) {
   for (const auto& [id, gain] : gains) considered.insert(id);
 
   while (!gains.empty()) {
-    auto lowest = std::min_element(gains.begin(), gains.end(), [](const auto& a, const auto& b) {
-      return a.second < b.second || (a.second == b.second && a.first < b.first);
-    });
-    const bool over_budget =
-        pc.node_budget > 0 && static_cast<int>(graph.NumNodes()) > pc.node_budget;
-    if (lowest->second > pc.gain_threshold_bits && !over_budget) break;
-    const NodeId victim = lowest->first;
-    const double gain = lowest->second;
-    gains.erase(lowest);
+    const std::optional<NodeId> next = policy->Next(gains, graph.NumNodes());
+    if (!next) break;
+    const NodeId victim = *next;
+    const double gain = gains.at(victim);
+    gains.erase(victim);
     // Its gain, hence its footprint, is current.
     const Footprint changed = nodes.at(victim).footprint;
     RemoveNode(victim, gain);
@@ -143,7 +142,7 @@ void Mapper::State::Prune(NodeId current) {
       if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
     }
   }
-  if (pc.mode == PruningMode::kChowLiu && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
+  if (sparsifier->Name() == "chow-liu" && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
   // so memory follows the neighbourhood, not the graph.
   for (auto& [id, data] : nodes) {
@@ -218,8 +217,7 @@ void Mapper::State::KeepEdgeBudget() {
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
   verifier.ForgetNode(id);
-  const MarginalizationResult result =
-      Marginalize(graph, values, id, MethodOf(config.pruning.mode), config.pruning.blanket);
+  const Replacement replacement = sparsifier->Replace(graph, values, id);
   // The removed node's scans are held relative to its nearest surviving neighbour.
   const Pose2& X = values.at(id);
   NodeId keeper = id;
@@ -239,8 +237,9 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   }
   scans_of_node.erase(id);
   map.Remove(Touched(id));
-  ApplyMarginalization(&graph, id, result);
-  marginalizations.push_back({id, result.clique_size, result.kl_divergence, gain_bits});
+  ApplyReplacement(&graph, id, replacement);
+  marginalizations.push_back(
+      {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
   nodes.erase(id);
   values.erase(id);
   recent.erase(std::find(recent.begin(), recent.end(), id));

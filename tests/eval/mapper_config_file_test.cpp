@@ -100,6 +100,8 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.node_budget, b.pruning.node_budget);
   EXPECT_EQ(a.pruning.max_edges_per_node, b.pruning.max_edges_per_node);
   EXPECT_EQ(a.pruning.blanket, b.pruning.blanket);
+  EXPECT_EQ(a.pruning.policy, b.pruning.policy);
+  EXPECT_EQ(a.pruning.sparsifier, b.pruning.sparsifier);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
@@ -163,7 +165,8 @@ MapperConfig AllChanged() {
   l.inject_false_share = 0.05;
   l.inject_false_dx_m = 1.0;
   l.inject_false_dy_m = -2.5;
-  c.pruning = {slam::PruningMode::kNone, -0.5, 4.5, 2, 300, 1.5, slam::BlanketPolicy::kFactorsAtK};
+  c.pruning = {slam::PruningMode::kNone,         -0.5,          4.5,  2, 300, 1.5,
+               slam::BlanketPolicy::kFactorsAtK, "node-budget", "glc"};
   c.grid = {0.1, 6.0, 9.5};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

@@ -2,8 +2,11 @@
 #include "slam/mapper.hpp"
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -54,9 +57,10 @@ struct MapRun {
   bool anchor_kept = true;
 };
 
-MapRun MapWith(PruningMode mode) {
+MapRun MapWith(PruningMode mode, const std::function<void(MapperConfig*)>& change = {}) {
   MapperConfig config = DefaultMapperConfig();
   config.pruning.mode = mode;
+  if (change) change(&config);
   Mapper mapper(config);
   MapRun run;
   mapper.on_observation = [&](const StepStats& s) {
@@ -192,12 +196,46 @@ TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {
   EXPECT_LT(per_node(*tight), per_node(*none));
 }
 
+TEST(Mapper, GlcModeStaysConnectedAndAccurate) {
+  const MapRun run = MapWith(PruningMode::kGlc);
+  EXPECT_GT(run.removed, 0u);
+  EXPECT_EQ(run.nodes + run.removed, static_cast<std::size_t>(run.observations));
+  EXPECT_TRUE(run.always_connected);
+  EXPECT_TRUE(run.anchor_kept);
+  EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
+}
+
+// A config picks any removal policy with any sparsifier (DESIGN.md "Methods as parts").
+TEST(Mapper, AnyPolicyWithAnySparsifier) {
+  const MapRun budget = MapWith(PruningMode::kChowLiu, [](MapperConfig* c) {
+    c->pruning.policy = "node-budget";
+    c->pruning.node_budget = 30;
+    c->pruning.sparsifier = "glc";
+  });
+  EXPECT_GT(budget.removed, 0u);
+  EXPECT_LE(budget.nodes, 30u + 3u);  // protected nodes may keep it just over
+  EXPECT_TRUE(budget.always_connected);
+  EXPECT_LT(AnchoredRmse(budget.trajectory, Corridor3()), 0.15);
+}
+
+TEST(Mapper, UnknownPolicyOrSparsifierIsRefused) {
+  MapperConfig config = DefaultMapperConfig();
+  config.pruning.mode = PruningMode::kChowLiu;
+  config.pruning.sparsifier = "chow-lui";
+  EXPECT_THROW(Mapper{config}, std::invalid_argument);
+  config.pruning.sparsifier.clear();
+  config.pruning.policy = "gain";
+  EXPECT_THROW(Mapper{config}, std::invalid_argument);
+  config.pruning.mode = PruningMode::kNone;  // standard mode uses neither
+  EXPECT_NO_THROW(Mapper{config});
+}
+
 TEST(Mapper, ModeNamesRoundTrip) {
-  for (PruningMode m :
-       {PruningMode::kNone, PruningMode::kChowLiu, PruningMode::kExact, PruningMode::kNaive}) {
+  for (const std::string& name : PruningModeNames()) {
     PruningMode parsed;
-    ASSERT_TRUE(ParsePruningMode(PruningModeName(m), &parsed));
-    EXPECT_EQ(parsed, m);
+    ASSERT_TRUE(ParsePruningMode(name, &parsed));
+    EXPECT_EQ(PruningModeName(parsed), name);
+    EXPECT_EQ(ModeSparsifier(parsed).empty(), name == "standard");
   }
   PruningMode unused;
   EXPECT_FALSE(ParsePruningMode("prunned", &unused));

@@ -145,8 +145,8 @@ Simulator::~Simulator() = default;
 
 bool Simulator::Next(Observation* obs, std::vector<Odometry>* odometry_since_last) {
   Impl& s = *impl_;
-  if (s.finished) return false;
   if (odometry_since_last != nullptr) odometry_since_last->clear();
+  if (s.finished) return false;
   auto emit_odom = [&] {
     if (odometry_since_last != nullptr && s.tick % s.ticks_per_odom == 0) {
       odometry_since_last->push_back({s.Time(), s.odom.pose()});

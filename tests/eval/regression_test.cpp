@@ -71,7 +71,11 @@ TEST(MapQualityRegression, Corridor3) {
   Check(standard, {0.05, 4.5, 0.78, 1.5, 100.0, 0.95}, false);
   Check(pruned, {0.07, 3.5, 0.72, 2.0, 15.0, 0.95}, true);
   EXPECT_LT(pruned["nodes_final"].get<int>(), standard["nodes_final"].get<int>() / 4);
-  EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(), standard["blur"]["mean_cm"].get<double>());
+  // Not "pruned is sharper": on corridor_3 that is a coin toss of the noise draws (over six
+  // seeds pruned - standard is -0.07 cm [-0.74, 0.61], BENCHMARKS.md "Sweeps"). A pruned
+  // map much blurrier than standard's on the same stream still fails.
+  EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(),
+            standard["blur"]["mean_cm"].get<double>() + 0.5);
 }
 
 TEST(MapQualityRegression, Office5min) {

@@ -50,7 +50,6 @@ SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progr
     meter.Update(simulator.progress() * scenario.duration_s, simulator.time_s(),
                  "scans " + std::to_string(run.observations.size()));
   }
-  run.odometry.insert(run.odometry.end(), odometry.begin(), odometry.end());
   meter.Finish(simulator.time_s(), "scans " + std::to_string(run.observations.size()));
   run.collisions = simulator.collisions();
   run.timed_out = simulator.timed_out();

@@ -11,15 +11,6 @@ Pose2 IntegrateWheels(const Pose2& pose, const WheelMotion& m, double track_widt
   return {pose.x + ds * std::cos(heading), pose.y + ds * std::sin(heading), pose.theta + dtheta};
 }
 
-double Uniform(std::mt19937_64* rng) { return static_cast<double>((*rng)() >> 11) * 0x1.0p-53; }
-
-double Gaussian(std::mt19937_64* rng) {
-  constexpr double kTwoPi = 6.28318530717958647692;
-  const double u1 = 1.0 - Uniform(rng);  // (0, 1]
-  const double u2 = Uniform(rng);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
-}
-
 WheelOdometry::WheelOdometry(const OdometryConfig& config, double true_track_width_m,
                              const Pose2& start)
     : config_(config), track_width_m_(true_track_width_m * config.track_scale), pose_(start) {}

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "sensor/pose2.hpp"
+#include "sim/random_streams.hpp"
 #include "sim/scenario.hpp"
 
 namespace lifelong::sim {
@@ -22,16 +23,12 @@ struct WheelMotion {
 /// ds = (l + r) / 2, dtheta = (r - l) / b, x += ds cos(theta + dtheta / 2), ...
 Pose2 IntegrateWheels(const Pose2& pose, const WheelMotion& m, double track_width_m);
 
-/// Standard normal sample by Box-Muller from two 53-bit uniforms (portable across
-/// standard libraries, unlike std::normal_distribution).
-double Gaussian(std::mt19937_64* rng);
-/// Uniform sample in [0, 1).
-double Uniform(std::mt19937_64* rng);
-
 class WheelOdometry {
  public:
   WheelOdometry(const OdometryConfig& config, double true_track_width_m, const Pose2& start);
-  /// Integrates one step of true wheel travel as the encoders measure it.
+  /// Integrates one step of true wheel travel as the encoders measure it. With slip, draws
+  /// two Gaussians from `rng` whatever the motion (none without slip), so the noise of the
+  /// t-th step depends only on the stream and t.
   void Update(const WheelMotion& true_motion, std::mt19937_64* rng);
   const Pose2& pose() const { return pose_; }
 

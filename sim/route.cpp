@@ -17,6 +17,8 @@ void AppendStop(double stop_s, std::vector<RouteStep>* steps) {
   if (stop_s > 0.0) steps->push_back({RouteStep::Kind::kStop, {}, stop_s});
 }
 
+}  // namespace
+
 std::vector<RouteStep> ExpandBackAndForth(const RouteConfig& route) {
   std::vector<RouteStep> steps;
   const auto& w = route.waypoints;
@@ -31,8 +33,6 @@ std::vector<RouteStep> ExpandBackAndForth(const RouteConfig& route) {
   }
   return steps;
 }
-
-}  // namespace
 
 std::vector<int> ShortestPath(const World& world, int from, int to) {
   const std::size_t n = world.places.size();
@@ -72,26 +72,23 @@ Point RouteStart(const RouteConfig& route, const World& world) {
   return route.waypoints.at(0);
 }
 
-std::vector<RouteStep> ExpandRoute(const RouteConfig& route, const World& world, double speed_mps,
-                                   std::mt19937_64* rng) {
-  if (route.kind == RouteConfig::Kind::kBackAndForth) return ExpandBackAndForth(route);
-  std::vector<RouteStep> steps;
-  const double wanted_m = 1.5 * route.tour_duration_s * speed_mps + 50.0;
-  double length_m = 0.0;
-  int current = route.start_place;
+void AppendTourLeg(const RouteConfig& route, const World& world, int* current, std::mt19937_64* rng,
+                   std::vector<RouteStep>* steps) {
   const std::size_t n = route.tour_places.size();
-  for (int guard = 0; length_m < wanted_m && guard < 1000000; ++guard) {
-    const int dest = route.tour_places[(*rng)() % n];
-    if (dest == current) continue;
-    const std::vector<int> path = ShortestPath(world, current, dest);
-    for (std::size_t i = 1; i < path.size(); ++i) {
-      steps.push_back({RouteStep::Kind::kGoto, world.places[path[i]].at, 0.0});
-      length_m += Dist(world.places[path[i - 1]].at, world.places[path[i]].at);
-    }
-    AppendStop(route.stop_s, &steps);
-    current = dest;
+  if (n == 0) return;
+  int dest = *current;
+  // The scenario loader ensures a place other than the start; the guard keeps a tour built
+  // in code without one from spinning forever (the robot then stays put).
+  for (int guard = 0; dest == *current && guard < 1000000; ++guard) {
+    dest = route.tour_places[(*rng)() % n];
   }
-  return steps;
+  if (dest == *current) return;
+  const std::vector<int> path = ShortestPath(world, *current, dest);
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    steps->push_back({RouteStep::Kind::kGoto, world.places[path[i]].at, 0.0});
+  }
+  AppendStop(route.stop_s, steps);
+  *current = dest;
 }
 
 double EstimateStepsDuration(const std::vector<RouteStep>& steps, const Point& start,

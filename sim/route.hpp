@@ -1,6 +1,6 @@
 // Routes as a list of steps (drive to a point, stop for a while), expanded from a
 // RouteConfig: back-and-forth repetitions, or a seeded random tour of places over the
-// roadmap's shortest paths (Dijkstra).
+// roadmap's shortest paths (Dijkstra), drawn from the route stream (sim/random_streams.hpp).
 #pragma once
 
 #include <random>
@@ -24,10 +24,15 @@ std::vector<int> ShortestPath(const World& world, int from, int to);
 /// Start point of the route.
 Point RouteStart(const RouteConfig& route, const World& world);
 
-/// Expands the route. Tours draw destinations from `rng` until the path is long enough to
-/// fill route.tour_duration_s at `speed_mps`, with margin.
-std::vector<RouteStep> ExpandRoute(const RouteConfig& route, const World& world, double speed_mps,
-                                   std::mt19937_64* rng);
+/// All steps of a back-and-forth or path route (they draw nothing).
+std::vector<RouteStep> ExpandBackAndForth(const RouteConfig& route);
+
+/// The next leg of a tour: draws destinations from `rng` (the route stream) until one is not
+/// *current, appends the shortest roadmap path there and the stop, and moves *current to it.
+/// Tours are expanded leg by leg as the robot needs them, never for the whole duration up
+/// front, so a shorter tour draws the first legs of a longer one.
+void AppendTourLeg(const RouteConfig& route, const World& world, int* current, std::mt19937_64* rng,
+                   std::vector<RouteStep>* steps);
 
 /// Rough time to drive the steps with the robot's limits, s.
 double EstimateStepsDuration(const std::vector<RouteStep>& steps, const Point& start,

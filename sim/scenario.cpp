@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <random>
 
 #include "sim/route.hpp"
 #include "sim/world_loader.hpp"
@@ -164,7 +163,7 @@ void ParseTour(Fields* f, const World& world, const RobotConfig& robot, RouteCon
   }
   if (r->tour_places.size() < 2)
     Fail(f->file(), f->node(), f->Name("places"), "needs 2 or more places");
-  // A tour that can never leave its start would spin ExpandRoute without moving.
+  // A tour that can never leave its start would spin AppendTourLeg without moving.
   if (std::all_of(r->tour_places.begin(), r->tour_places.end(),
                   [&](int p) { return p == r->start_place; })) {
     Fail(f->file(), f->node(), f->Name("places"), "needs a place other than the start");
@@ -246,8 +245,7 @@ void EstimateDuration(Scenario* s) {
     s->duration_s = s->route.tour_duration_s;
     return;
   }
-  std::mt19937_64 unused(0);
-  const auto steps = ExpandRoute(s->route, s->world, s->robot.max_speed_mps, &unused);
+  const auto steps = ExpandBackAndForth(s->route);
   s->duration_s = EstimateStepsDuration(steps, RouteStart(s->route, s->world), s->robot);
 }
 

@@ -8,6 +8,16 @@
 //   {type: back_and_forth, waypoints: [place or [x, y], ...], repetitions: N, stop_s: 0}
 //   {type: path, waypoints: [...]}                      # driven once, no way back
 //   {type: tour, start: place, places: [...], duration_s: 3600, stop_s: 2}
+//
+// `seed` (a non-negative integer) never drives one generator for everything: it is split
+// into three independent streams (sim/random_streams.hpp), route choices (the tour's
+// destinations), odometry noise (wheel slip, two draws per physics tick) and laser noise
+// (scan k seeded from the seed and k alone). So a short twin (same world, seed, models and
+// route, a shorter duration_s or fewer repetitions) observes exactly the first part of its
+// long scenario's stream (true poses, odometry, every range), and a tour over the same
+// path with other route draws sees the same noise. For that, a back_and_forth or path run
+// ends at the last scan before its final waypoint is reached (or its final stop is over),
+// without braking to a standstill the longer route would not have.
 #pragma once
 
 #include <cstdint>
@@ -74,7 +84,7 @@ struct Scenario {
   LaserConfig laser;
   OdometryConfig odometry;
   RouteConfig route;
-  std::uint64_t seed = 1;
+  std::uint64_t seed = 1;          ///< split into the route, odometry and laser streams
   double physics_rate_hz = 100.0;  ///< fixed Box2D step rate
   /// Expected simulated duration, s: exact for tours, an estimate for back-and-forth
   /// (path length, acceleration and turns). For progress bars and log_duration_s hints.

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 
 #include "sim/controller.hpp"
 #include "sim/odometry_model.hpp"
 #include "sim/physics.hpp"
+#include "sim/random_streams.hpp"
 #include "sim/route.hpp"
 
 namespace lifelong::sim {
@@ -17,6 +19,14 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 int TicksPer(double physics_hz, double rate_hz) {
   return std::max(1, static_cast<int>(std::lround(physics_hz / rate_hz)));
+}
+
+/// Back-and-forth: every step. Tour: the first leg (the rest comes leg by leg).
+std::vector<RouteStep> FirstSteps(const Scenario& sc, int* place, std::mt19937_64* rng) {
+  if (sc.route.kind != RouteConfig::Kind::kTour) return ExpandBackAndForth(sc.route);
+  std::vector<RouteStep> steps;
+  AppendTourLeg(sc.route, sc.world, place, rng, &steps);
+  return steps;
 }
 
 Pose2 StartPose(const Scenario& sc, const std::vector<RouteStep>& steps) {
@@ -34,8 +44,11 @@ Pose2 StartPose(const Scenario& sc, const std::vector<RouteStep>& steps) {
 struct Simulator::Impl {
   explicit Impl(const Scenario& scenario)
       : sc(scenario),
-        rng(sc.seed),
-        steps(ExpandRoute(sc.route, sc.world, sc.robot.max_speed_mps, &rng)),
+        route_rng(StreamRng(sc.seed, RandomStream::kRoute)),
+        odometry_rng(StreamRng(sc.seed, RandomStream::kOdometry)),
+        laser_seed(DeriveSeed(sc.seed, static_cast<std::uint64_t>(RandomStream::kLaser))),
+        tour_place(sc.route.start_place),
+        steps(FirstSteps(sc, &tour_place, &route_rng)),
         true_pose(StartPose(sc, steps)),
         physics(sc.world, sc.robot, true_pose),
         odom(sc.odometry, sc.robot.track_width_m, Pose2()),
@@ -48,13 +61,16 @@ struct Simulator::Impl {
   }
 
   double Time() const { return static_cast<double>(tick) * dt_s; }
-  DriveCommand Command();
-  void Tick();
-  bool RouteDone() const;
-  LaserScan Scan(const Pose2& T_world_robot, bool noisy);
+  std::optional<DriveCommand> Command();
+  bool Tick();
+  bool TourDone() const;
+  LaserScan Scan(const Pose2& T_world_robot, std::optional<std::uint64_t> noise_index) const;
 
   Scenario sc;
-  std::mt19937_64 rng;
+  std::mt19937_64 route_rng;     // tour destinations
+  std::mt19937_64 odometry_rng;  // wheel slip, two draws per tick
+  std::uint64_t laser_seed;      // scan k draws from DeriveSeed(laser_seed, k)
+  int tour_place;                // tour: the destination of the last leg drawn
   std::vector<RouteStep> steps;
   Pose2 true_pose;
   Physics physics;
@@ -68,14 +84,21 @@ struct Simulator::Impl {
   std::size_t step_index = 0;
   double stopped_s = 0.0;
   std::int64_t tick = 0;
+  std::uint64_t scans = 0;  // observations emitted
+  double last_stamp_s = 0.0;
   bool started = false;
   bool finished = false;
   bool timed_out = false;
   std::vector<Collision> collisions;
 };
 
-DriveCommand Simulator::Impl::Command() {
-  while (step_index < steps.size()) {
+// The command for this tick; none once a back-and-forth route has run out of steps.
+std::optional<DriveCommand> Simulator::Impl::Command() {
+  for (;;) {
+    if (step_index == steps.size() && sc.route.kind == RouteConfig::Kind::kTour) {
+      AppendTourLeg(sc.route, sc.world, &tour_place, &route_rng, &steps);  // the next leg
+    }
+    if (step_index >= steps.size()) break;
     const RouteStep& s = steps[step_index];
     if (s.kind == RouteStep::Kind::kStop) {
       if (cmd.v_mps == 0.0 && cmd.w_radps == 0.0) stopped_s += dt_s;
@@ -89,12 +112,16 @@ DriveCommand Simulator::Impl::Command() {
     }
     ++step_index;
   }
-  return controller.Brake(cmd, dt_s);
+  if (sc.route.kind != RouteConfig::Kind::kTour) return std::nullopt;
+  return controller.Brake(cmd, dt_s);  // a tour that could not draw a leg (built in code)
 }
 
-void Simulator::Impl::Tick() {
+// One physics step; false, changing nothing, once a back-and-forth route has run out.
+bool Simulator::Impl::Tick() {
   physics.ApplyScripts(Time());
-  cmd = Command();
+  const std::optional<DriveCommand> next_cmd = Command();
+  if (!next_cmd) return false;
+  cmd = *next_cmd;
   const double half_b = 0.5 * sc.robot.track_width_m;
   const WheelMotion m{(cmd.v_mps - cmd.w_radps * half_b) * dt_s,
                       (cmd.v_mps + cmd.w_radps * half_b) * dt_s};
@@ -110,16 +137,20 @@ void Simulator::Impl::Tick() {
     true_pose = next;  // keep the double-precision pose; Box2D state is float
     physics.SetRobotPose(next);
   }
-  odom.Update(m, &rng);  // the wheels rolled m whether or not the robot was blocked
+  odom.Update(m, &odometry_rng);  // the wheels rolled m whether or not the robot was blocked
+  return true;
 }
 
-bool Simulator::Impl::RouteDone() const {
-  if (sc.route.kind == RouteConfig::Kind::kTour) return Time() >= sc.route.tour_duration_s;
-  return step_index >= steps.size() && cmd.v_mps == 0.0 && cmd.w_radps == 0.0;
+bool Simulator::Impl::TourDone() const {
+  return sc.route.kind == RouteConfig::Kind::kTour && Time() >= sc.route.tour_duration_s;
 }
 
-LaserScan Simulator::Impl::Scan(const Pose2& T_world_robot, bool noisy) {
+// Noise-free without `noise_index`; else with the noise of scan number *noise_index.
+LaserScan Simulator::Impl::Scan(const Pose2& T_world_robot,
+                                std::optional<std::uint64_t> noise_index) const {
   const LaserConfig& l = sc.laser;
+  const bool noisy = noise_index.has_value();
+  std::mt19937_64 rng(noisy ? DeriveSeed(laser_seed, *noise_index) : 0);
   LaserScan scan;
   scan.stamp_s = Time();
   scan.angle_min_rad = -0.5 * l.fov_deg * kDegToRad;
@@ -131,10 +162,12 @@ LaserScan Simulator::Impl::Scan(const Pose2& T_world_robot, bool noisy) {
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     const double angle = T_world_laser.theta + scan.Bearing(i);
     double r = physics.CastRay(T_world_laser.x, T_world_laser.y, angle, l.range_max_m);
-    if (noisy && r < l.range_max_m) {
-      r = std::clamp(r + l.range_noise_m * Gaussian(&rng), 0.0, l.range_max_m);
+    if (noisy) {  // both draws for every beam, hit or not: beam i's noise is its own
+      const double g = Gaussian(&rng);
+      const double u = Uniform(&rng);
+      if (r < l.range_max_m) r = std::clamp(r + l.range_noise_m * g, 0.0, l.range_max_m);
+      if (u < l.dropout_prob) r = l.range_max_m;
     }
-    if (noisy && l.dropout_prob > 0.0 && Uniform(&rng) < l.dropout_prob) r = l.range_max_m;
     scan.ranges_m[i] = static_cast<float>(r);
   }
   return scan;
@@ -145,8 +178,8 @@ Simulator::~Simulator() = default;
 
 bool Simulator::Next(Observation* obs, std::vector<Odometry>* odometry_since_last) {
   Impl& s = *impl_;
-  if (s.finished) return false;
   if (odometry_since_last != nullptr) odometry_since_last->clear();
+  if (s.finished) return false;
   auto emit_odom = [&] {
     if (odometry_since_last != nullptr && s.tick % s.ticks_per_odom == 0) {
       odometry_since_last->push_back({s.Time(), s.odom.pose()});
@@ -157,21 +190,29 @@ bool Simulator::Next(Observation* obs, std::vector<Odometry>* odometry_since_las
     emit_odom();
   } else {
     do {
-      s.Tick();
+      if (!s.Tick()) {
+        // The route ended inside this scan interval: the run ends at the previous scan, so
+        // a route with fewer repetitions is a prefix of one with more (no braking tail
+        // that the longer route would not have).
+        s.finished = true;
+        if (odometry_since_last != nullptr) odometry_since_last->clear();
+        return false;
+      }
       emit_odom();
     } while (s.tick % s.ticks_per_scan != 0);
   }
   obs->stamp_s = s.Time();
   obs->T_odom_robot = s.odom.pose();
   obs->T_world_robot_true = s.true_pose;
-  obs->scan = s.Scan(s.true_pose, true);
-  const bool done = s.RouteDone();
+  obs->scan = s.Scan(s.true_pose, s.scans++);
+  s.last_stamp_s = obs->stamp_s;
+  const bool done = s.TourDone();
   s.timed_out = !done && s.Time() >= s.time_limit_s;
   s.finished = done || s.timed_out;
   return true;
 }
 
-double Simulator::time_s() const { return impl_->Time(); }
+double Simulator::time_s() const { return impl_->last_stamp_s; }
 
 double Simulator::progress() const {
   const Impl& s = *impl_;
@@ -187,7 +228,7 @@ bool Simulator::timed_out() const { return impl_->timed_out; }
 const Pose2& Simulator::true_pose() const { return impl_->true_pose; }
 
 LaserScan Simulator::TrueScan(const Pose2& T_world_robot) const {
-  return impl_->Scan(T_world_robot, false);
+  return impl_->Scan(T_world_robot, std::nullopt);
 }
 
 }  // namespace lifelong::sim

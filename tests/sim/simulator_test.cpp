@@ -116,7 +116,8 @@ TEST(Simulator, OdometryNoiseStatisticsMatchConfig) {
   const double b = s.robot.track_width_m, k = 1e-4;
   const double var_l = sll / runs - (sl / runs) * (sl / runs);
   const double var_t = stt / runs - (st / runs) * (st / runs);
-  EXPECT_NEAR(distance, 5.0, 0.15);
+  // The run ends at the last scan before the 0.1 m waypoint tolerance is reached.
+  EXPECT_NEAR(distance, 5.0, 0.25);
   EXPECT_NEAR(sl / runs, 0.0, 3 * std::sqrt(k * distance / 2 / runs) + 1e-3);
   // Sample variances of 200 runs have a relative standard error of 10 %; allow 35 %.
   EXPECT_NEAR(var_l / (k * distance / 2), 1.0, 0.35);

@@ -1,0 +1,187 @@
+// Every mapper setting once, for the config file's reader (mapper_config_file.cpp) and
+// writer (mapper_config_writer.cpp): the Visit* functions walk the MapperConfig, calling
+// the visitor's Section, Number, Int, PowerOfTwo, Bool, Enum, Choice and Ordered for each
+// key. Internal to eval.
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "slam/mapper_config.hpp"
+#include "slam/removal_policy.hpp"
+#include "slam/sparsifier.hpp"
+
+namespace lifelong::eval::config_fields {
+
+using slam::LinearSolver;
+using slam::OptimizerMethod;
+using slam::RobustKernel;
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Allowed values of a number: [min, max], or (min, max] when min_open.
+struct Range {
+  double min;
+  double max;
+  bool min_open;
+  const char* text;
+};
+inline constexpr Range kAnyNumber{-kInf, kInf, false, "a finite number"};
+inline constexpr Range kNonNegative{0.0, kInf, false, ">= 0"};
+inline constexpr Range kPositive{0.0, kInf, true, "> 0"};
+inline constexpr Range kUnit{0.0, 1.0, false, "in [0, 1]"};
+
+template <class E>
+struct EnumName {
+  const char* name;
+  E value;
+};
+inline constexpr EnumName<OptimizerMethod> kMethods[] = {
+    {"lm", OptimizerMethod::kLevenbergMarquardt}, {"gn", OptimizerMethod::kGaussNewton}};
+inline constexpr EnumName<RobustKernel> kKernels[] = {{"none", RobustKernel::kNone},
+                                                      {"huber", RobustKernel::kHuber},
+                                                      {"cauchy", RobustKernel::kCauchy},
+                                                      {"dcs", RobustKernel::kDcs}};
+inline constexpr EnumName<LinearSolver> kSolvers[] = {{"auto", LinearSolver::kAuto},
+                                                      {"simplicial", LinearSolver::kSimplicial},
+                                                      {"supernodal", LinearSolver::kSupernodal}};
+inline constexpr EnumName<slam::BlanketPolicy> kBlankets[] = {
+    {"factors_at_node", slam::BlanketPolicy::kFactorsAtK},
+    {"markov_blanket", slam::BlanketPolicy::kBlanket}};
+
+// ---- Every setting, once. The reader and the writer both walk these lists. ----
+
+template <class V>
+void VisitMatcher(V& v, slam::MatcherConfig& m, bool with_windows) {
+  if (with_windows) {
+    v.Number("linear_window_m", m.linear_window_m, kPositive);
+    v.Number("angular_window_rad", m.angular_window_rad, kPositive);
+  }
+  v.Number("resolution_m", m.resolution_m, kPositive);
+  v.Number("angular_step_rad", m.angular_step_rad, kNonNegative);
+  v.PowerOfTwo("coarse_factor", m.coarse_factor);
+  v.Number("sigma_m", m.sigma_m, kPositive);
+  v.Number("min_score", m.min_score, kUnit);
+  v.Number("ambiguity_radius_m", m.ambiguity_radius_m, kNonNegative);
+  v.Number("ambiguity_angle_rad", m.ambiguity_angle_rad, kNonNegative);
+  v.Number("floor_sigma_m", m.floor_sigma_m, kNonNegative);
+  v.Number("floor_sigma_rad", m.floor_sigma_rad, kNonNegative);
+}
+
+template <class V>
+void VisitIncremental(V& v, slam::IncrementalConfig& c) {
+  v.Int("local_map_nodes", c.local_map_nodes, 1);
+  v.Number("point_spacing_m", c.point_spacing_m, kNonNegative);
+  v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, true); });
+  v.Number("odom_sigma_xy_m", c.odom_sigma_xy_m, kPositive);
+  v.Number("odom_sigma_xy_per_m", c.odom_sigma_xy_per_m, kNonNegative);
+  v.Number("odom_sigma_rad", c.odom_sigma_rad, kPositive);
+  v.Number("odom_sigma_rad_per_rad", c.odom_sigma_rad_per_rad, kNonNegative);
+}
+
+template <class V>
+void VisitVerify(V& v, slam::LoopVerifierConfig& c) {
+  v.Bool("enabled", c.enabled);
+  v.Int("min_group", c.min_group, 1);
+  v.Number("consistency_chi2", c.consistency_chi2, kPositive);
+  v.Number("window_m", c.window_m, kNonNegative);
+  v.Number("expiry_m", c.expiry_m, kNonNegative);
+  v.Number("base_var_xy_m2", c.base_var_xy_m2, kPositive);
+  v.Number("var_xy_per_m", c.var_xy_per_m, kNonNegative);
+  v.Number("base_var_rad2", c.base_var_rad2, kPositive);
+  v.Number("var_rad_per_m", c.var_rad_per_m, kNonNegative);
+}
+
+template <class V>
+void VisitLoops(V& v, slam::LoopClosingConfig& c) {
+  v.Bool("enabled", c.enabled);
+  v.Number("min_path_separation_m", c.min_path_separation_m, kNonNegative);
+  v.Number("overlap_radius_m", c.overlap_radius_m, kNonNegative);
+  v.Number("gate_chi2", c.gate_chi2, kPositive);
+  v.Number("max_position_sigma_m", c.max_position_sigma_m, kPositive);
+  v.Number("min_window_m", c.min_window_m, kPositive);
+  v.Number("max_window_m", c.max_window_m, kPositive);
+  v.Ordered("min_window_m", c.min_window_m, "max_window_m", c.max_window_m);
+  v.Number("min_window_rad", c.min_window_rad, kPositive);
+  v.Number("max_window_rad", c.max_window_rad, kPositive);
+  v.Ordered("min_window_rad", c.min_window_rad, "max_window_rad", c.max_window_rad);
+  v.Int("neighbours_per_candidate", c.neighbours_per_candidate, 0);
+  v.Int("submap_span", c.submap_span, 0);
+  v.Number("min_score", c.min_score, kUnit);
+  v.Number("max_ambiguity", c.max_ambiguity, kUnit);
+  v.Number("max_flatness", c.max_flatness, kUnit);
+  v.Number("uniqueness_radius_m", c.uniqueness_radius_m, kPositive);
+  v.Number("refine_window_m", c.refine_window_m, kNonNegative);
+  v.Number("refine_window_rad", c.refine_window_rad, kPositive);
+  v.Number("consistency_chi2", c.consistency_chi2, kPositive);
+  v.Int("min_reference_points", c.min_reference_points, 0);
+  v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, false); });
+  v.Number("optimize_edge_chi2", c.optimize_edge_chi2, kNonNegative);
+  v.Int("optimize_every", c.optimize_every, 1);
+  v.Section("verify", [&](auto& s) { VisitVerify(s, c.verify); });
+  v.Number("suspect_chi2", c.suspect_chi2, kPositive);
+  v.Number("inject_false_share", c.inject_false_share, kUnit);
+  v.Number("inject_false_dx_m", c.inject_false_dx_m, kAnyNumber);
+  v.Number("inject_false_dy_m", c.inject_false_dy_m, kAnyNumber);
+}
+
+template <class V>
+void VisitOptimizer(V& v, slam::OptimizerParams& p) {
+  v.Enum("method", p.method, kMethods);
+  v.Int("max_iterations", p.max_iterations, 1);
+  v.Number("relative_tolerance", p.relative_tolerance, kNonNegative);
+  v.Number("step_tolerance", p.step_tolerance, kNonNegative);
+  v.Number("absolute_tolerance", p.absolute_tolerance, kNonNegative);
+  v.Enum("robust_kernel", p.robust_kernel, kKernels);
+  v.Number("robust_delta", p.robust_delta, kPositive);
+  v.Bool("scale_damping", p.scale_damping);
+  v.Number("initial_lambda_factor", p.initial_lambda_factor, kPositive);
+  v.Bool("evaluate_final_chi2", p.evaluate_final_chi2);
+  v.Bool("linear_initialization", p.linear_initialization);
+  v.Enum("linear_solver", p.linear_solver, kSolvers);
+}
+
+template <class V>
+void VisitConfig(V& v, slam::MapperConfig& c) {
+  v.Section("keyframes", [&](auto& s) {
+    s.Number("min_translation_m", c.keyframes.min_translation_m, kNonNegative);
+    s.Number("min_rotation_rad", c.keyframes.min_rotation_rad, kNonNegative);
+  });
+  v.Section("incremental", [&](auto& s) { VisitIncremental(s, c.incremental); });
+  v.Section("loops", [&](auto& s) { VisitLoops(s, c.loops); });
+  v.Section("pruning", [&](auto& s) {
+    s.Number("gain_threshold_bits", c.pruning.gain_threshold_bits, kAnyNumber);
+    s.Number("radius_m", c.pruning.radius_m, kNonNegative);
+    s.Int("keep_recent_nodes", c.pruning.keep_recent_nodes, 0);
+    s.Int("node_budget", c.pruning.node_budget, 0);
+    s.Number("max_edges_per_node", c.pruning.max_edges_per_node, kNonNegative);
+    s.Enum("blanket", c.pruning.blanket, kBlankets);
+    s.Choice("policy", c.pruning.policy, slam::RemovalPolicyNames(), false);
+    s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
+  });
+  v.Section("grid", [&](auto& s) {
+    s.Number("resolution_m", c.grid.resolution_m, kPositive);
+    s.Number("max_free_range_m", c.grid.max_free_range_m, kNonNegative);
+    s.Number("max_hit_range_m", c.grid.max_hit_range_m, kPositive);
+  });
+  v.Section("optimizer", [&](auto& s) { VisitOptimizer(s, c.optimizer); });
+  v.Section("map_update", [&](auto& s) {
+    s.Number("map_move_epsilon_m", c.map_move_epsilon_m, kNonNegative);
+    s.Number("map_move_epsilon_rad", c.map_move_epsilon_rad, kNonNegative);
+  });
+}
+
+/// Shortest text that reads back to exactly `v`, with a ".0" on integral values.
+inline std::string ShortestDouble(double v) {
+  char buf[64];
+  const auto result = std::to_chars(buf, buf + sizeof(buf), v);
+  std::string s(buf, result.ptr);
+  if (std::isfinite(v) && s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+}  // namespace lifelong::eval::config_fields

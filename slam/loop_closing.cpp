@@ -110,7 +110,7 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   const MatchResult match = Match(match_grid, nodes.at(current).points, X_cur, mc);
   if (!match.ok || match.score < lc.min_score || match.ambiguity > lc.max_ambiguity) return false;
   if (!LocallyUnique(match, nodes.at(current).points)) {
-    verifier.NoteNotUnique();
+    loop_state.verifier.NoteNotUnique();
     return false;
   }
 
@@ -144,7 +144,7 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   h.travelled_m = nodes.at(current).travelled_m;
   MaybeInjectFalse(&h);
   bool closed = false;
-  for (const LoopHypothesis& accepted : verifier.Add(h, values)) {
+  for (const LoopHypothesis& accepted : loop_state.verifier.Add(h, values)) {
     AddLoopEdge(accepted);
     closed = true;
   }
@@ -187,7 +187,7 @@ bool Mapper::State::LocallyUnique(const MatchResult& match,
 
 void Mapper::State::MaybeInjectFalse(LoopHypothesis* h) {
   const LoopClosingConfig& lc = config.loops;
-  const int n = loop_hypotheses++;
+  const int n = loop_state.hypotheses++;
   if (lc.inject_false_share <= 0.0) return;
   // Every 1/share-th hypothesis, deterministically: when floor(k * share) steps up.
   if (std::floor((n + 1) * lc.inject_false_share) == std::floor(n * lc.inject_false_share)) {
@@ -210,14 +210,14 @@ void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
   edge.T_from_to = h.T_old_current;
   edge.information = h.information;
   graph.AddEdge(edge);
-  loops.push_back({h.current, h.old,
-                   scans[static_cast<std::size_t>(nodes.at(h.current).scan_index)].stamp_s,
-                   scans[static_cast<std::size_t>(nodes.at(h.old).scan_index)].stamp_s,
-                   edge.T_from_to, h.injected});
-  ++closures_since_optimize;
+  loop_state.loops.push_back(
+      {h.current, h.old, scans[static_cast<std::size_t>(nodes.at(h.current).scan_index)].stamp_s,
+       scans[static_cast<std::size_t>(nodes.at(h.old).scan_index)].stamp_s, edge.T_from_to,
+       h.injected});
+  ++loop_state.since_optimize;
   const Eigen::Vector3d e = RelativeError(values.at(h.old), values.at(h.current), edge.T_from_to);
   if (e.dot(edge.information * e) > lc.optimize_edge_chi2 ||
-      closures_since_optimize >= lc.optimize_every) {
+      loop_state.since_optimize >= lc.optimize_every) {
     OptimizeAndSyncMap();
   }
 }
@@ -232,8 +232,8 @@ std::vector<std::optional<double>> Mapper::LoopEdgeChi2() const {
     chi2[{edge.from, edge.to}] = e.dot(edge.information * e);
   }
   std::vector<std::optional<double>> out;
-  out.reserve(s.loops.size());
-  for (const LoopClosureRecord& r : s.loops) {
+  out.reserve(s.loop_state.loops.size());
+  for (const LoopClosureRecord& r : s.loop_state.loops) {
     const auto it = chi2.find({r.old, r.current});
     out.push_back(it == chi2.end() ? std::nullopt : std::optional<double>(it->second));
   }
@@ -242,7 +242,7 @@ std::vector<std::optional<double>> Mapper::LoopEdgeChi2() const {
 
 std::set<NodeId> Mapper::State::UnsettledNodes() const {
   std::set<NodeId> out;
-  for (const LoopHypothesis& h : verifier.pending()) {
+  for (const LoopHypothesis& h : loop_state.verifier.pending()) {
     out.insert(h.old);
     out.insert(h.current);
   }

@@ -99,8 +99,8 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   stats.edges = s.graph.NumEdgesForGamma();
   stats.gamma = s.graph.Gamma();
   stats.graph_bytes = s.graph.Bytes();
-  stats.loop_closures_total = static_cast<int>(s.loops.size());
-  stats.nodes_removed_total = static_cast<int>(s.marginalizations.size());
+  stats.loop_closures_total = static_cast<int>(s.loop_state.loops.size());
+  stats.nodes_removed_total = static_cast<int>(s.prune_state.marginalizations.size());
   if (on_observation) on_observation(stats);
   return stats;
 }
@@ -157,7 +157,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     data.touched = map.TouchedCells(data.scan, data.T_world_map);
     data.footprint = Footprint::Of(data.touched);
     map.Add(data.touched);
-    NoteMapChange(data.footprint);
+    prune_state.NoteMapChange(data.footprint);
   }
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
@@ -203,7 +203,7 @@ void Mapper::State::OptimizeAndSyncMap() {
   const auto start = std::chrono::steady_clock::now();
   const OptimizerSummary summary = Optimize(graph, &values, config.optimizer);
   const auto optimized = std::chrono::steady_clock::now();
-  closures_since_optimize = 0;
+  loop_state.since_optimize = 0;
   SyncMap();
   if (step) {
     const auto end = std::chrono::steady_clock::now();
@@ -226,12 +226,12 @@ void Mapper::State::SyncMap() {
         // Only the nodes near the robot keep their cell lists (Prune); the others get theirs
         // computed for the move and freed again, so memory follows the neighbourhood.
         const bool cached = !data.touched.empty();
-        NoteMapChange(data.footprint);
+        prune_state.NoteMapChange(data.footprint);
         map.Remove(Touched(id));
         data.touched = map.TouchedCells(data.scan, X);
         data.footprint = Footprint::Of(data.touched);
         map.Add(data.touched);
-        NoteMapChange(data.footprint);
+        prune_state.NoteMapChange(data.footprint);
         if (!cached) std::vector<CellUpdate>().swap(data.touched);
       }
       data.T_world_map = X;
@@ -266,13 +266,17 @@ const GridMap& Mapper::map() const { return state_->map; }
 double Mapper::NodeStamp(NodeId id) const {
   return state_->scans.at(static_cast<std::size_t>(state_->nodes.at(id).scan_index)).stamp_s;
 }
-const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return state_->loops; }
-const LoopVerifierStats& Mapper::loop_verification() const { return state_->verifier.stats(); }
+const std::vector<LoopClosureRecord>& Mapper::loop_closures() const {
+  return state_->loop_state.loops;
+}
+const LoopVerifierStats& Mapper::loop_verification() const {
+  return state_->loop_state.verifier.stats();
+}
 const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
-  return state_->marginalizations;
+  return state_->prune_state.marginalizations;
 }
 const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
-  return state_->sparsifications;
+  return state_->prune_state.sparsifications;
 }
 int Mapper::observations() const { return state_->observations; }
 
@@ -280,7 +284,7 @@ double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   for (const auto& [id, data] : state_->nodes) {
     // A change not yet applied invalidates the gain before any use.
-    if (!data.gain_valid || state_->ChangedSinceLastRound(data.footprint)) continue;
+    if (!data.gain_valid || state_->prune_state.ChangedSinceLastRound(data.footprint)) continue;
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
     worst = std::max(worst, std::abs(fresh - data.gain_bits));

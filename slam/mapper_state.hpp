@@ -13,29 +13,16 @@
 #include <Eigen/Core>
 
 #include "slam/grid_map.hpp"
+#include "slam/loop_closing_state.hpp"
 #include "slam/loop_verifier.hpp"
 #include "slam/mapper.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/pruning_state.hpp"
 #include "slam/removal_policy.hpp"
 #include "slam/scan_matcher.hpp"
 #include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
-
-/// Where an increment list lies: its cell box and a bitmap of the 16 x 16-cell blocks it
-/// touches. Two lists can share a cell only if their footprints share a block, a much finer
-/// test than the boxes (a scan's box spans walls and rooms it never sees into).
-struct Footprint {
-  static constexpr int kBlockBits = 4;  ///< blocks of 2^4 x 2^4 cells
-  CellBounds box;
-  CellIndex first_block;            ///< block of box.min
-  int blocks_x = 0, blocks_y = 0;   ///< blocks spanned by the box
-  std::vector<std::uint64_t> bits;  ///< row-major over the box's blocks
-
-  static Footprint Of(const std::vector<CellUpdate>& cells);
-  bool Shares(const Footprint& other) const;
-  bool HasBlock(int bx, int by) const;
-};
 
 struct NodeData {
   LaserScan scan;
@@ -83,6 +70,8 @@ struct Mapper::State {
   explicit State(const MapperConfig& c);
 
   MapperConfig config;
+  LoopClosingState loop_state;
+  PruningState prune_state;
   PoseGraph graph;
   Values values;
   GridMap map;
@@ -91,21 +80,12 @@ struct Mapper::State {
   std::vector<ScanAnchor> scans;
   std::map<NodeId, std::vector<std::size_t>> scans_of_node;
   std::vector<std::size_t> pending;  ///< non-keyframe scans since the last node
-  std::vector<LoopClosureRecord> loops;
-  std::vector<MarginalizationRecord> marginalizations;
-  std::vector<SparsificationRecord> sparsifications;
   NodeId next_id = 0;
   int observations = 0;
-  int closures_since_optimize = 0;
   StepStats* step = nullptr;  ///< stats of the observation being processed
   bool have_last = false;
   NodeId last_node = 0;
   ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
-  LoopVerifier verifier;     ///< loop closures wait here until a group confirms them
-  int loop_hypotheses = 0;   ///< closures proposed by the matcher so far
-  /// Pruned modes: which node goes and what replaces its clique (null in standard mode).
-  std::unique_ptr<RemovalPolicy> policy;
-  std::unique_ptr<Sparsifier> sparsifier;
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);
@@ -131,17 +111,6 @@ struct Mapper::State {
   const std::vector<CellUpdate>& Touched(NodeId id);
   /// Information gain of node `id`'s scan, computed now and remembered with its box.
   double Gain(NodeId id);
-  /// Records that the map's counts changed in these cells (pruned modes: gains of scans
-  /// sharing a block with them must be recomputed).
-  void NoteMapChange(const Footprint& cells) {
-    if (config.pruning.mode != PruningMode::kNone) map_changes.push_back(cells);
-  }
-  std::vector<Footprint> map_changes;  ///< since the last pruning round
-  /// Whether a map change since the last pruning round touches a scan with this footprint.
-  bool ChangedSinceLastRound(const Footprint& scan) const {
-    return std::any_of(map_changes.begin(), map_changes.end(),
-                       [&](const Footprint& change) { return scan.Shares(change); });
-  }
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// While the graph holds more than max_edges_per_node edges per node, replaces the edges

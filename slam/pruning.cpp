@@ -16,19 +16,18 @@
 #include "slam/marginalization.hpp"
 
 namespace lifelong::slam {
-namespace {}  // namespace
-
-Mapper::State::State(const MapperConfig& c) : config(c), map(c.grid), verifier(c.loops.verify) {
+Mapper::State::State(const MapperConfig& c) : config(c), loop_state(c.loops.verify), map(c.grid) {
   if (c.pruning.mode == PruningMode::kNone) return;
-  policy =
+  prune_state.policy =
       MakeRemovalPolicy(c.pruning.policy, {c.pruning.gain_threshold_bits, c.pruning.node_budget});
-  if (!policy) throw std::invalid_argument("unknown removal policy '" + c.pruning.policy + "'");
+  if (!prune_state.policy)
+    throw std::invalid_argument("unknown removal policy '" + c.pruning.policy + "'");
   const std::string name =
       c.pruning.sparsifier.empty() ? ModeSparsifier(c.pruning.mode) : c.pruning.sparsifier;
   SparsifierConfig sc;
   sc.blanket = c.pruning.blanket;
-  sparsifier = MakeSparsifier(name, sc);
-  if (!sparsifier) throw std::invalid_argument("unknown sparsifier '" + name + "'");
+  prune_state.sparsifier = MakeSparsifier(name, sc);
+  if (!prune_state.sparsifier) throw std::invalid_argument("unknown sparsifier '" + name + "'");
 }
 
 CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
@@ -93,7 +92,7 @@ void Mapper::State::Prune(NodeId current) {
   // Marginalization linearizes at the current estimate and keeps its means for good, so the
   // estimate must be the optimum: settle any loop closure not yet optimized (cheap here, the
   // pruned graph is small).
-  if (closures_since_optimize > 0) OptimizeAndSyncMap();
+  if (loop_state.since_optimize > 0) OptimizeAndSyncMap();
   const NodeId anchor = graph.NodeIds().front();
   std::set<NodeId> protected_ids{current, anchor};
   // Never marginalize a closure that is not settled: a pending hypothesis would lose its
@@ -116,9 +115,10 @@ void Mapper::State::Prune(NodeId current) {
   // node (not only this round's candidates) forgets its gain when a change since the last
   // round shares a block with its footprint.
   for (auto& [id, data] : nodes) {
-    if (data.gain_valid && ChangedSinceLastRound(data.footprint)) data.gain_valid = false;
+    if (data.gain_valid && prune_state.ChangedSinceLastRound(data.footprint))
+      data.gain_valid = false;
   }
-  map_changes.clear();
+  prune_state.map_changes.clear();
   for (auto& [id, gain] : gains) {
     const NodeData& data = nodes.at(id);
     gain = data.gain_valid ? data.gain_bits : Gain(id);
@@ -127,7 +127,7 @@ void Mapper::State::Prune(NodeId current) {
   for (const auto& [id, gain] : gains) considered.insert(id);
 
   while (!gains.empty()) {
-    const std::optional<NodeId> next = policy->Next(gains, graph.NumNodes());
+    const std::optional<NodeId> next = prune_state.policy->Next(gains, graph.NumNodes());
     if (!next) break;
     const NodeId victim = *next;
     const double gain = gains.at(victim);
@@ -137,12 +137,12 @@ void Mapper::State::Prune(NodeId current) {
     RemoveNode(victim, gain);
     // Only the gains of scans sharing cells with the removed one can have changed; the
     // nodes outside this round see the change at the next one.
-    map_changes.push_back(changed);
+    prune_state.map_changes.push_back(changed);
     for (auto& [id, g] : gains) {
       if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
     }
   }
-  if (sparsifier->Name() == "chow-liu" && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
+  if (prune_state.sparsifier->Name() == "chow-liu" && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
   // so memory follows the neighbourhood, not the graph.
   for (auto& [id, data] : nodes) {
@@ -209,15 +209,15 @@ void Mapper::State::KeepEdgeBudget() {
     const SparsificationResult result = SparsifyWithin(graph, values, best);
     if (!result.applied) return;
     ApplySparsification(&graph, result);
-    sparsifications.push_back(
+    prune_state.sparsifications.push_back(
         {centre, best.size(), result.edges_before, result.edges.size(), result.kl_divergence});
   }
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
-  verifier.ForgetNode(id);
-  const Replacement replacement = sparsifier->Replace(graph, values, id);
+  loop_state.verifier.ForgetNode(id);
+  const Replacement replacement = prune_state.sparsifier->Replace(graph, values, id);
   // The removed node's scans are held relative to its nearest surviving neighbour.
   const Pose2& X = values.at(id);
   NodeId keeper = id;
@@ -238,7 +238,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   scans_of_node.erase(id);
   map.Remove(Touched(id));
   ApplyReplacement(&graph, id, replacement);
-  marginalizations.push_back(
+  prune_state.marginalizations.push_back(
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
   nodes.erase(id);
   values.erase(id);

@@ -1,0 +1,53 @@
+// What pruning keeps between observations: the removal policy and the sparsifier (null in
+// standard mode), what they did, and the map changes since the last round (a part of
+// Mapper::State; not public API).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "slam/grid_map.hpp"
+#include "slam/mapper.hpp"
+#include "slam/removal_policy.hpp"
+#include "slam/sparsifier.hpp"
+
+namespace lifelong::slam {
+
+/// Where an increment list lies: its cell box and a bitmap of the 16 x 16-cell blocks it
+/// touches. Two lists can share a cell only if their footprints share a block, a much finer
+/// test than the boxes (a scan's box spans walls and rooms it never sees into).
+struct Footprint {
+  static constexpr int kBlockBits = 4;  ///< blocks of 2^4 x 2^4 cells
+  CellBounds box;
+  CellIndex first_block;            ///< block of box.min
+  int blocks_x = 0, blocks_y = 0;   ///< blocks spanned by the box
+  std::vector<std::uint64_t> bits;  ///< row-major over the box's blocks
+
+  static Footprint Of(const std::vector<CellUpdate>& cells);
+  bool Shares(const Footprint& other) const;
+  bool HasBlock(int bx, int by) const;
+};
+
+struct PruningState {
+  std::unique_ptr<RemovalPolicy> policy;   ///< which node goes
+  std::unique_ptr<Sparsifier> sparsifier;  ///< what replaces its clique
+  std::vector<MarginalizationRecord> marginalizations;
+  std::vector<SparsificationRecord> sparsifications;
+  std::vector<Footprint> map_changes;  ///< since the last pruning round
+
+  bool active() const { return policy != nullptr; }
+  /// Records that the map's counts changed in these cells (pruned modes: gains of scans
+  /// sharing a block with them must be recomputed).
+  void NoteMapChange(const Footprint& cells) {
+    if (active()) map_changes.push_back(cells);
+  }
+  /// Whether a map change since the last pruning round touches a scan with this footprint.
+  bool ChangedSinceLastRound(const Footprint& scan) const {
+    return std::any_of(map_changes.begin(), map_changes.end(),
+                       [&](const Footprint& change) { return scan.Shares(change); });
+  }
+};
+
+}  // namespace lifelong::slam

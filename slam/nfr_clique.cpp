@@ -20,7 +20,6 @@ namespace {
 using Eigen::Index;
 using Eigen::Matrix3d;
 using Eigen::MatrixXd;
-using Eigen::VectorXd;
 
 /// The diagonal shift chow-liu uses for a near-singular anchored information
 /// (marginalization.cpp), relative to the mean diagonal.
@@ -122,15 +121,16 @@ NfrFactors RecoverFactors(const std::vector<NodeId>& nodes, const Values& values
 Replacement NfrReplace(const PoseGraph& graph, const Values& values, NodeId k,
                        const SparsifierConfig& config, bool subgraph) {
   const bool within = config.blanket == BlanketPolicy::kBlanket;
-  const LocalSystem local = LinearizeClique(graph, values, k, within, false);
+  // Lambda_N exactly as chow-liu (Marginalize) computes it, so both see the same pair weights
+  // and take the same tree: rounding differences would break ties (M3500's equal edges make
+  // many) the other way and the two methods would drift apart removal by removal.
+  const LocalHessian local = LinearizeAround(graph, values, k, config.blanket);
   Replacement r;
   r.neighbours = local.neighbours;
   const std::vector<NodeId>& nodes = r.neighbours;
   if (nodes.size() < 2) return r;  // a leaf drops out
   r.absorb_edges_within = within;
-  MatrixXd lambda_N;
-  VectorXd g_N;
-  EliminateFirstBlock(local, &lambda_N, &g_N);
+  const MatrixXd lambda_N = SchurComplementFirstBlock(local.H);
   std::vector<std::pair<std::size_t, std::size_t>> candidates;
   std::size_t budget = 0;
   if (subgraph) {
@@ -154,7 +154,7 @@ Replacement NfrReplace(const PoseGraph& graph, const Values& values, NodeId k,
   r.edges = std::move(f.edges);
   r.regularized = f.regularized;
   r.kl_divergence = GaugeFixedKl(lambda_N, FactorsHessian(nodes, values, r.edges, {}));
-  if (config.keep_gradient) PreserveGradient(nodes, values, g_N, &r.edges, &r.cliques);
+  KeepGradientIfAsked(config, graph, values, k, within, false, &r);
   return r;
 }
 

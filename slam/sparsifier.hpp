@@ -10,8 +10,8 @@
 //   glc        GLC with the Chow-Liu tree taken in the root-shifted parametrization (glc.hpp)
 //   nfr-tree   NFR (Mazuran et al., IJRR 2016): relative-pose edges on the Chow-Liu tree with
 //              the KL-optimal informations (closed form; nfr.hpp)
-//   nfr-subgraph  NFR on the tree plus the pairs of N joined by edges before the removal
-//              (within an edge budget), informations by projected Newton (nfr.hpp)
+//   nfr-subgraph  NFR on the tree plus more pairs of N (joined by edges before the removal,
+//              or by mutual information; within an edge budget), by projected Newton (nfr.hpp)
 //
 // Means. Every factor is linearized at the current estimate x*. The wrapped methods take
 // their measurements from x* (zero residual), as the mapper does. With

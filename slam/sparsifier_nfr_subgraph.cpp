@@ -1,8 +1,9 @@
 // Sparsifier "nfr-subgraph": nonlinear factor recovery (Mazuran et al., IJRR 2016) on the
-// Chow-Liu tree plus the pairs of N that pose edges joined before the removal, at most
-// floor(SparsifierConfig::nfr_chord_ratio * (m - 1)) of them (the strongest by the chow-liu
-// pair weight), with the KL-optimal informations found by projected Newton from the tree's
-// closed form (nfr.hpp step 5). Its KL is never above nfr-tree's on the same clique.
+// Chow-Liu tree plus at most floor(SparsifierConfig::nfr_chord_ratio * (m - 1)) more pairs
+// (the strongest by the chow-liu pair weight among SparsifierConfig::nfr_chords: by default
+// the pairs of N that pose edges joined before the removal, or every pair), with the
+// KL-optimal informations found by projected Newton from the tree's closed form (nfr.hpp
+// step 5). Its local KL is never above nfr-tree's on the same clique.
 #include "slam/nfr.hpp"
 #include "slam/sparsifier.hpp"
 

@@ -22,6 +22,7 @@
 #include "sensor/input_error.hpp"
 #include "slam/mapper_config.hpp"
 #include "slam/optimizer.hpp"
+#include "slam/sparsifier.hpp"
 
 namespace {
 
@@ -203,12 +204,21 @@ int main(int argc, char** argv) {
       "sparsify", "remove nodes from an optimized pose graph and report the global KL divergence");
   sparsify->add_option("graph", sparsify_args.graph, "g2o or TORO file")->required();
   sparsify->add_option("-o,--out", sparsify_args.out, "write the sparsified graph (g2o)");
+  std::string sparsifier_names;  // the registry's, so a new method shows up by itself
+  for (const std::string& name : lifelong::slam::SparsifierNames()) {
+    sparsifier_names += (sparsifier_names.empty() ? "" : ", ") + name;
+  }
   sparsify->add_option("--method", sparsify_args.method,
-                       "naive, exact, chow-liu, glc-dense or glc (what replaces a clique)");
+                       "what replaces a clique: " + sparsifier_names);
   auto* keep_option = sparsify->add_option("--keep-share", sparsify_args.keep_share,
                                            "keep this share of the nodes, evenly by id");
   sparsify->add_option("--remove", sparsify_args.remove, "file of node ids to remove")
       ->excludes(keep_option);
+  sparsify
+      ->add_option("--nfr-chords", sparsify_args.nfr_chords,
+                   "nfr-subgraph's edges beyond the tree: joined (pairs joined by edges "
+                   "before the removal) or mi (the strongest pairs by mutual information)")
+      ->capture_default_str();
   sparsify->add_flag("--zero-residual", sparsify_args.zero_residual,
                      "new factors measure the optimum itself (drop the marginal's gradient)");
 

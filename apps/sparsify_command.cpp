@@ -70,6 +70,12 @@ void PrintNumber(std::ostream& out, const char* key, double v) {
 int Sparsify(const SparsifyArgs& args) {
   slam::SparsifierConfig config;
   config.keep_gradient = !args.zero_residual;
+  if (args.nfr_chords == "mi") {
+    config.nfr_chords = slam::NfrChords::kMutualInformation;
+  } else if (args.nfr_chords != "joined") {
+    throw InputError("--nfr-chords", 0, "",
+                     "unknown value '" + args.nfr_chords + "' (known: joined, mi)");
+  }
   const auto sparsifier = slam::MakeSparsifier(args.method, config);
   if (!sparsifier) {
     throw InputError(
@@ -114,7 +120,9 @@ int Sparsify(const SparsifyArgs& args) {
   PrintNumber(json, "kld_mean", kl.mean_term);
   PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
   json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
-       << ",\"gradient_kept\":" << (config.keep_gradient ? "true" : "false") << "}\n";
+       << ",\"gradient_kept\":" << (config.keep_gradient ? "true" : "false");
+  if (args.method == "nfr-subgraph") json << ",\"nfr_chords\":\"" << args.nfr_chords << '"';
+  json << "}\n";
   std::cout << json.str();
   return 0;
 }

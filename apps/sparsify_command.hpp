@@ -8,12 +8,13 @@
 namespace lifelong::apps {
 
 struct SparsifyArgs {
-  std::string graph;                 ///< g2o or TORO input
-  std::string out;                   ///< OUT.g2o; empty: write nothing
-  std::string method;                ///< a slam::SparsifierNames() entry
-  std::optional<double> keep_share;  ///< keep this share of the nodes, evenly by id
-  std::string remove;                ///< or: a file of node ids to remove
-  bool zero_residual = false;        ///< new factors' measurements at x* (no gradient kept)
+  std::string graph;                  ///< g2o or TORO input
+  std::string out;                    ///< OUT.g2o; empty: write nothing
+  std::string method;                 ///< a slam::SparsifierNames() entry
+  std::optional<double> keep_share;   ///< keep this share of the nodes, evenly by id
+  std::string remove;                 ///< or: a file of node ids to remove
+  bool zero_residual = false;         ///< new factors' measurements at x* (no gradient kept)
+  std::string nfr_chords = "joined";  ///< nfr-subgraph's extra pairs: joined | mi
 };
 
 /// Runs the protocol and prints one JSON object on stdout; throws InputError on bad input.

@@ -49,6 +49,9 @@ inline constexpr EnumName<RobustKernel> kKernels[] = {{"none", RobustKernel::kNo
 inline constexpr EnumName<LinearSolver> kSolvers[] = {{"auto", LinearSolver::kAuto},
                                                       {"simplicial", LinearSolver::kSimplicial},
                                                       {"supernodal", LinearSolver::kSupernodal}};
+inline constexpr EnumName<slam::NfrChords> kNfrChords[] = {
+    {"joined", slam::NfrChords::kJoined},
+    {"mutual_information", slam::NfrChords::kMutualInformation}};
 inline constexpr EnumName<slam::BlanketPolicy> kBlankets[] = {
     {"factors_at_node", slam::BlanketPolicy::kFactorsAtK},
     {"markov_blanket", slam::BlanketPolicy::kBlanket}};
@@ -162,6 +165,8 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Enum("blanket", c.pruning.blanket, kBlankets);
     s.Choice("policy", c.pruning.policy, slam::RemovalPolicyNames(), false);
     s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
+    s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
+    s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);
   });
   v.Section("grid", [&](auto& s) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);

@@ -10,6 +10,7 @@
 #include "slam/marginalization.hpp"
 #include "slam/optimizer.hpp"
 #include "slam/scan_matcher.hpp"
+#include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
 
@@ -21,6 +22,7 @@ enum class PruningMode : std::uint8_t {
   kExact,    ///< `pruned-exact`: the same removal, exact marginalization (dense cliques)
   kNaive,    ///< `pruned-naive`: delete and reconnect by composing constraints
   kGlc,      ///< `pruned-glc`: the same removal, sparse GLC factors (glc.hpp)
+  kNfr,      ///< `pruned-nfr`: the same removal, NFR on the tree and joined pairs (nfr.hpp)
 };
 
 /// Parses a mode's name (PruningModeNames); false when unknown.
@@ -112,6 +114,10 @@ struct PruningConfig {
   std::string policy = "information-gain";
   /// What replaces its clique (sparsifier.hpp); empty: the mode's (ModeSparsifier).
   std::string sparsifier;
+  /// nfr-subgraph: which pairs beyond the tree may get an edge, and how many per clique
+  /// (SparsifierConfig).
+  NfrChords nfr_chords = NfrChords::kJoined;
+  double nfr_chord_ratio = 1.0;
 };
 
 struct MapperConfig {

@@ -26,6 +26,8 @@ Mapper::State::State(const MapperConfig& c) : config(c), loop_state(c.loops.veri
       c.pruning.sparsifier.empty() ? ModeSparsifier(c.pruning.mode) : c.pruning.sparsifier;
   SparsifierConfig sc;
   sc.blanket = c.pruning.blanket;
+  sc.nfr_chords = c.pruning.nfr_chords;
+  sc.nfr_chord_ratio = c.pruning.nfr_chord_ratio;
   prune_state.sparsifier = MakeSparsifier(name, sc);
   if (!prune_state.sparsifier) throw std::invalid_argument("unknown sparsifier '" + name + "'");
 }

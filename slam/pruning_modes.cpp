@@ -16,7 +16,8 @@ constexpr ModeEntry kModes[] = {{"standard", PruningMode::kNone, ""},
                                 {"pruned", PruningMode::kChowLiu, "chow-liu"},
                                 {"pruned-exact", PruningMode::kExact, "exact"},
                                 {"pruned-naive", PruningMode::kNaive, "naive"},
-                                {"pruned-glc", PruningMode::kGlc, "glc"}};
+                                {"pruned-glc", PruningMode::kGlc, "glc"},
+                                {"pruned-nfr", PruningMode::kNfr, "nfr-subgraph"}};
 
 }  // namespace
 

@@ -28,7 +28,9 @@ constexpr Entry kRegistry[] = {{"naive", MakeNaiveSparsifier},
                                {"exact", MakeExactSparsifier},
                                {"chow-liu", MakeChowLiuSparsifier},
                                {"glc-dense", MakeGlcDenseSparsifier},
-                               {"glc", MakeGlcSparsifier}};
+                               {"glc", MakeGlcSparsifier},
+                               {"nfr-tree", MakeNfrTreeSparsifier},
+                               {"nfr-subgraph", MakeNfrSubgraphSparsifier}};
 
 constexpr double kMaxHeadingResidual = 3.0;  ///< rad, see PreserveGradient
 

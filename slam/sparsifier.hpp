@@ -8,6 +8,10 @@
 //   glc-dense  GLC (Carlevaris-Bianco, Kaess & Eustice, T-RO 2014): the exact marginal as one
 //              root-shifted linear factor, keeping only its informative directions (glc.hpp)
 //   glc        GLC with the Chow-Liu tree taken in the root-shifted parametrization (glc.hpp)
+//   nfr-tree   NFR (Mazuran et al., IJRR 2016): relative-pose edges on the Chow-Liu tree with
+//              the KL-optimal informations (closed form; nfr.hpp)
+//   nfr-subgraph  NFR on the tree plus more pairs of N (joined by edges before the removal,
+//              or by mutual information; within an edge budget), by projected Newton (nfr.hpp)
 //
 // Means. Every factor is linearized at the current estimate x*. The wrapped methods take
 // their measurements from x* (zero residual), as the mapper does. With
@@ -27,6 +31,12 @@
 
 namespace lifelong::slam {
 
+/// Candidate pairs for nfr-subgraph's edges beyond the Chow-Liu tree.
+enum class NfrChords {
+  kJoined,             ///< pairs of N joined by pose edges before the removal
+  kMutualInformation,  ///< every pair of N (Mazuran et al.'s code: the next pairs by weight)
+};
+
 struct SparsifierConfig {
   /// kBlanket: the factors among N (pose edges, and clique factors for glc) are folded into
   /// the clique's Gaussian and replaced too (chow-liu and glc only; the mapper's default).
@@ -35,6 +45,12 @@ struct SparsifierConfig {
   bool keep_gradient = false;
   /// GLC: eigenvalues below this fraction of the largest are dropped (informative directions).
   double eigen_tolerance = 1e-10;
+  /// nfr-subgraph: at most floor(nfr_chord_ratio * (m - 1)) edges beyond the tree per clique
+  /// of m nodes (1: at most 2 (m - 1) edges in all; 0: the tree alone).
+  double nfr_chord_ratio = 1.0;
+  /// nfr-subgraph: which pairs beyond the tree may get an edge (the strongest first by the
+  /// chow-liu pair weight).
+  NfrChords nfr_chords = NfrChords::kJoined;
 };
 
 /// What replaces node k: apply with ApplyReplacement.
@@ -128,5 +144,7 @@ std::unique_ptr<Sparsifier> MakeExactSparsifier(const SparsifierConfig& config);
 std::unique_ptr<Sparsifier> MakeChowLiuSparsifier(const SparsifierConfig& config);
 std::unique_ptr<Sparsifier> MakeGlcDenseSparsifier(const SparsifierConfig& config);
 std::unique_ptr<Sparsifier> MakeGlcSparsifier(const SparsifierConfig& config);
+std::unique_ptr<Sparsifier> MakeNfrTreeSparsifier(const SparsifierConfig& config);
+std::unique_ptr<Sparsifier> MakeNfrSubgraphSparsifier(const SparsifierConfig& config);
 
 }  // namespace lifelong::slam

@@ -25,8 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using lifelong::test::Lifelong;
-using lifelong::test::Result;
 using lifelong::test::Read;
+using lifelong::test::Result;
 const std::string kBin = LIFELONG_BIN;
 const std::string kSource = LIFELONG_SOURCE_DIR;
 const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";

@@ -70,7 +70,8 @@ fs::path Ring() {
 TEST(SparsifyCli, PrintsOneJsonObjectAndWritesTheKeptGraph) {
   const fs::path graph = Ring();
   const fs::path out = Temp("out.g2o");
-  for (const char* method : {"naive", "exact", "chow-liu", "glc-dense", "glc"}) {
+  for (const char* method :
+       {"naive", "exact", "chow-liu", "glc-dense", "glc", "nfr-tree", "nfr-subgraph"}) {
     fs::remove(out);
     const Result r = Lifelong("sparsify " + graph.string() + " --method " + method +
                               " --keep-share 0.5 -o " + out.string());
@@ -93,6 +94,49 @@ TEST(SparsifyCli, PrintsOneJsonObjectAndWritesTheKeptGraph) {
     while (std::getline(in, line)) vertices += line.rfind("VERTEX_SE2 ", 0) == 0 ? 1 : 0;
     EXPECT_EQ(vertices, 6) << method;
   }
+}
+
+TEST(SparsifyCli, NfrTreeIsNoWorseThanChowLiuAndTheSubgraphNoWorseThanTheTree) {
+  // NFR's tree informations are KL-optimal for the Chow-Liu tree, which chow-liu's exact pair
+  // conditionals already are (slam/nfr.hpp step 4): the two agree to rounding; the subgraph's
+  // extra edges (--nfr-chords mi: the ring's cliques are trees before each removal, so the
+  // joined pairs are all tree pairs) lower the KL.
+  const fs::path graph = Ring();
+  const auto run = [&](const std::string& method) {
+    const Result r =
+        Lifelong("sparsify " + graph.string() + " --method " + method + " --keep-share 0.5");
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto cl = run("chow-liu");
+  const auto tree = run("nfr-tree");
+  const auto joined = run("nfr-subgraph");
+  const auto mi = run("nfr-subgraph --nfr-chords mi");
+  EXPECT_EQ(tree["method"], "nfr-tree");
+  ASSERT_TRUE(tree["kld"].is_number());
+  ASSERT_TRUE(cl["kld"].is_number());
+  ASSERT_TRUE(mi["kld"].is_number());
+  const double kld = tree["kld"];
+  EXPECT_TRUE(std::isfinite(kld));
+  EXPECT_GT(kld, 1e-6);
+  EXPECT_LE(kld, cl["kld"].get<double>() * (1.0 + 1e-6) + 1e-9);
+  EXPECT_EQ(tree["edges"], cl["edges"]);
+  EXPECT_EQ(joined["nfr_chords"], "joined");
+  EXPECT_LE(joined["kld"].get<double>(), kld * (1.0 + 1e-6) + 1e-9);
+  EXPECT_EQ(mi["nfr_chords"], "mi");
+  EXPECT_LT(mi["kld"].get<double>(), kld);
+  EXPECT_GT(mi["edges"].get<int>(), tree["edges"].get<int>());
+  // The method list of --help and of the error for an unknown method come from the registry.
+  const Result help = Lifelong("sparsify --help");
+  EXPECT_NE(help.out.find("nfr-tree"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("nfr-subgraph"), std::string::npos) << help.out;
+  const Result bad = Lifelong("sparsify " + graph.string() + " --method nfr --keep-share 0.5");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("nfr-subgraph"), std::string::npos) << bad.err;
+  const Result chords = Lifelong("sparsify " + graph.string() +
+                                 " --method nfr-subgraph --nfr-chords all --keep-share 0.5");
+  EXPECT_EQ(chords.code, 2);
+  EXPECT_NE(chords.err.find("--nfr-chords"), std::string::npos) << chords.err;
 }
 
 TEST(SparsifyCli, BadInputExitsTwoNamingTheField) {

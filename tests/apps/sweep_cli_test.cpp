@@ -18,8 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using lifelong::test::Lifelong;
-using lifelong::test::Result;
 using lifelong::test::Read;
+using lifelong::test::Result;
 const std::string kSource = LIFELONG_SOURCE_DIR;
 
 fs::path Fresh(const std::string& name) {

@@ -102,6 +102,8 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.blanket, b.pruning.blanket);
   EXPECT_EQ(a.pruning.policy, b.pruning.policy);
   EXPECT_EQ(a.pruning.sparsifier, b.pruning.sparsifier);
+  EXPECT_EQ(a.pruning.nfr_chords, b.pruning.nfr_chords);
+  EXPECT_EQ(a.pruning.nfr_chord_ratio, b.pruning.nfr_chord_ratio);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
@@ -165,8 +167,17 @@ MapperConfig AllChanged() {
   l.inject_false_share = 0.05;
   l.inject_false_dx_m = 1.0;
   l.inject_false_dy_m = -2.5;
-  c.pruning = {slam::PruningMode::kNone,         -0.5,          4.5,  2, 300, 1.5,
-               slam::BlanketPolicy::kFactorsAtK, "node-budget", "glc"};
+  c.pruning = {slam::PruningMode::kNone,
+               -0.5,
+               4.5,
+               2,
+               300,
+               1.5,
+               slam::BlanketPolicy::kFactorsAtK,
+               "node-budget",
+               "glc",
+               slam::NfrChords::kMutualInformation,
+               0.5};
   c.grid = {0.1, 6.0, 9.5};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

@@ -196,13 +196,16 @@ TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {
   EXPECT_LT(per_node(*tight), per_node(*none));
 }
 
-TEST(Mapper, GlcModeStaysConnectedAndAccurate) {
-  const MapRun run = MapWith(PruningMode::kGlc);
-  EXPECT_GT(run.removed, 0u);
-  EXPECT_EQ(run.nodes + run.removed, static_cast<std::size_t>(run.observations));
-  EXPECT_TRUE(run.always_connected);
-  EXPECT_TRUE(run.anchor_kept);
-  EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
+TEST(Mapper, GlcAndNfrModesStayConnectedAndAccurate) {
+  for (const PruningMode mode : {PruningMode::kGlc, PruningMode::kNfr}) {
+    SCOPED_TRACE(PruningModeName(mode));
+    const MapRun run = MapWith(mode);
+    EXPECT_GT(run.removed, 0u);
+    EXPECT_EQ(run.nodes + run.removed, static_cast<std::size_t>(run.observations));
+    EXPECT_TRUE(run.always_connected);
+    EXPECT_TRUE(run.anchor_kept);
+    EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
+  }
 }
 
 // A config picks any removal policy with any sparsifier (DESIGN.md "Methods as parts").

@@ -53,8 +53,8 @@ PoseGraph NoisyStar(const Values& v, std::mt19937* rng) {
 }
 
 TEST(Sparsifier, RegistryNamesEveryMethod) {
-  EXPECT_EQ(SparsifierNames(),
-            (std::vector<std::string>{"naive", "exact", "chow-liu", "glc-dense", "glc"}));
+  EXPECT_EQ(SparsifierNames(), (std::vector<std::string>{"naive", "exact", "chow-liu", "glc-dense",
+                                                         "glc", "nfr-tree", "nfr-subgraph"}));
   for (const std::string& name : SparsifierNames()) {
     const auto s = MakeSparsifier(name);
     ASSERT_NE(s, nullptr) << name;
@@ -97,7 +97,8 @@ TEST(Sparsifier, KeepGradientKeepsTheHessianAndMatchesTheMarginalsGradient) {
   SparsifierConfig config;
   config.keep_gradient = true;
   for (const std::string& name : SparsifierNames()) {
-    const bool blanket = name == "chow-liu" || name == "glc" || name == "glc-dense";
+    const bool blanket = name == "chow-liu" || name == "glc" || name == "glc-dense" ||
+                         name == "nfr-tree" || name == "nfr-subgraph";
     const bool cliques = name == "glc" || name == "glc-dense";
     MatrixXd lambda_N;
     VectorXd g_N;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <queue>
 #include <utility>
 #include <vector>
@@ -25,8 +26,7 @@ Eigen::Matrix3d SafeInverse(const Eigen::Matrix3d& information) {
 }
 
 // Dense node indexing (ascending ids, the order of Values) and one covariance per directed
-// link. A clique factor contributes a link from its root to each member (the block of the
-// inverse information) and between members (the sum of their blocks).
+// link, from each edge and from the clique factors (grouped by root, below).
 struct DenseGraph {
   std::vector<NodeId> ids;
   std::vector<const Pose2*> poses;
@@ -48,23 +48,59 @@ DenseGraph BuildDense(const PoseGraph& graph, const Values& values) {
     g.links[static_cast<std::size_t>(a)].push_back({b, c});
     g.links[static_cast<std::size_t>(b)].push_back({a, c});
   }
+  // Clique factors are grouped by root before they become links: their informations are
+  // over the same root-relative errors y (pose_graph.hpp), and a sparse GLC (glc.hpp) is a
+  // tree of one marginal (an edge from the root) and conditionals whose informations are
+  // singular each; only their sum is definite. Inverted one by one, a conditional gives
+  // links of ~1e9 m^2 that the projection cannot pass (pruned-glc then found a third of
+  // pruned's loop candidates on Intel).
+  struct RootGroup {
+    std::vector<NodeId> members;  // nodes other than the root, ascending
+    std::vector<const CliqueFactor*> factors;
+  };
+  std::map<NodeId, RootGroup> groups;
   for (const CliqueFactor& f : graph.cliques()) {
-    const Eigen::Index n = f.information.rows();
-    const Eigen::MatrixXd sigma =
-        (f.information + 1e-9 * Eigen::MatrixXd::Identity(n, n)).inverse();
-    const std::size_t k = f.nodes.size() - 1;
-    std::vector<int> idx;
-    for (NodeId id : f.nodes) idx.push_back(g.IndexOf(id));
-    for (std::size_t j = 0; j < k; ++j) {
-      const Eigen::Index r = static_cast<Eigen::Index>(3 * j);  // block j at row 3j
-      const Eigen::Matrix3d c = sigma.block<3, 3>(r, r);
-      g.links[static_cast<std::size_t>(idx[0])].push_back({idx[j + 1], c});
-      g.links[static_cast<std::size_t>(idx[j + 1])].push_back({idx[0], c});
+    RootGroup& group = groups[f.nodes[0]];
+    group.members.insert(group.members.end(), f.nodes.begin() + 1, f.nodes.end());
+    group.factors.push_back(&f);
+  }
+  for (auto& [root, group] : groups) {
+    std::vector<NodeId>& members = group.members;
+    std::sort(members.begin(), members.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
+    const auto at = [&](NodeId id) {
+      return 3 * static_cast<Eigen::Index>(std::lower_bound(members.begin(), members.end(), id) -
+                                           members.begin());
+    };
+    const Eigen::Index n = 3 * static_cast<Eigen::Index>(members.size());
+    Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
+    for (const CliqueFactor* f : group.factors) {
+      for (std::size_t i = 1; i < f->nodes.size(); ++i) {
+        for (std::size_t j = 1; j < f->nodes.size(); ++j) {
+          information.block<3, 3>(at(f->nodes[i]), at(f->nodes[j])) += f->information.block<3, 3>(
+              3 * static_cast<Eigen::Index>(i - 1), 3 * static_cast<Eigen::Index>(j - 1));
+        }
+      }
+    }
+    // Edges from the root to a member inform that member's y directly (GLC's tree marginal).
+    for (const PoseEdge& e : graph.edges()) {
+      if (e.from == root && std::binary_search(members.begin(), members.end(), e.to)) {
+        information.block<3, 3>(at(e.to), at(e.to)) += e.information;
+      }
+    }
+    // The root to each member: the block of the inverse; members pairwise: their sum.
+    const Eigen::MatrixXd sigma = (information + 1e-9 * Eigen::MatrixXd::Identity(n, n)).inverse();
+    const int r = g.IndexOf(root);
+    for (std::size_t j = 0; j < members.size(); ++j) {
+      const int m = g.IndexOf(members[j]);
+      const Eigen::Matrix3d c = sigma.block<3, 3>(at(members[j]), at(members[j]));
+      g.links[static_cast<std::size_t>(r)].push_back({m, c});
+      g.links[static_cast<std::size_t>(m)].push_back({r, c});
       for (std::size_t i = 0; i < j; ++i) {
-        const Eigen::Index q = static_cast<Eigen::Index>(3 * i);
-        const Eigen::Matrix3d cij = c + sigma.block<3, 3>(q, q);
-        g.links[static_cast<std::size_t>(idx[i + 1])].push_back({idx[j + 1], cij});
-        g.links[static_cast<std::size_t>(idx[j + 1])].push_back({idx[i + 1], cij});
+        const int mi = g.IndexOf(members[i]);
+        const Eigen::Matrix3d cij = c + sigma.block<3, 3>(at(members[i]), at(members[i]));
+        g.links[static_cast<std::size_t>(mi)].push_back({m, cij});
+        g.links[static_cast<std::size_t>(m)].push_back({mi, cij});
       }
     }
   }

@@ -40,6 +40,32 @@ TEST(ProjectCovariances, TranslationOnlyNoiseAddsUp) {
   EXPECT_NEAR(proj.at(2).path_length_m, 2.0, 1e-12);
 }
 
+// A sparse GLC tree over {0, 1, 2} (glc.hpp): the marginal of y_1 as an edge 0 -> 1 and the
+// conditional of y_2 given y_1 as a clique factor, singular on its own. Together they are
+// definite, and the projection must reach node 2 through them with y_2's marginal
+// covariance (factor by factor it saw ~1e9 m^2 and stopped there).
+TEST(ProjectCovariances, PassesThroughASparseGlcTree) {
+  PoseGraph g;
+  Values v;
+  AddNodesAlongX(3, &g, &v);
+  g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 0.1, 0.01));  // Sigma_1 = diag(0.01, 0.01, 1e-4)
+  CliqueFactor f;
+  f.nodes = {0, 1, 2};
+  f.T_root_node = {Pose2(1, 0, 0), Pose2(2, 0, 0)};
+  Eigen::MatrixXd H(3, 6);
+  H << -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity();  // y_2 = y_1 + w
+  const Eigen::Matrix3d omega = Eigen::Vector3d(100.0, 100.0, 1e4).asDiagonal();
+  f.information = H.transpose() * omega * H;  // rank 3 of 6
+  g.AddClique(f);
+  ProjectionConfig config;
+  config.max_position_sigma_m = 5.0;
+  const auto proj = ProjectCovariances(g, v, 0, config);
+  ASSERT_EQ(proj.count(2), 1u);
+  // y_2's marginal: Sigma_1 + Omega^-1 = 0.01 + 0.01 per position axis.
+  EXPECT_NEAR(proj.at(2).covariance(0, 0), 0.02, 1e-6);
+  EXPECT_LT(proj.at(2).covariance(1, 1), 0.03);
+}
+
 // Heading noise at node 1 swings node 2 sideways by lever arm 1 m: var_y += sigma_th^2.
 TEST(ProjectCovariances, HeadingNoiseGrowsLateralUncertainty) {
   PoseGraph g;

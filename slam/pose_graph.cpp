@@ -7,7 +7,8 @@
 namespace lifelong::slam {
 
 void PoseGraph::AddNode(NodeId id) {
-  if (!adjacency_.emplace(id, std::set<NodeId>{}).second) {
+  if (!adjacency_.emplace(id, std::set<NodeId>{}).second ||
+      !link_count_.emplace(id, std::map<NodeId, int>{}).second) {
     throw std::logic_error("PoseGraph::AddNode: duplicate node id " + std::to_string(id));
   }
 }
@@ -18,8 +19,7 @@ std::size_t PoseGraph::AddEdge(const PoseEdge& edge) {
                            " -> " + std::to_string(edge.to));
   }
   edges_.push_back(edge);
-  adjacency_[edge.from].insert(edge.to);
-  adjacency_[edge.to].insert(edge.from);
+  Link(edge.from, edge.to);
   return edges_.size() - 1;
 }
 
@@ -34,31 +34,32 @@ std::size_t PoseGraph::AddClique(const CliqueFactor& clique) {
     if (!HasNode(n)) throw std::logic_error("PoseGraph::AddClique: unknown node");
   }
   cliques_.push_back(clique);
-  for (NodeId a : clique.nodes) {
-    for (NodeId b : clique.nodes) {
-      if (a != b) adjacency_[a].insert(b);
-    }
-  }
+  LinkFactor(clique.nodes, true);
   return cliques_.size() - 1;
 }
 
 void PoseGraph::RemoveNode(NodeId id) {
   if (!HasNode(id)) throw std::logic_error("PoseGraph::RemoveNode: unknown node");
-  std::vector<PoseEdge> kept_edges;
-  kept_edges.reserve(edges_.size());
-  for (const PoseEdge& e : edges_) {
-    if (e.from != id && e.to != id) kept_edges.push_back(e);
-  }
-  edges_.swap(kept_edges);
-  std::vector<CliqueFactor> kept_cliques;
-  for (const CliqueFactor& c : cliques_) {
-    bool touches = false;
-    for (NodeId n : c.nodes) touches = touches || n == id;
-    if (!touches) kept_cliques.push_back(c);
-  }
-  cliques_.swap(kept_cliques);
+  // In place and order-preserving: indices of the factors that stay keep their order.
+  edges_.erase(std::remove_if(edges_.begin(), edges_.end(),
+                              [&](const PoseEdge& e) {
+                                if (e.from != id && e.to != id) return false;
+                                Unlink(e.from, e.to);
+                                return true;
+                              }),
+               edges_.end());
+  cliques_.erase(
+      std::remove_if(cliques_.begin(), cliques_.end(),
+                     [&](const CliqueFactor& c) {
+                       if (std::find(c.nodes.begin(), c.nodes.end(), id) == c.nodes.end()) {
+                         return false;
+                       }
+                       LinkFactor(c.nodes, false);
+                       return true;
+                     }),
+      cliques_.end());
   adjacency_.erase(id);
-  RebuildAdjacency();
+  link_count_.erase(id);
 }
 
 std::vector<PoseEdge> PoseGraph::EdgesWithin(const std::vector<NodeId>& nodes) const {
@@ -73,9 +74,12 @@ std::vector<PoseEdge> PoseGraph::EdgesWithin(const std::vector<NodeId>& nodes) c
 void PoseGraph::RemoveEdgesWithin(const std::vector<NodeId>& nodes) {
   auto in = [&](NodeId n) { return std::binary_search(nodes.begin(), nodes.end(), n); };
   edges_.erase(std::remove_if(edges_.begin(), edges_.end(),
-                              [&](const PoseEdge& e) { return in(e.from) && in(e.to); }),
+                              [&](const PoseEdge& e) {
+                                if (!in(e.from) || !in(e.to)) return false;
+                                Unlink(e.from, e.to);
+                                return true;
+                              }),
                edges_.end());
-  RebuildAdjacency();
 }
 
 namespace {
@@ -95,21 +99,42 @@ std::vector<CliqueFactor> PoseGraph::CliquesWithin(const std::vector<NodeId>& no
 
 void PoseGraph::RemoveCliquesWithin(const std::vector<NodeId>& nodes) {
   cliques_.erase(std::remove_if(cliques_.begin(), cliques_.end(),
-                                [&](const CliqueFactor& c) { return CliqueWithin(c, nodes); }),
+                                [&](const CliqueFactor& c) {
+                                  if (!CliqueWithin(c, nodes)) return false;
+                                  LinkFactor(c.nodes, false);
+                                  return true;
+                                }),
                  cliques_.end());
-  RebuildAdjacency();
 }
 
-void PoseGraph::RebuildAdjacency() {
-  for (auto& [node, neighbours] : adjacency_) neighbours.clear();
-  for (const PoseEdge& e : edges_) {
-    adjacency_[e.from].insert(e.to);
-    adjacency_[e.to].insert(e.from);
-  }
-  for (const CliqueFactor& c : cliques_) {
-    for (NodeId a : c.nodes) {
-      for (NodeId b : c.nodes) {
-        if (a != b) adjacency_[a].insert(b);
+void PoseGraph::Link(NodeId a, NodeId b) {
+  if (link_count_[a][b]++ == 0) adjacency_[a].insert(b);
+  if (link_count_[b][a]++ == 0) adjacency_[b].insert(a);
+}
+
+void PoseGraph::Unlink(NodeId a, NodeId b) {
+  const auto drop = [this](NodeId from, NodeId to) {
+    auto row = link_count_.find(from);
+    if (row == link_count_.end()) return;  // `from` is being removed
+    auto it = row->second.find(to);
+    assert(it != row->second.end() && it->second > 0);
+    if (--it->second == 0) {
+      row->second.erase(it);
+      adjacency_[from].erase(to);
+    }
+  };
+  drop(a, b);
+  drop(b, a);
+}
+
+void PoseGraph::LinkFactor(const std::vector<NodeId>& nodes, bool link) {
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    for (std::size_t j = i + 1; j < nodes.size(); ++j) {
+      if (nodes[i] == nodes[j]) continue;
+      if (link) {
+        Link(nodes[i], nodes[j]);
+      } else {
+        Unlink(nodes[i], nodes[j]);
       }
     }
   }
@@ -170,7 +195,8 @@ std::size_t PoseGraph::Bytes() const {
   }
   for (const auto& [id, neighbours] : adjacency_) {
     // A std::map / std::set node is roughly three pointers, a colour and the payload.
-    bytes += 48 + sizeof(NodeId) + neighbours.size() * (40 + sizeof(NodeId));
+    // ... and the pair's factor count beside it.
+    bytes += 2 * (48 + sizeof(NodeId) + neighbours.size() * (40 + 2 * sizeof(NodeId)));
   }
   return bytes;
 }

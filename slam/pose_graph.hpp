@@ -81,8 +81,13 @@ class PoseGraph {
   std::size_t Bytes() const;
 
  private:
-  void RebuildAdjacency();
+  /// Counts one more (or one fewer) factor joining a and b, both ways; adjacency_ holds
+  /// the pairs whose count is positive. Keeps removals local: O(factor size x log n).
+  void Link(NodeId a, NodeId b);
+  void Unlink(NodeId a, NodeId b);
+  void LinkFactor(const std::vector<NodeId>& nodes, bool link);
   std::map<NodeId, std::set<NodeId>> adjacency_;
+  std::map<NodeId, std::map<NodeId, int>> link_count_;  ///< factors joining each pair
   std::vector<PoseEdge> edges_;
   std::vector<CliqueFactor> cliques_;
 };

@@ -1,5 +1,7 @@
 #include "slam/pose_graph.hpp"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 namespace lifelong::slam {
@@ -69,6 +71,54 @@ TEST(PoseGraph, RemoveNodeDropsItsFactorsAndAdjacency) {
   EXPECT_DOUBLE_EQ(g.Gamma(), 1.0 / 3.0);
   EXPECT_THROW(g.RemoveNode(1), std::logic_error);
   EXPECT_THROW(g.Neighbours(1), std::logic_error);
+}
+
+// Adjacency is kept by counting the factors that join each pair; after any sequence of
+// removals it must equal the adjacency rebuilt from the factors that remain (a pair joined
+// by an edge and a clique stays joined while either remains).
+TEST(PoseGraph, AdjacencyStaysEqualToTheFactorsThroughRemovals) {
+  PoseGraph g;
+  for (NodeId id = 0; id < 12; ++id) g.AddNode(id);
+  for (NodeId id = 0; id + 1 < 12; ++id) g.AddEdge(Edge(id, id + 1));
+  g.AddEdge(Edge(0, 5));
+  g.AddEdge(Edge(0, 5));  // a duplicate pair
+  g.AddEdge(Edge(3, 9));
+  g.AddClique(Clique({2, 3, 7}));
+  g.AddClique(Clique({3, 7, 10, 11}));
+  const auto rebuilt = [&g](NodeId id) {
+    std::set<NodeId> out;
+    for (const PoseEdge& e : g.edges()) {
+      if (e.from == id) out.insert(e.to);
+      if (e.to == id) out.insert(e.from);
+    }
+    for (const CliqueFactor& c : g.cliques()) {
+      if (std::find(c.nodes.begin(), c.nodes.end(), id) == c.nodes.end()) continue;
+      for (NodeId n : c.nodes) {
+        if (n != id) out.insert(n);
+      }
+    }
+    return out;
+  };
+  const auto check = [&] {
+    for (NodeId id : g.NodeIds()) EXPECT_EQ(g.Neighbours(id), rebuilt(id)) << "node " << id;
+  };
+  check();
+  g.RemoveEdgesWithin({0, 5});  // both duplicates go
+  EXPECT_FALSE(g.Neighbours(0).count(5));
+  check();
+  g.RemoveEdgesWithin({3, 7});  // no edge there: 3-7 stays joined by the cliques
+  EXPECT_TRUE(g.Neighbours(3).count(7));
+  g.RemoveCliquesWithin({2, 3, 7});
+  EXPECT_TRUE(g.Neighbours(3).count(7));  // still in {3, 7, 10, 11}
+  check();
+  for (NodeId id : {4, 10, 3, 8}) {
+    g.RemoveNode(id);
+    check();
+  }
+  std::vector<NodeId> from;  // 0-1 1-2 5-6 6-7, in the order they were added
+  for (const PoseEdge& e : g.edges()) from.push_back(e.from);
+  EXPECT_EQ(from, (std::vector<NodeId>{0, 1, 5, 6}));
+  EXPECT_TRUE(g.cliques().empty());
 }
 
 TEST(PoseGraph, RejectsInconsistentClique) {

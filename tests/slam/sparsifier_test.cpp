@@ -127,5 +127,47 @@ TEST(Sparsifier, KeepGradientKeepsTheHessianAndMatchesTheMarginalsGradient) {
   }
 }
 
+// A measurement carries a heading residual inside (-pi, pi] only. When the gradient asks
+// for a target past it (here e_theta = 2.9 rad plus 0.4 rad of displacement), that part of
+// the gradient is given up and the factor keeps its own gradient. Judging the displacement
+// alone (0.4 rad) let the target wrap to -2.98 rad: a gradient neither kept nor the old one.
+TEST(Sparsifier, KeepGradientNeverWrapsAHeadingResidual) {
+  const Values v{{0, Pose2()}, {1, Pose2(1.0, 0.0, 0.0)}};
+  PoseEdge edge;
+  edge.from = 0;
+  edge.to = 1;
+  edge.T_from_to = Pose2(1.0, 0.0, -2.9);
+  const Eigen::Vector3d e = RelativeError(v.at(0), v.at(1), edge.T_from_to);
+  ASSERT_NEAR(e.z(), 2.9, 1e-12);
+  Eigen::Matrix3d J0, J1;
+  RelativeErrorJacobians(v.at(0), v.at(1), edge.T_from_to, &J0, &J1);
+  MatrixXd J(3, 6);
+  J << J0, J1;
+  const VectorXd own = J.transpose() * e;  // information I
+  VectorXd z = VectorXd::Zero(6);
+  z(5) = 0.4;  // node 1's heading
+  const VectorXd asked = J.transpose() * (e + J * z);
+  std::vector<PoseEdge> edges{edge};
+  std::vector<CliqueFactor> cliques;
+  PreserveGradient({0, 1}, v, asked, &edges, &cliques);
+  ASSERT_EQ(edges.size(), 1u);
+  const Eigen::Vector3d after = RelativeError(v.at(0), v.at(1), edges[0].T_from_to);
+  Eigen::Matrix3d K0, K1;
+  RelativeErrorJacobians(v.at(0), v.at(1), edges[0].T_from_to, &K0, &K1);
+  MatrixXd K(3, 6);
+  K << K0, K1;
+  const VectorXd grad = K.transpose() * (edges[0].information * after);
+  EXPECT_TRUE(grad.isApprox(own, 1e-9)) << grad.transpose() << "\n" << own.transpose();
+  // A step the measurement can carry is still kept whole.
+  z(5) = -0.4;
+  const VectorXd reachable = J.transpose() * (e + J * z);
+  edges = {edge};
+  PreserveGradient({0, 1}, v, reachable, &edges, &cliques);
+  RelativeErrorJacobians(v.at(0), v.at(1), edges[0].T_from_to, &K0, &K1);
+  K << K0, K1;
+  const Eigen::Vector3d moved = RelativeError(v.at(0), v.at(1), edges[0].T_from_to);
+  EXPECT_TRUE((K.transpose() * (edges[0].information * moved)).isApprox(reachable, 1e-9));
+}
+
 }  // namespace
 }  // namespace lifelong::slam

@@ -73,6 +73,7 @@ void VisitMatcher(V& v, slam::MatcherConfig& m, bool with_windows) {
   v.Number("ambiguity_angle_rad", m.ambiguity_angle_rad, kNonNegative);
   v.Number("floor_sigma_m", m.floor_sigma_m, kNonNegative);
   v.Number("floor_sigma_rad", m.floor_sigma_rad, kNonNegative);
+  v.Bool("refine", m.refine);
 }
 
 template <class V>

@@ -69,6 +69,46 @@ float ReferenceGrid::LogLikelihood(int x, int y) const {
   return Contains(x, y) ? log_fine_[Index(x, y)] : kLogFloor;
 }
 
+namespace {
+/// Catmull-Rom weights (cubic convolution, a = -0.5) of the samples at -1, 0, 1, 2 for t in
+/// [0, 1), and their derivatives: C1 between samples, exact on quadratics.
+void CubicWeights(double t, double w[4], double dw[4]) {
+  const double t2 = t * t, t3 = t2 * t;
+  w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+  w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+  w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+  w[3] = 0.5 * (t3 - t2);
+  dw[0] = 0.5 * (-3.0 * t2 + 4.0 * t - 1.0);
+  dw[1] = 0.5 * (9.0 * t2 - 10.0 * t);
+  dw[2] = 0.5 * (-9.0 * t2 + 8.0 * t + 1.0);
+  dw[3] = 0.5 * (3.0 * t2 - 2.0 * t);
+}
+}  // namespace
+
+double ReferenceGrid::Interpolate(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const {
+  // Cell (i, j) holds v at its centre, origin + (i + 0.5, j + 0.5) r; bicubic (Catmull-Rom)
+  // over the 4 x 4 centres around p, as Cartographer's Ceres matcher interpolates its grid.
+  const Eigen::Vector2d u = (p - origin_m_) / resolution_m_ - Eigen::Vector2d::Constant(0.5);
+  const int i = static_cast<int>(std::floor(u.x())), j = static_cast<int>(std::floor(u.y()));
+  double wx[4], dwx[4], wy[4], dwy[4];
+  CubicWeights(u.x() - i, wx, dwx);
+  CubicWeights(u.y() - j, wy, dwy);
+  double v = 0.0, gx = 0.0, gy = 0.0;
+  for (int b = 0; b < 4; ++b) {
+    double row = 0.0, drow = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      const double s = Likelihood(i - 1 + a, j - 1 + b);
+      row += wx[a] * s;
+      drow += dwx[a] * s;
+    }
+    v += wy[b] * row;
+    gx += wy[b] * drow;
+    gy += dwy[b] * row;
+  }
+  if (gradient != nullptr) *gradient = Eigen::Vector2d(gx, gy) / resolution_m_;
+  return v;
+}
+
 Eigen::Vector2i ReferenceGrid::CellOf(const Eigen::Vector2d& p) const {
   const Eigen::Vector2d c = (p - origin_m_) / resolution_m_;
   return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};

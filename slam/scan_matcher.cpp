@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 
+#include "slam/scan_refiner.hpp"
+
 namespace lifelong::slam {
 
 namespace {
@@ -278,6 +280,10 @@ MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& 
   result.T_ref_cur =
       Pose2(T_ref_cur_guess.x + best.i * l.res_m, T_ref_cur_guess.y + best.j * l.res_m,
             T_ref_cur_guess.theta + best.k * l.step_rad);
+  if (config.refine) {
+    result.T_ref_cur =
+        RefinePose(ref, points_in_cur, result.T_ref_cur, l.res_m, l.step_rad).T_ref_cur;
+  }
   result.score = best.score;
   result.ok = best.score >= config.min_score;
   result.ambiguity = best.score > 0.0 ? rival.score / best.score : 0.0;

@@ -38,6 +38,9 @@ struct MatcherConfig {
   double ambiguity_angle_rad = 0.2;  ///< rad, ...or at least this far in heading
   double floor_sigma_m = 0.01;       ///< m, added in quadrature to the x and y sigmas
   double floor_sigma_rad = 0.005;    ///< rad, added in quadrature to the heading sigma
+  /// Refine the lattice winner off the lattice (scan_refiner.hpp): within one translation
+  /// cell and one angular step, by damped ascent on the bicubically interpolated field.
+  bool refine = false;
 };
 
 /// Likelihood field of a reference point set, in the reference frame (steps 1 and 2).
@@ -62,6 +65,9 @@ class ReferenceGrid {
   float Likelihood(int x, int y) const { return Contains(x, y) ? levels_[0][Index(x, y)] : 0.0f; }
   /// ln v, floored; the floor outside the table.
   float LogLikelihood(int x, int y) const;
+  /// v at a reference-frame point, bicubic (Catmull-Rom) between the cell centres (0 outside the
+  /// table), with its gradient in 1/m when `gradient` is not null.
+  double Interpolate(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const;
   /// Number of tables: level 0 is Likelihood, level l the max over 2^l x 2^l cells.
   int num_levels() const { return num_levels_; }
   /// Max of Likelihood over [x, x + 2^level) x [y, y + 2^level); 0 outside the table.

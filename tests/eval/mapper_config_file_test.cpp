@@ -23,6 +23,7 @@ void ExpectSameMatcher(const slam::MatcherConfig& a, const slam::MatcherConfig& 
   EXPECT_EQ(a.ambiguity_angle_rad, b.ambiguity_angle_rad);
   EXPECT_EQ(a.floor_sigma_m, b.floor_sigma_m);
   EXPECT_EQ(a.floor_sigma_rad, b.floor_sigma_rad);
+  EXPECT_EQ(a.refine, b.refine);
 }
 
 void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingConfig& b) {
@@ -126,6 +127,7 @@ void ChangeMatcher(slam::MatcherConfig* m, bool windows) {
   m->ambiguity_angle_rad = 0.3;
   m->floor_sigma_m = 0.02;
   m->floor_sigma_rad = 0.004;
+  m->refine = !m->refine;
 }
 
 /// A valid config that differs from the defaults in every setting the file holds.

@@ -5,12 +5,13 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "slam/dense_lapack.hpp"
 #include "slam/se2.hpp"
 
 namespace lifelong::slam {
@@ -81,14 +82,14 @@ void AddGraph(const PoseGraph& graph, const Values& x, SplitHessian* h) {
   }
 }
 
-/// Lambda_p = H_KK - H_RK^T H_RR^-1 H_RK, in column chunks to bound memory.
-MatrixXd ExactMarginal(const SplitHessian& h, Index removed_rows) {
-  MatrixXd lambda = h.kk;
+/// Lambda_p = H_KK - H_RK^T H_RR^-1 H_RK, in column chunks to bound memory; takes h->kk.
+MatrixXd ExactMarginal(SplitHessian* h, Index removed_rows) {
+  MatrixXd lambda = std::move(h->kk);
   if (removed_rows == 0) return lambda;
   const Index d = lambda.rows();
   Eigen::SparseMatrix<double> rr(removed_rows, removed_rows), rk(removed_rows, d);
-  rr.setFromTriplets(h.rr.begin(), h.rr.end());
-  rk.setFromTriplets(h.rk.begin(), h.rk.end());
+  rr.setFromTriplets(h->rr.begin(), h->rr.end());
+  rk.setFromTriplets(h->rk.begin(), h->rk.end());
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt(rr);
   if (llt.info() != Eigen::Success) {
     throw std::runtime_error("GlobalKlDivergence: removed nodes not tied to the kept ones");
@@ -99,7 +100,7 @@ MatrixXd ExactMarginal(const SplitHessian& h, Index removed_rows) {
     const MatrixXd x = llt.solve(MatrixXd(rk.middleCols(c0, w)));
     lambda.middleCols(c0, w) -= rk.transpose() * x;
   }
-  return 0.5 * (lambda + lambda.transpose());
+  return lambda;  // CholeskyInPlace reads its lower triangle only
 }
 
 double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
@@ -148,22 +149,22 @@ GlobalKl GlobalKlDivergence(const PoseGraph& full, const Values& full_optimum,
   }
   out.rms_offset_m = std::sqrt(sum_sq / static_cast<double>(kept.size()));
   if (kept_rows == 0) return out;
-  const MatrixXd lambda_p = ExactMarginal(hp, removed_rows);
-  const MatrixXd& lambda_q = hq.kk;
-  Eigen::LLT<MatrixXd> lp(lambda_p), lq(lambda_q);
-  if (lp.info() != Eigen::Success) {
+  // In place, two d x d matrices at a time (dense_lapack.hpp): L_p, L_q, then L_p^-1 L_q.
+  MatrixXd lp = ExactMarginal(&hp, removed_rows);
+  MatrixXd lq = std::move(hq.kk);
+  out.mean_term = 0.5 * delta.dot(lq.selfadjointView<Eigen::Lower>() * delta);
+  if (!CholeskyInPlace(&lp)) {
     throw std::runtime_error("GlobalKlDivergence: the full graph's marginal is singular");
   }
-  out.mean_term = 0.5 * delta.dot(lambda_q * delta);
-  if (lq.info() != Eigen::Success) {
+  if (!CholeskyInPlace(&lq)) {
     out.kl = std::numeric_limits<double>::infinity();
     return out;
   }
-  const double logdet_p = 2.0 * lp.matrixLLT().diagonal().array().log().sum();
-  const double logdet_q = 2.0 * lq.matrixLLT().diagonal().array().log().sum();
+  const double logdet_p = 2.0 * lp.diagonal().array().log().sum();
+  const double logdet_q = 2.0 * lq.diagonal().array().log().sum();
   // tr(Lambda_q Lambda_p^-1) = |L_p^-1 L_q|_F^2 with Lambda = L L^T.
-  const MatrixXd w = lp.matrixL().solve(MatrixXd(lq.matrixL()));
-  const double trace = w.squaredNorm();
+  SolveLowerInPlace(lp, &lq);
+  const double trace = lq.squaredNorm();
   out.kl = 0.5 * (trace - static_cast<double>(kept_rows) + logdet_p - logdet_q) + out.mean_term;
   return out;
 }

@@ -1,0 +1,37 @@
+#include "slam/dense_lapack.hpp"
+
+#include <stdexcept>
+
+extern "C" {
+// Fortran LAPACK / BLAS (column-major, every argument by pointer, string lengths appended).
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info,
+             std::size_t uplo_len);
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
+            const int* n, const double* alpha, const double* a, const int* lda, double* b,
+            const int* ldb, std::size_t side_len, std::size_t uplo_len, std::size_t transa_len,
+            std::size_t diag_len);
+}
+
+namespace lifelong::slam {
+
+bool CholeskyInPlace(Eigen::MatrixXd* a) {
+  if (a->rows() != a->cols()) throw std::invalid_argument("CholeskyInPlace: not square");
+  const int n = static_cast<int>(a->rows());
+  if (n == 0) return true;
+  int info = 0;
+  dpotrf_("L", &n, a->data(), &n, &info, 1);
+  a->triangularView<Eigen::StrictlyUpper>().setZero();
+  return info == 0;
+}
+
+void SolveLowerInPlace(const Eigen::MatrixXd& L, Eigen::MatrixXd* b) {
+  if (L.rows() != L.cols() || b->rows() != L.rows()) {
+    throw std::invalid_argument("SolveLowerInPlace: sizes differ");
+  }
+  const int m = static_cast<int>(b->rows()), n = static_cast<int>(b->cols());
+  if (m == 0 || n == 0) return;
+  const double one = 1.0;
+  dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, b->data(), &m, 1, 1, 1, 1);
+}
+
+}  // namespace lifelong::slam

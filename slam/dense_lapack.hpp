@@ -1,0 +1,17 @@
+// The two dense kernels the global KL divergence needs at the size of a whole kept graph
+// (d = 3 x thousands), done by LAPACK / BLAS (OpenBLAS at run time, install-deps.sh) in place:
+// Eigen's own kernels took ~13 min and 12 GB for city10000 at keep share 0.5 (d = 15 000).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace lifelong::slam {
+
+/// a = L L^T (dpotrf): `a`'s lower triangle becomes L and its upper triangle is zeroed.
+/// Only the lower triangle of `a` is read. False if `a` is not positive definite.
+bool CholeskyInPlace(Eigen::MatrixXd* a);
+
+/// b = L^-1 b for lower-triangular L (dtrsm), in place.
+void SolveLowerInPlace(const Eigen::MatrixXd& L, Eigen::MatrixXd* b);
+
+}  // namespace lifelong::slam

@@ -40,7 +40,7 @@ struct MatcherConfig {
   double floor_sigma_rad = 0.005;    ///< rad, added in quadrature to the heading sigma
   /// Refine the lattice winner off the lattice (scan_refiner.hpp): within one translation
   /// cell and one angular step, by damped ascent on the bicubically interpolated field.
-  bool refine = false;
+  bool refine = true;
 };
 
 /// Likelihood field of a reference point set, in the reference frame (steps 1 and 2).

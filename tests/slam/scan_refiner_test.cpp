@@ -24,6 +24,7 @@ TEST(ScanRefiner, MovesLatticeMatchesCloserToTheTruth) {
   const Pose2 pose_a(3.0, 2.5, 0.2);
   const LaserScan a = testing::SimulateScan(room, pose_a);
   MatcherConfig lattice;
+  lattice.refine = false;
   MatcherConfig refined = lattice;
   refined.refine = true;
   const ReferenceGrid ref(ScanToPoints(a, 0.03), lattice);

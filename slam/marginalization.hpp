@@ -111,6 +111,11 @@ void AddEdgeHessian(const PoseEdge& edge, const Values& values, const std::vecto
 /// Adds J^T Lambda J of the stacked root-relative errors of `clique` (pose_graph.hpp).
 void AddCliqueHessian(const CliqueFactor& clique, const Values& values,
                       const std::vector<NodeId>& index, Eigen::MatrixXd* H);
+/// AddCliqueHessian, and J^T Lambda e into g when g is not null (e: the clique's stacked
+/// errors at `values`). J is block-sparse (block row j: the root's and node j's Jacobians),
+/// so this takes O(k^2) for k + 1 nodes, not the O(k^3) of a dense J^T Lambda J.
+void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
+                         const std::vector<NodeId>& index, Eigen::MatrixXd* H, Eigen::VectorXd* g);
 
 /// Step 2: eliminates the first 3x3 block: H_NN - H_Nk H_kk^-1 H_kN, symmetrized.
 Eigen::MatrixXd SchurComplementFirstBlock(const Eigen::MatrixXd& H);

@@ -221,6 +221,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   sparsify->add_flag("--zero-residual", sparsify_args.zero_residual,
                      "new factors measure the optimum itself (drop the marginal's gradient)");
+  sparsify->add_flag("--no-blanket", sparsify_args.no_blanket,
+                     "chow-liu, glc, glc-dense, nfr-*: replace only the factors at the removed "
+                     "node and keep those among its neighbours as they are");
 
   if (const auto unknown = UnknownCommand(argc, argv, app)) {
     std::cerr

@@ -70,6 +70,7 @@ void PrintNumber(std::ostream& out, const char* key, double v) {
 int Sparsify(const SparsifyArgs& args) {
   slam::SparsifierConfig config;
   config.keep_gradient = !args.zero_residual;
+  if (args.no_blanket) config.blanket = slam::BlanketPolicy::kFactorsAtK;
   if (args.nfr_chords == "mi") {
     config.nfr_chords = slam::NfrChords::kMutualInformation;
   } else if (args.nfr_chords != "joined") {
@@ -122,6 +123,7 @@ int Sparsify(const SparsifyArgs& args) {
   json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
        << ",\"gradient_kept\":" << (config.keep_gradient ? "true" : "false");
   if (args.method == "nfr-subgraph") json << ",\"nfr_chords\":\"" << args.nfr_chords << '"';
+  json << ",\"blanket\":" << (args.no_blanket ? "false" : "true");
   json << "}\n";
   std::cout << json.str();
   return 0;

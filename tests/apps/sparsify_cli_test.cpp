@@ -139,6 +139,25 @@ TEST(SparsifyCli, NfrTreeIsNoWorseThanChowLiuAndTheSubgraphNoWorseThanTheTree) {
   EXPECT_NE(chords.err.find("--nfr-chords"), std::string::npos) << chords.err;
 }
 
+// --no-blanket keeps the factors among the removed node's neighbours: chow-liu then replaces
+// only the factors at k, so the ring's chords survive as they were and the graph keeps more
+// edges; exact has no blanket either way (byte-identical output).
+TEST(SparsifyCli, NoBlanketKeepsTheFactorsAmongTheNeighbours) {
+  const fs::path graph = Ring();
+  const auto run = [&](const std::string& args) {
+    const Result r = Lifelong("sparsify " + graph.string() + " --keep-share 0.5 " + args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto blanket = run("--method chow-liu");
+  const auto at_k = run("--method chow-liu --no-blanket");
+  EXPECT_EQ(blanket["blanket"], true);
+  EXPECT_EQ(at_k["blanket"], false);
+  EXPECT_GT(at_k["edges"].get<int>(), blanket["edges"].get<int>());
+  EXPECT_GT(at_k["kld"].get<double>(), 1e-6);
+  EXPECT_EQ(run("--method exact")["kld"], run("--method exact --no-blanket")["kld"]);
+}
+
 TEST(SparsifyCli, BadInputExitsTwoNamingTheField) {
   const fs::path graph = Ring();
   Result r = Lifelong("sparsify " + graph.string() + " --method glc --keep-share 0");

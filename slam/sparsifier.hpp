@@ -106,6 +106,8 @@ void EliminateFirstBlock(const LocalSystem& system, Eigen::MatrixXd* lambda_N,
 /// Hessian at `values` is unchanged and their gradient equals `g_N` (when g_N lies in the
 /// range of that Hessian; else its projection): residual e = J z with z = Lambda_q^+ g_N,
 /// each 3-block rotated so the error Jacobian keeps its value (closed form, no iteration).
+/// None of g_N is kept (the factors stay as given) when z would take a factor's heading
+/// residual past what a measurement can carry (about pi).
 void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values,
                       const Eigen::VectorXd& g_N, std::vector<PoseEdge>* edges,
                       std::vector<CliqueFactor>* cliques);

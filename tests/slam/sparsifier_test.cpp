@@ -131,6 +131,7 @@ TEST(Sparsifier, KeepGradientKeepsTheHessianAndMatchesTheMarginalsGradient) {
 // for a target past it (here e_theta = 2.9 rad plus 0.4 rad of displacement), that part of
 // the gradient is given up and the factor keeps its own gradient. Judging the displacement
 // alone (0.4 rad) let the target wrap to -2.98 rad: a gradient neither kept nor the old one.
+// Nor is a part of it kept: the whole step or nothing.
 TEST(Sparsifier, KeepGradientNeverWrapsAHeadingResidual) {
   const Values v{{0, Pose2()}, {1, Pose2(1.0, 0.0, 0.0)}};
   PoseEdge edge;
@@ -158,6 +159,16 @@ TEST(Sparsifier, KeepGradientNeverWrapsAHeadingResidual) {
   K << K0, K1;
   const VectorXd grad = K.transpose() * (edges[0].information * after);
   EXPECT_TRUE(grad.isApprox(own, 1e-9)) << grad.transpose() << "\n" << own.transpose();
+  // All or nothing: a reachable part of the step (0.05 m along x) is not kept on its own.
+  z(3) = 0.05;
+  z(5) = 0.4;
+  edges = {edge};
+  PreserveGradient({0, 1}, v, J.transpose() * (e + J * z), &edges, &cliques);
+  RelativeErrorJacobians(v.at(0), v.at(1), edges[0].T_from_to, &K0, &K1);
+  K << K0, K1;
+  const Eigen::Vector3d kept = RelativeError(v.at(0), v.at(1), edges[0].T_from_to);
+  EXPECT_TRUE((K.transpose() * (edges[0].information * kept)).isApprox(own, 1e-9));
+  z(3) = 0.0;
   // A step the measurement can carry is still kept whole.
   z(5) = -0.4;
   const VectorXd reachable = J.transpose() * (e + J * z);

@@ -13,15 +13,11 @@ namespace {
 constexpr int kMaxIterations = 20;
 constexpr int kMaxRetries = 6;  ///< damping up to 1e2 of the largest curvature
 
-struct Fit {
-  double score = 0.0;  ///< mean v
-};
-
-/// The fit of the points at `pose`; with the normal equations when asked.
-Fit Evaluate(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points,
-             const Eigen::Vector3d& pose, Eigen::Matrix3d* JtJ, Eigen::Vector3d* Jtr) {
+/// Mean v of the points at `pose` (the score S / n); with the normal equations when asked.
+double Evaluate(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points,
+                const Eigen::Vector3d& pose, Eigen::Matrix3d* JtJ, Eigen::Vector3d* Jtr) {
   const double c = std::cos(pose.z()), s = std::sin(pose.z());
-  Fit fit;
+  double score = 0.0;
   if (JtJ != nullptr) {
     JtJ->setZero();
     Jtr->setZero();
@@ -30,15 +26,14 @@ Fit Evaluate(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& point
     const Eigen::Vector2d q(c * p.x() - s * p.y() + pose.x(), s * p.x() + c * p.y() + pose.y());
     Eigen::Vector2d grad;
     const double v = ref.Interpolate(q, JtJ != nullptr ? &grad : nullptr);
-    fit.score += v;
+    score += v;
     if (JtJ == nullptr) continue;
     const Eigen::Vector2d dq_dtheta(-s * p.x() - c * p.y(), c * p.x() - s * p.y());
     const Eigen::Vector3d J(-grad.x(), -grad.y(), -grad.dot(dq_dtheta));  // d(1 - v)
     *JtJ += J * J.transpose();
     *Jtr += J;  // minus the gradient of sum v
   }
-  if (!points.empty()) fit.score /= static_cast<double>(points.size());
-  return fit;
+  return points.empty() ? 0.0 : score / static_cast<double>(points.size());
 }
 
 }  // namespace
@@ -51,8 +46,8 @@ RefinedPose RefinePose(const ReferenceGrid& ref, const std::vector<Eigen::Vector
   RefinedPose out;
   Eigen::Matrix3d JtJ;
   Eigen::Vector3d Jtr;
-  Fit fit = Evaluate(ref, points_in_cur, x, &JtJ, &Jtr);
-  out.start_score = fit.score;
+  double score = Evaluate(ref, points_in_cur, x, &JtJ, &Jtr);
+  out.start_score = score;
   // Levenberg-Marquardt: a step that does not raise the score is retried with more damping
   // (the field is only C1 and S is not concave, so a full step can overshoot).
   double damping = 1e-4;
@@ -67,13 +62,13 @@ RefinedPose RefinePose(const ReferenceGrid& ref, const std::vector<Eigen::Vector
       const Eigen::Vector3d next = x0 + (x + step - x0).cwiseMax(-box).cwiseMin(box);
       Eigen::Matrix3d next_JtJ;
       Eigen::Vector3d next_Jtr;
-      const Fit next_fit = Evaluate(ref, points_in_cur, next, &next_JtJ, &next_Jtr);
-      if (!(next_fit.score > fit.score)) continue;
+      const double next_score = Evaluate(ref, points_in_cur, next, &next_JtJ, &next_Jtr);
+      if (!(next_score > score)) continue;
       improved = true;
       const bool converged =
           (next - x).head<2>().norm() < 1e-4 && std::abs(next.z() - x.z()) < 1e-5;
       x = next;
-      fit = next_fit;
+      score = next_score;
       JtJ = next_JtJ;
       Jtr = next_Jtr;
       out.iterations = it + 1;
@@ -83,7 +78,7 @@ RefinedPose RefinePose(const ReferenceGrid& ref, const std::vector<Eigen::Vector
     if (!improved) break;
   }
   out.T_ref_cur = Pose2(x.x(), x.y(), x.z());
-  out.score = fit.score;
+  out.score = score;
   return out;
 }
 

@@ -129,13 +129,6 @@ struct GridMap::Chunk {
   std::array<CellCounts, kChunkSide * kChunkSide> cells{};
 };
 
-double CellEntropyBits(CellCounts counts) {
-  if (counts.hits == 0 || counts.misses == 0) return counts.hits == counts.misses ? 1.0 : 0.0;
-  const double n = static_cast<double>(counts.hits) + static_cast<double>(counts.misses);
-  const double p = static_cast<double>(counts.hits) / n;
-  return -p * std::log2(p) - (1.0 - p) * std::log2(1.0 - p);
-}
-
 GridMap::GridMap(const GridMapConfig& config) : config_(config) {}
 GridMap::~GridMap() = default;
 GridMap::GridMap(GridMap&&) noexcept = default;
@@ -332,8 +325,8 @@ double GridMap::EntropyBits(const CellBounds& region) const {
   return h;
 }
 
-double GridMap::InformationGain(const std::vector<CellUpdate>& updates) const {
-  double gain = 0.0;
+std::int64_t GridMap::QuantizedGain(const std::vector<CellUpdate>& updates) const {
+  std::int64_t gain = 0;
   Cursor cursor;
   ForEachInRuns(
       updates, [&](CellIndex c) { return Find(c, &cursor); },
@@ -343,9 +336,13 @@ double GridMap::InformationGain(const std::vector<CellUpdate>& updates) const {
           throw std::logic_error("GridMap::InformationGain: the scan is not in the map");
         }
         const CellCounts without{now.hits - u.delta.hits, now.misses - u.delta.misses};
-        gain += CellEntropyBits(without) - CellEntropyBits(now);
+        gain += QuantizedEntropy(without) - QuantizedEntropy(now);
       });
   return gain;
+}
+
+double GridMap::InformationGain(const std::vector<CellUpdate>& updates) const {
+  return static_cast<double>(QuantizedGain(updates)) * kEntropyQuantumBits;
 }
 
 double GridMap::InformationGain(const LaserScan& scan, const Pose2& T_world_robot) const {

@@ -226,5 +226,19 @@ TEST(GridMapTest, MisalignedCopyHasNegativeGain) {
   EXPECT_GT(map.InformationGain(scan, truth), misaligned_gain);
 }
 
+// The gain's per-cell entropies come from a table for small counts and are summed in whole
+// quanta: each must be the cell's binary entropy to within its quantum, table or not.
+TEST(QuantizedEntropy, IsTheCellEntropyToItsQuantum) {
+  for (std::uint32_t h : {0u, 1u, 2u, 3u, 7u, 63u, 64u, 100u, 4095u, 4096u, 5000u, 123456u}) {
+    for (std::uint32_t m : {0u, 1u, 5u, 63u, 64u, 4000u, 4097u, 99999u}) {
+      const CellCounts c{h, m};
+      EXPECT_EQ(QuantizedEntropy(c), QuantizedEntropyOf(c));
+      EXPECT_NEAR(static_cast<double>(QuantizedEntropy(c)) * kEntropyQuantumBits,
+                  CellEntropyBits(c), 1e-11)
+          << h << " hits, " << m << " misses";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lifelong::slam

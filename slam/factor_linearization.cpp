@@ -5,32 +5,18 @@
 #include <string>
 #include <vector>
 
+#include "slam/clique_algebra.hpp"
 #include "slam/marginalization.hpp"
 #include "slam/se2.hpp"
 
 namespace lifelong::slam {
 namespace {
 
+using clique::At;
+using clique::Block;
+
 using Eigen::Matrix3d;
 using Eigen::MatrixXd;
-
-Eigen::Index Block(std::size_t i) { return static_cast<Eigen::Index>(3 * i); }
-
-std::size_t IndexOf(const std::vector<NodeId>& index, NodeId n) {
-  const auto it = std::find(index.begin(), index.end(), n);
-  if (it == index.end()) {
-    throw std::logic_error("marginalization: node " + std::to_string(n) + " not in clique");
-  }
-  return static_cast<std::size_t>(it - index.begin());
-}
-
-const Pose2& At(const Values& values, NodeId n) {
-  const auto it = values.find(n);
-  if (it == values.end()) {
-    throw std::logic_error("marginalization: no estimate for node " + std::to_string(n));
-  }
-  return it->second;
-}
 
 }  // namespace
 
@@ -38,8 +24,8 @@ void AddEdgeHessian(const PoseEdge& edge, const Values& values, const std::vecto
                     MatrixXd* H) {
   Matrix3d Ji, Jj;
   RelativeErrorJacobians(At(values, edge.from), At(values, edge.to), edge.T_from_to, &Ji, &Jj);
-  const Eigen::Index a = Block(IndexOf(index, edge.from));
-  const Eigen::Index b = Block(IndexOf(index, edge.to));
+  const Eigen::Index a = Block(clique::IndexOf(index, edge.from, "marginalization"));
+  const Eigen::Index b = Block(clique::IndexOf(index, edge.to, "marginalization"));
   const Matrix3d& omega = edge.information;
   H->block<3, 3>(a, a) += Ji.transpose() * omega * Ji;
   H->block<3, 3>(a, b) += Ji.transpose() * omega * Jj;
@@ -56,7 +42,7 @@ void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
                          const std::vector<NodeId>& index, MatrixXd* H, Eigen::VectorXd* g) {
   const std::size_t k = clique.nodes.size() - 1;
   const Pose2& Xr = At(values, clique.nodes[0]);
-  const Eigen::Index r = Block(IndexOf(index, clique.nodes[0]));
+  const Eigen::Index r = Block(clique::IndexOf(index, clique.nodes[0], "marginalization"));
   const MatrixXd& omega = clique.information;
   MatrixXd R(Block(k), 3);          // the root's Jacobian blocks, stacked
   std::vector<Matrix3d> N(k);       // node j's Jacobian (block row j only)
@@ -67,7 +53,7 @@ void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
     Matrix3d Jr;
     RelativeErrorJacobians(Xr, At(values, n), clique.T_root_node[j], &Jr, &N[j]);
     R.block<3, 3>(Block(j), 0) = Jr;
-    at[j] = Block(IndexOf(index, n));
+    at[j] = Block(clique::IndexOf(index, n, "marginalization"));
     if (g != nullptr)
       e.segment<3>(Block(j)) = RelativeError(Xr, At(values, n), clique.T_root_node[j]);
   }

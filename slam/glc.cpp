@@ -1,4 +1,5 @@
 #include "slam/glc.hpp"
+#include "slam/clique_algebra.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,23 +14,14 @@
 namespace lifelong::slam {
 namespace {
 
+using clique::Block;
+using clique::PinvPsd;
+
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-Index Block(std::size_t i) { return static_cast<Index>(3 * i); }
-
 MatrixXd Sym(const MatrixXd& m) { return 0.5 * (m + m.transpose()); }
-
-MatrixXd PinvPsd(const MatrixXd& m) {
-  if (m.rows() == 0) return m;
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(m);
-  const VectorXd ev = eig.eigenvalues();
-  const double tol = 1e-12 * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
-  VectorXd inv = VectorXd::Zero(ev.size());
-  for (Index i = 0; i < ev.size(); ++i) inv(i) = ev(i) > tol ? 1.0 / ev(i) : 0.0;
-  return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
-}
 
 /// Rows/columns of the 3-blocks `vars` of `m`, in that order.
 MatrixXd Select(const MatrixXd& m, const std::vector<int>& rows, const std::vector<int>& cols) {

@@ -1,4 +1,5 @@
 #include "slam/marginalization.hpp"
+#include "slam/clique_algebra.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,21 +17,14 @@
 namespace lifelong::slam {
 namespace {
 
+using clique::At;
+using clique::Block;
+
 using Eigen::Matrix3d;
 using Eigen::MatrixXd;
 
 /// Relative diagonal shift for a near-singular anchored information (documented flag).
 constexpr double kRegularization = 1e-9;
-
-Eigen::Index Block(std::size_t i) { return static_cast<Eigen::Index>(3 * i); }
-
-const Pose2& At(const Values& values, NodeId n) {
-  const auto it = values.find(n);
-  if (it == values.end()) {
-    throw std::logic_error("marginalization: no estimate for node " + std::to_string(n));
-  }
-  return it->second;
-}
 
 /// Jacobian of e = t2v((X_i^-1 X_j)^-1 X_i^-1 X_j) w.r.t. x_j, i.e. at the current estimate.
 Matrix3d JacobianAtEstimate(const Pose2& Xi, const Pose2& Xj) {

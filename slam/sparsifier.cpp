@@ -1,4 +1,5 @@
 #include "slam/sparsifier.hpp"
+#include "slam/clique_algebra.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,9 @@
 
 namespace lifelong::slam {
 namespace {
+
+using clique::Block;
+using clique::PinvPsd;
 
 using Eigen::Matrix3d;
 using Eigen::MatrixXd;
@@ -35,25 +39,6 @@ constexpr Entry kRegistry[] = {{"naive", MakeNaiveSparsifier},
 
 constexpr double kMaxHeadingResidual = 3.1;  ///< rad, below pi; see PreserveGradient
 
-Eigen::Index Block(std::size_t i) { return static_cast<Eigen::Index>(3 * i); }
-
-std::size_t IndexOf(const std::vector<NodeId>& index, NodeId n) {
-  const auto it = std::find(index.begin(), index.end(), n);
-  if (it == index.end()) throw std::logic_error("sparsifier: node outside the clique");
-  return static_cast<std::size_t>(it - index.begin());
-}
-
-/// Moore-Penrose inverse of a symmetric PSD matrix (eigenvalues below cut * max dropped).
-MatrixXd PinvPsd(const MatrixXd& m, double cut = 1e-12) {
-  if (m.rows() == 0) return m;
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(m);
-  const VectorXd ev = eig.eigenvalues();
-  const double tol = cut * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
-  VectorXd inv = VectorXd::Zero(ev.size());
-  for (Eigen::Index i = 0; i < ev.size(); ++i) inv(i) = ev(i) > tol ? 1.0 / ev(i) : 0.0;
-  return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
-}
-
 /// P = diag(R(angle), 1): how the error of a relative-pose factor turns when its
 /// measurement's heading changes by -angle (see PreserveGradient).
 Matrix3d Turn(double angle) {
@@ -74,10 +59,10 @@ void AddLinearized(const std::vector<NodeId>& index, const std::vector<NodeId>& 
   const MatrixXd h = jt_info * J;
   const VectorXd g = jt_info * e;
   for (std::size_t a = 0; a < factor_nodes.size(); ++a) {
-    const Eigen::Index ra = Block(IndexOf(index, factor_nodes[a]));
+    const Eigen::Index ra = Block(clique::IndexOf(index, factor_nodes[a], "sparsifier"));
     s->g.segment<3>(ra) += g.segment<3>(Block(a));
     for (std::size_t b = 0; b < factor_nodes.size(); ++b) {
-      const Eigen::Index rb = Block(IndexOf(index, factor_nodes[b]));
+      const Eigen::Index rb = Block(clique::IndexOf(index, factor_nodes[b], "sparsifier"));
       s->H.block<3, 3>(ra, rb) += h.block<3, 3>(Block(a), Block(b));
     }
   }
@@ -207,13 +192,15 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   };
   std::vector<FactorHeading> headings;
   for (const PoseEdge& e : *edges) {
-    headings.push_back({IndexOf(nodes, e.from), IndexOf(nodes, e.to),
+    headings.push_back({clique::IndexOf(nodes, e.from, "sparsifier"),
+                        clique::IndexOf(nodes, e.to, "sparsifier"),
                         RelativeError(values.at(e.from), values.at(e.to), e.T_from_to).z()});
   }
   for (const CliqueFactor& c : *cliques) {
     for (std::size_t j = 1; j < c.nodes.size(); ++j) {
       headings.push_back(
-          {IndexOf(nodes, c.nodes[0]), IndexOf(nodes, c.nodes[j]),
+          {clique::IndexOf(nodes, c.nodes[0], "sparsifier"),
+           clique::IndexOf(nodes, c.nodes[j], "sparsifier"),
            RelativeError(values.at(c.nodes[0]), values.at(c.nodes[j]), c.T_root_node[j - 1]).z()});
     }
   }
@@ -245,7 +232,9 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
     }
   }
   if (heading_residual(full) <= kMaxHeadingResidual) z.tail(d) = full;
-  const auto delta = [&](NodeId n) { return z.segment<3>(Block(IndexOf(nodes, n))); };
+  const auto delta = [&](NodeId n) {
+    return z.segment<3>(Block(clique::IndexOf(nodes, n, "sparsifier")));
+  };
   // Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
   // the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T
   // and residual P e_t keep J^T Omega J and J^T Omega e_t exactly.

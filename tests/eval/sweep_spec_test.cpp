@@ -132,5 +132,21 @@ TEST(SweepSpec, SettingsBecomeNestedYaml) {
   EXPECT_EQ(n["loops"]["enabled"].as<bool>(), false);
 }
 
+// Every SPEC shipped in sweeps/ must load (its scenarios, logs and setting keys exist and
+// check out), so that a README or BENCHMARKS command never meets a broken SPEC.
+TEST(SweepSpec, EveryShippedSpecLoads) {
+  int specs = 0;
+  for (const auto& entry : fs::directory_iterator(kSource + "/sweeps")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++specs;
+    SCOPED_TRACE(entry.path().string());
+    const SweepSpec spec = LoadSweepSpec(entry.path().string());
+    EXPECT_FALSE(spec.sources.empty());
+    EXPECT_FALSE(spec.modes.empty());
+    for (const SweepSource& source : spec.sources) EXPECT_TRUE(fs::exists(source.path));
+  }
+  EXPECT_GE(specs, 9);
+}
+
 }  // namespace
 }  // namespace lifelong::eval

@@ -56,9 +56,9 @@ struct LoopClosingConfig {
   double min_path_separation_m = 6.0;  ///< nodes closer along the graph are not candidates
   double overlap_radius_m = 1.0;       ///< sensor overlap added to the position uncertainty
   double gate_chi2 = 5.99;             ///< 95 % gate (2 dof) of the candidate test
-  double max_position_sigma_m = 5.0;   ///< Dijkstra projection stops beyond this
+  double max_position_sigma_m = 20.0;  ///< Dijkstra projection stops beyond this
   double min_window_m = 0.3;           ///< search window: 3 sigma, clamped to [min, max]
-  double max_window_m = 2.0;
+  double max_window_m = 6.0;
   double min_window_rad = 0.15;
   double max_window_rad = 0.5;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap

@@ -10,12 +10,12 @@ namespace lifelong::slam {
 namespace {
 
 // k log2 k for the small counts that make up almost every cell.
-constexpr std::uint32_t kTableSize = 4096;
+constexpr std::uint64_t kTableSize = 4096;
 
-double XLog2X(std::uint32_t k) {
+double XLog2X(std::uint64_t k) {
   static const std::array<double, kTableSize> table = [] {
     std::array<double, kTableSize> t{};
-    for (std::uint32_t i = 1; i < kTableSize; ++i) {
+    for (std::uint64_t i = 1; i < kTableSize; ++i) {
       t[i] = static_cast<double>(i) * std::log2(static_cast<double>(i));
     }
     return t;
@@ -39,9 +39,7 @@ std::int64_t QuantizedEntropyOf(CellCounts counts) {
   }
   // H = log2 n - (h log2 h + m log2 m) / n = (n log2 n - h log2 h - m log2 m) / n.
   const std::uint64_t n = std::uint64_t{counts.hits} + counts.misses;
-  const double h = (n < kTableSize ? XLog2X(static_cast<std::uint32_t>(n))
-                                   : static_cast<double>(n) * std::log2(static_cast<double>(n))) -
-                   XLog2X(counts.hits) - XLog2X(counts.misses);
+  const double h = XLog2X(n) - XLog2X(counts.hits) - XLog2X(counts.misses);
   return std::llround(h / static_cast<double>(n) * kQuantaPerBit);
 }
 

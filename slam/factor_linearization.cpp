@@ -44,10 +44,10 @@ void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
   const Pose2& Xr = At(values, clique.nodes[0]);
   const Eigen::Index r = Block(clique::IndexOf(index, clique.nodes[0], "marginalization"));
   const MatrixXd& omega = clique.information;
-  MatrixXd R(Block(k), 3);          // the root's Jacobian blocks, stacked
-  std::vector<Matrix3d> N(k);       // node j's Jacobian (block row j only)
-  std::vector<Eigen::Index> at(k);  // node j's block in H
-  Eigen::VectorXd e(Block(k));
+  MatrixXd R(Block(k), 3);                         // the root's Jacobian blocks, stacked
+  std::vector<Matrix3d> N(k);                      // node j's Jacobian (block row j only)
+  std::vector<Eigen::Index> at(k);                 // node j's block in H
+  Eigen::VectorXd e(g != nullptr ? Block(k) : 0);  // the errors, for the gradient only
   for (std::size_t j = 0; j < k; ++j) {
     const NodeId n = clique.nodes[j + 1];
     Matrix3d Jr;

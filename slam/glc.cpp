@@ -1,5 +1,4 @@
 #include "slam/glc.hpp"
-#include "slam/clique_algebra.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "slam/chow_liu.hpp"
+#include "slam/clique_algebra.hpp"
 #include "slam/marginalization.hpp"
 
 namespace lifelong::slam {

@@ -1,5 +1,4 @@
 #include "slam/marginalization.hpp"
-#include "slam/clique_algebra.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +11,7 @@
 #include <Eigen/LU>
 
 #include "slam/chow_liu.hpp"
+#include "slam/clique_algebra.hpp"
 #include "slam/se2.hpp"
 
 namespace lifelong::slam {

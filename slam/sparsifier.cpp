@@ -1,5 +1,4 @@
 #include "slam/sparsifier.hpp"
-#include "slam/clique_algebra.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "slam/clique_algebra.hpp"
 #include "slam/glc.hpp"
 #include "slam/se2.hpp"
 

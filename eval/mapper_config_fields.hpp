@@ -52,6 +52,10 @@ inline constexpr EnumName<LinearSolver> kSolvers[] = {{"auto", LinearSolver::kAu
 inline constexpr EnumName<slam::NfrChords> kNfrChords[] = {
     {"joined", slam::NfrChords::kJoined},
     {"mutual_information", slam::NfrChords::kMutualInformation}};
+inline constexpr EnumName<slam::FactorMeans> kFactorMeans[] = {
+    {"estimate", slam::FactorMeans::kEstimate},
+    {"gradient", slam::FactorMeans::kGradient},
+    {"marginal_mean", slam::FactorMeans::kMarginalMean}};
 inline constexpr EnumName<slam::BlanketPolicy> kBlankets[] = {
     {"factors_at_node", slam::BlanketPolicy::kFactorsAtK},
     {"markov_blanket", slam::BlanketPolicy::kBlanket}};
@@ -168,6 +172,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
     s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
     s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);
+    s.Enum("factor_means", c.pruning.factor_means, kFactorMeans);
   });
   v.Section("grid", [&](auto& s) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);

@@ -118,6 +118,10 @@ struct PruningConfig {
   /// (SparsifierConfig).
   NfrChords nfr_chords = NfrChords::kJoined;
   double nfr_chord_ratio = 1.0;
+  /// Where the new factors' measurements put their minimum (sparsifier.hpp "Means"): at the
+  /// estimate (zero residual, the seed), or moved to keep the exact marginal's gradient or
+  /// mean, so the pull of measurements the estimate has not yet followed survives a removal.
+  FactorMeans factor_means = FactorMeans::kEstimate;
 };
 
 struct MapperConfig {

@@ -14,6 +14,7 @@
 #include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
 #include "slam/marginalization.hpp"
+#include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
 Mapper::State::State(const MapperConfig& c) : config(c), loop_state(c.loops.verify), map(c.grid) {
@@ -28,6 +29,7 @@ Mapper::State::State(const MapperConfig& c) : config(c), loop_state(c.loops.veri
   sc.blanket = c.pruning.blanket;
   sc.nfr_chords = c.pruning.nfr_chords;
   sc.nfr_chord_ratio = c.pruning.nfr_chord_ratio;
+  sc.means = c.pruning.factor_means;
   prune_state.sparsifier = MakeSparsifier(name, sc);
   if (!prune_state.sparsifier) throw std::invalid_argument("unknown sparsifier '" + name + "'");
 }
@@ -208,8 +210,16 @@ void Mapper::State::KeepEdgeBudget() {
       }
     }
     if (most == 0) return;  // the graph is a tree near every node
-    const SparsificationResult result = SparsifyWithin(graph, values, best);
+    SparsificationResult result = SparsifyWithin(graph, values, best);
     if (!result.applied) return;
+    if (config.pruning.factor_means != FactorMeans::kEstimate) {  // keep the edges' pull too
+      const std::vector<PoseEdge> within = graph.EdgesWithin(best);
+      std::vector<CliqueFactor> no_cliques;
+      const Eigen::MatrixXd lambda = FactorsHessian(best, values, within, no_cliques);
+      PreserveGradient(
+          best, values, EdgesGradient(best, values, within), &result.edges, &no_cliques,
+          config.pruning.factor_means == FactorMeans::kMarginalMean ? &lambda : nullptr);
+    }
     ApplySparsification(&graph, result);
     prune_state.sparsifications.push_back(
         {centre, best.size(), result.edges_before, result.edges.size(), result.kl_divergence});

@@ -155,8 +155,54 @@ MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,
   return h;
 }
 
+VectorXd EdgesGradient(const std::vector<NodeId>& nodes, const Values& values,
+                       const std::vector<PoseEdge>& edges) {
+  LocalSystem s;
+  s.H = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
+  s.g = VectorXd::Zero(Block(nodes.size()));
+  for (const PoseEdge& e : edges) AddEdge(e, values, nodes, &s);
+  return s.g;
+}
+
+namespace {
+
+// x = H^+ rhs over all blocks but node 0's (held): a Jacobi-scaled Cholesky solve, or a
+// pseudo-inverse with a 1e-10 cut when H is rank-deficient or ill conditioned, so a
+// direction H barely informs (a low-rank GLC conditional) gets no displacement rather than
+// a huge one.
+VectorXd SolveHeld(const MatrixXd& H, const VectorXd& rhs) {
+  const Eigen::Index d = H.rows() - 3;
+  const MatrixXd h = H.bottomRightCorner(d, d);
+  // A coordinate H informs only at rounding level (relative to the best informed one) gets
+  // scale 0, so the scaling cannot blow rounding noise up to unit information.
+  const double h_max = d > 0 ? h.diagonal().maxCoeff() : 0.0;
+  VectorXd s = VectorXd::Zero(d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    if (h(i, i) > 1e-12 * h_max) s(i) = 1.0 / std::sqrt(h(i, i));
+  }
+  const MatrixXd scaled = s.asDiagonal() * h * s.asDiagonal();
+  const VectorXd b = s.asDiagonal() * rhs.tail(d);
+  // Well conditioned (no eigenvalue near the cut): one Cholesky solve gives the same whole
+  // step as the eigen-decomposition below, at a fraction of its cost.
+  const Eigen::LLT<MatrixXd> llt(scaled);
+  if (llt.info() == Eigen::Success && llt.rcond() > 1e-8) return s.asDiagonal() * llt.solve(b);
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(scaled);
+  const double cut = 1e-10 * std::max(d > 0 ? eig.eigenvalues().maxCoeff() : 0.0, 1e-300);
+  VectorXd full = VectorXd::Zero(d);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    const double lambda = eig.eigenvalues()(i);
+    if (!(lambda > cut)) continue;
+    full +=
+        s.asDiagonal() * eig.eigenvectors().col(i) * (eig.eigenvectors().col(i).dot(b) / lambda);
+  }
+  return full;
+}
+
+}  // namespace
+
 void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, const VectorXd& g_N,
-                      std::vector<PoseEdge>* edges, std::vector<CliqueFactor>* cliques) {
+                      std::vector<PoseEdge>* edges, std::vector<CliqueFactor>* cliques,
+                      const MatrixXd* lambda_N) {
   if (nodes.size() < 2) return;
   LocalSystem now;  // Hessian and gradient of the new factors as they stand
   now.H = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
@@ -166,16 +212,6 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // z: displacement (node 0 held) whose first-order residuals J z add the missing gradient.
   const Eigen::Index d = now.H.rows() - 3;
   VectorXd z = VectorXd::Zero(now.H.rows());
-  // Jacobi-scaled pseudo-inverse with a 1e-10 cut: a direction the new factors barely
-  // inform (a low-rank GLC conditional) gets no displacement rather than a huge one.
-  const MatrixXd h = now.H.bottomRightCorner(d, d);
-  // A coordinate the factors inform only at rounding level (relative to the best informed
-  // one) gets scale 0, so the scaling cannot blow rounding noise up to unit information.
-  const double h_max = d > 0 ? h.diagonal().maxCoeff() : 0.0;
-  VectorXd s = VectorXd::Zero(d);
-  for (Eigen::Index i = 0; i < d; ++i) {
-    if (h(i, i) > 1e-12 * h_max) s(i) = 1.0 / std::sqrt(h(i, i));
-  }
   // A measurement carries a heading residual inside (-pi, pi] only: beyond, it wraps and the
   // moved factor no longer keeps the gradient at x*. So when the step would take some factor's
   // target heading residual e_theta + (theta_c - theta_a) past kMaxHeadingResidual, this
@@ -213,24 +249,11 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
     }
     return largest;
   };
-  const MatrixXd scaled = s.asDiagonal() * h * s.asDiagonal();
-  const VectorXd b = s.asDiagonal() * (g_N - now.g).tail(d);
-  // Well conditioned (no eigenvalue near the 1e-10 cut): one Cholesky solve gives the same
-  // whole step as the eigen-decomposition below, at a fraction of its cost.
-  const Eigen::LLT<MatrixXd> llt(scaled);
-  VectorXd full;
-  if (llt.info() == Eigen::Success && llt.rcond() > 1e-8) full = s.asDiagonal() * llt.solve(b);
-  if (full.size() != d) {  // rank-deficient or ill-conditioned: the pseudo-inverse, 1e-10 cut
-    const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(scaled);
-    const double cut = 1e-10 * std::max(d > 0 ? eig.eigenvalues().maxCoeff() : 0.0, 1e-300);
-    full = VectorXd::Zero(d);
-    for (Eigen::Index i = 0; i < d; ++i) {
-      const double lambda = eig.eigenvalues()(i);
-      if (!(lambda > cut)) continue;
-      full +=
-          s.asDiagonal() * eig.eigenvectors().col(i) * (eig.eigenvectors().col(i).dot(b) / lambda);
-    }
-  }
+  // Gradient: the new factors' gradient at x* becomes g_N. Mean: their minimum (to first
+  // order) becomes the exact marginal's, x* - Lambda_N^+ g_N (the same for an exact method).
+  const VectorXd full = lambda_N == nullptr
+                            ? SolveHeld(now.H, g_N - now.g)
+                            : VectorXd(SolveHeld(*lambda_N, g_N) - SolveHeld(now.H, now.g));
   if (heading_residual(full) <= kMaxHeadingResidual) z.tail(d) = full;
   const auto delta = [&](NodeId n) {
     return z.segment<3>(Block(clique::IndexOf(nodes, n, "sparsifier")));
@@ -303,12 +326,13 @@ Replacement FromMarginalization(const MarginalizationResult& m) {
 void KeepGradientIfAsked(const SparsifierConfig& config, const PoseGraph& graph,
                          const Values& values, NodeId k, bool edges_within, bool cliques_within,
                          Replacement* r) {
-  if (!config.keep_gradient || r->neighbours.size() < 2) return;
+  if (config.means == FactorMeans::kEstimate || r->neighbours.size() < 2) return;
   const LocalSystem local = LinearizeClique(graph, values, k, edges_within, cliques_within);
   MatrixXd lambda_N;
   VectorXd g_N;
   EliminateFirstBlock(local, &lambda_N, &g_N);
-  PreserveGradient(r->neighbours, values, g_N, &r->edges, &r->cliques);
+  PreserveGradient(r->neighbours, values, g_N, &r->edges, &r->cliques,
+                   config.means == FactorMeans::kMarginalMean ? &lambda_N : nullptr);
 }
 
 bool MarginalToReplace(const SparsifierConfig& config, const PoseGraph& graph, const Values& values,

@@ -15,9 +15,11 @@
 //
 // Means. Every factor is linearized at the current estimate x*. The wrapped methods take
 // their measurements from x* (zero residual), as the mapper does. With
-// SparsifierConfig::keep_gradient the measurements are moved (PreserveGradient) so that the
-// replacement's gradient at x* equals that of the exact marginal: then an exact method
-// leaves the optimum where it was, and what a method loses is its information alone.
+// SparsifierConfig::means kGradient the measurements are moved (PreserveGradient) so that
+// the replacement's gradient at x* equals that of the exact marginal: then an exact method
+// leaves the optimum where it was, and what a method loses is its information alone. With
+// kMarginalMean they are moved so that the replacement's minimum is the exact marginal's mean
+// (the KL divergence's mean term vanishes); for an exact method both agree.
 #pragma once
 
 #include <memory>
@@ -37,12 +39,19 @@ enum class NfrChords {
   kMutualInformation,  ///< every pair of N (Mazuran et al.'s code: the next pairs by weight)
 };
 
+/// Where the new factors' measurements put their minimum (see "Means" above).
+enum class FactorMeans {
+  kEstimate,      ///< at x*: zero residual, the seed's and the mapper's default
+  kGradient,      ///< moved so their gradient at x* is the exact marginal's (PreserveGradient)
+  kMarginalMean,  ///< moved so their minimum is the exact marginal's mean x* - Lambda^+ g
+};
+
 struct SparsifierConfig {
   /// kBlanket: the factors among N (pose edges, and clique factors for glc) are folded into
   /// the clique's Gaussian and replaced too (chow-liu and glc only; the mapper's default).
   BlanketPolicy blanket = BlanketPolicy::kBlanket;
-  /// Move the new factors' measurements so they keep the exact marginal's gradient at x*.
-  bool keep_gradient = false;
+  /// Where the new factors' measurements put their minimum.
+  FactorMeans means = FactorMeans::kEstimate;
   /// GLC: eigenvalues below this fraction of the largest are dropped (informative directions).
   double eigen_tolerance = 1e-10;
   /// nfr-subgraph: at most floor(nfr_chord_ratio * (m - 1)) edges beyond the tree per clique
@@ -107,10 +116,17 @@ void EliminateFirstBlock(const LocalSystem& system, Eigen::MatrixXd* lambda_N,
 /// range of that Hessian; else its projection): residual e = J z with z = Lambda_q^+ g_N,
 /// each 3-block rotated so the error Jacobian keeps its value (closed form, no iteration).
 /// None of g_N is kept (the factors stay as given) when z would take a factor's heading
-/// residual past what a measurement can carry (about pi).
+/// residual past what a measurement can carry (about pi). With `lambda_N` (the exact
+/// marginal's information): z = lambda_N^+ g_N - Lambda_q^+ g_q instead, so the factors'
+/// minimum (to first order) moves to the marginal's mean rather than their gradient to g_N.
 void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values,
                       const Eigen::VectorXd& g_N, std::vector<PoseEdge>* edges,
-                      std::vector<CliqueFactor>* cliques);
+                      std::vector<CliqueFactor>* cliques,
+                      const Eigen::MatrixXd* lambda_N = nullptr);
+
+/// Gradient J^T Omega e of `edges` over `nodes` (ascending) at `values`.
+Eigen::VectorXd EdgesGradient(const std::vector<NodeId>& nodes, const Values& values,
+                              const std::vector<PoseEdge>& edges);
 
 /// Hessian of `edges` and `cliques` over `nodes` (ascending) at `values`.
 Eigen::MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,
@@ -134,8 +150,9 @@ void SetFactors(const SparsifierConfig& config, const Values& values, const Cliq
 
 /// The wrapped methods' result as a Replacement (factors unchanged, byte for byte).
 Replacement FromMarginalization(const MarginalizationResult& m);
-/// With config.keep_gradient: PreserveGradient with the exact marginal's gradient of the
-/// clique as LinearizeClique(..., edges_within, cliques_within) sees it.
+/// Unless config.means is kEstimate: PreserveGradient with the exact marginal of the clique
+/// as LinearizeClique(..., edges_within, cliques_within) sees it (its information too, for
+/// kMarginalMean).
 void KeepGradientIfAsked(const SparsifierConfig& config, const PoseGraph& graph,
                          const Values& values, NodeId k, bool edges_within, bool cliques_within,
                          Replacement* r);

@@ -150,7 +150,7 @@ TEST(GlcChowLiu, RankThreeCliquesKeepTheGradientWithinTheirRowSpace) {
     g.AddClique(c);
   }
   SparsifierConfig config;
-  config.keep_gradient = true;
+  config.means = FactorMeans::kGradient;
   const Replacement r = MakeSparsifier("glc", config)->Replace(g, v, 0);
   MatrixXd lambda_N;
   Eigen::VectorXd g_N;

@@ -84,7 +84,7 @@ class RealGraph : public ::testing::Test {
   static void TearDownTestSuite() { delete file_; }
   static double Kl(const std::string& method) {
     SparsifierConfig config;
-    config.keep_gradient = true;
+    config.means = FactorMeans::kGradient;
     PoseGraph sparse = file_->graph;
     SparsifyOffline(&sparse, file_->values, RemovalForKeepShare(sparse.NodeIds(), 0.25),
                     *MakeSparsifier(method, config));

@@ -173,6 +173,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
     s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);
     s.Enum("factor_means", c.pruning.factor_means, kFactorMeans);
+    s.Bool("robust_marginal", c.pruning.robust_marginal);
   });
   v.Section("grid", [&](auto& s) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);

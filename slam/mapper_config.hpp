@@ -122,6 +122,10 @@ struct PruningConfig {
   /// estimate (zero residual, the seed), or moved to keep the exact marginal's gradient or
   /// mean, so the pull of measurements the estimate has not yet followed survives a removal.
   FactorMeans factor_means = FactorMeans::kEstimate;
+  /// A loop edge enters a removal's marginal with the weight the optimizer's robust kernel
+  /// gives it at the estimate (its IRLS weight), as in the objective the optimizer minimizes.
+  /// false: with its full information.
+  bool robust_marginal = false;
 };
 
 struct MapperConfig {

@@ -71,6 +71,10 @@ std::vector<PoseEdge> PoseGraph::EdgesWithin(const std::vector<NodeId>& nodes) c
   return out;
 }
 
+void PoseGraph::SetEdgeInformation(std::size_t index, const Eigen::Matrix3d& information) {
+  edges_.at(index).information = information;
+}
+
 void PoseGraph::RemoveEdgesWithin(const std::vector<NodeId>& nodes) {
   auto in = [&](NodeId n) { return std::binary_search(nodes.begin(), nodes.end(), n); };
   edges_.erase(std::remove_if(edges_.begin(), edges_.end(),

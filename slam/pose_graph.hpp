@@ -62,6 +62,8 @@ class PoseGraph {
   void RemoveCliquesWithin(const std::vector<NodeId>& nodes);
 
   const std::vector<PoseEdge>& edges() const { return edges_; }
+  /// Replaces the information of edges()[index] (its measurement and nodes stay).
+  void SetEdgeInformation(std::size_t index, const Eigen::Matrix3d& information);
   const std::vector<CliqueFactor>& cliques() const { return cliques_; }
   std::size_t NumNodes() const { return adjacency_.size(); }
   /// Edges counted as for the gamma index: each PoseEdge once, each clique factor over

@@ -14,6 +14,8 @@
 #include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
 #include "slam/marginalization.hpp"
+#include "slam/optimizer_problem.hpp"
+#include "slam/se2.hpp"
 #include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
@@ -84,6 +86,22 @@ bool Footprint::Shares(const Footprint& other) const {
     }
   }
   return false;
+}
+
+std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values,
+                                          const std::vector<NodeId>& set,
+                                          const OptimizerParams& params) {
+  const auto in = [&](NodeId n) { return std::binary_search(set.begin(), set.end(), n); };
+  std::vector<WeighedEdge> out;
+  for (std::size_t i = 0; i < graph->edges().size(); ++i) {
+    const PoseEdge& e = graph->edges()[i];
+    if (!e.robust || !in(e.from) || !in(e.to)) continue;
+    const Eigen::Vector3d r = RelativeError(values.at(e.from), values.at(e.to), e.T_from_to);
+    const double w = backend::ApplyKernel(r.dot(e.information * r), true, params).weight;
+    out.push_back({i, e.information});
+    graph->SetEdgeInformation(i, w * e.information);
+  }
+  return out;
 }
 
 bool Overlap(const CellBounds& a, const CellBounds& b) {
@@ -210,8 +228,14 @@ void Mapper::State::KeepEdgeBudget() {
       }
     }
     if (most == 0) return;  // the graph is a tree near every node
+    std::vector<WeighedEdge> weighed;
+    if (config.pruning.robust_marginal)
+      weighed = WeighRobustEdges(&graph, values, best, config.optimizer);
     SparsificationResult result = SparsifyWithin(graph, values, best);
-    if (!result.applied) return;
+    if (!result.applied) {
+      for (const WeighedEdge& w : weighed) graph.SetEdgeInformation(w.index, w.information);
+      return;
+    }
     if (config.pruning.factor_means != FactorMeans::kEstimate) {  // keep the edges' pull too
       const std::vector<PoseEdge> within = graph.EdgesWithin(best);
       std::vector<CliqueFactor> no_cliques;
@@ -229,7 +253,23 @@ void Mapper::State::KeepEdgeBudget() {
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
   loop_state.verifier.ForgetNode(id);
+  // With robust_marginal, the loop edges of the clique (at the node and among its
+  // neighbours) enter the marginal as the optimizer weighs them at the estimate: information
+  // times the kernel's IRLS weight rho'(e^T Omega e). Those among the neighbours that the
+  // sparsifier leaves in the graph get their own information back.
+  std::vector<WeighedEdge> weighed;
+  if (config.pruning.robust_marginal) {
+    std::vector<NodeId> clique(graph.Neighbours(id).begin(), graph.Neighbours(id).end());
+    clique.insert(std::lower_bound(clique.begin(), clique.end(), id), id);
+    weighed = WeighRobustEdges(&graph, values, clique, config.optimizer);
+  }
   const Replacement replacement = prune_state.sparsifier->Replace(graph, values, id);
+  if (!replacement.absorb_edges_within) {
+    for (const WeighedEdge& w : weighed) {
+      const PoseEdge& e = graph.edges()[w.index];
+      if (e.from != id && e.to != id) graph.SetEdgeInformation(w.index, w.information);
+    }
+  }
   // The removed node's scans are held relative to its nearest surviving neighbour.
   const Pose2& X = values.at(id);
   NodeId keeper = id;

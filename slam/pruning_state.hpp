@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "slam/grid_map.hpp"
 #include "slam/mapper.hpp"
 #include "slam/removal_policy.hpp"
@@ -29,6 +31,19 @@ struct Footprint {
   bool Shares(const Footprint& other) const;
   bool HasBlock(int bx, int by) const;
 };
+
+/// An edge whose information was scaled for a marginalization, and what it was before.
+struct WeighedEdge {
+  std::size_t index;  ///< into PoseGraph::edges()
+  Eigen::Matrix3d information;
+};
+
+/// Scales the information of the robust (loop) edges with both ends in `set` (ascending) by
+/// the kernel's IRLS weight rho'(e^T Omega e) at `values`, so a marginalization sees them as
+/// the optimizer does (pruning.robust_marginal). Returns what it changed.
+std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values,
+                                          const std::vector<NodeId>& set,
+                                          const OptimizerParams& params);
 
 struct PruningState {
   std::unique_ptr<RemovalPolicy> policy;   ///< which node goes

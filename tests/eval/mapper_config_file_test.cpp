@@ -106,6 +106,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.nfr_chords, b.pruning.nfr_chords);
   EXPECT_EQ(a.pruning.nfr_chord_ratio, b.pruning.nfr_chord_ratio);
   EXPECT_EQ(a.pruning.factor_means, b.pruning.factor_means);
+  EXPECT_EQ(a.pruning.robust_marginal, b.pruning.robust_marginal);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
@@ -181,7 +182,8 @@ MapperConfig AllChanged() {
                "glc",
                slam::NfrChords::kMutualInformation,
                0.5,
-               slam::FactorMeans::kMarginalMean};
+               slam::FactorMeans::kMarginalMean,
+               true};
   c.grid = {0.1, 6.0, 9.5};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

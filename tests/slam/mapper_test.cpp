@@ -169,6 +169,41 @@ TEST(Footprint, NeverMissesASharedCellAndSeparatesDisjointBlocks) {
   EXPECT_FALSE(Footprint::Of({}).Shares(Footprint::Of(corner)));
 }
 
+// pruning.robust_marginal: a loop edge inside the set enters the marginal with the kernel's
+// IRLS weight at the estimate (Cauchy: 1 / (1 + s / delta^2)); odometry edges and edges
+// leaving the set keep their information, and the returned records restore it.
+TEST(WeighRobustEdges, ScalesTheLoopEdgesInsideTheSetByTheirKernelWeight) {
+  PoseGraph graph;
+  Values values;
+  for (NodeId n = 0; n < 4; ++n) {
+    graph.AddNode(n);
+    values[n] = Pose2(static_cast<double>(n), 0.0, 0.0);
+  }
+  const Eigen::Matrix3d omega = Eigen::Vector3d(100.0, 100.0, 400.0).asDiagonal();
+  const auto edge = [&](NodeId a, NodeId b, double dx, bool robust) {
+    PoseEdge e;
+    e.from = a;
+    e.to = b;
+    e.T_from_to = Pose2(static_cast<double>(b - a) + dx, 0.0, 0.0);
+    e.information = omega;
+    e.robust = robust;
+    return graph.AddEdge(e);
+  };
+  const std::size_t odometry = edge(0, 1, 0.2, false);
+  const std::size_t loop_in = edge(0, 2, 0.3, true);   // s = 100 * 0.09 = 9
+  const std::size_t loop_out = edge(2, 3, 0.3, true);  // leaves the set {0, 1, 2}
+  OptimizerParams params;
+  params.robust_kernel = RobustKernel::kCauchy;
+  params.robust_delta = 3.0;
+  const std::vector<WeighedEdge> weighed = WeighRobustEdges(&graph, values, {0, 1, 2}, params);
+  ASSERT_EQ(weighed.size(), 1u);
+  EXPECT_EQ(weighed[0].index, loop_in);
+  EXPECT_TRUE(weighed[0].information == omega);
+  EXPECT_TRUE(graph.edges()[loop_in].information.isApprox(0.5 * omega, 1e-12));  // 1/(1+9/9)
+  EXPECT_TRUE(graph.edges()[odometry].information == omega);
+  EXPECT_TRUE(graph.edges()[loop_out].information == omega);
+}
+
 // The edge budget: every sparsification leaves a tree over its blanket with fewer edges than
 // before, the graph stays connected, and a tight budget ends with fewer edges than none.
 TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {

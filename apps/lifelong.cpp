@@ -219,8 +219,17 @@ int main(int argc, char** argv) {
                    "nfr-subgraph's edges beyond the tree: joined (pairs joined by edges "
                    "before the removal) or mi (the strongest pairs by mutual information)")
       ->capture_default_str();
-  sparsify->add_flag("--zero-residual", sparsify_args.zero_residual,
-                     "new factors measure the optimum itself (drop the marginal's gradient)");
+  auto* means_option =
+      sparsify
+          ->add_option("--means", sparsify_args.means,
+                       "where the new factors' measurements put their minimum: estimate (the "
+                       "optimum itself), gradient (keep the exact marginal's gradient there) or "
+                       "marginal_mean (at the exact marginal's mean)")
+          ->capture_default_str();
+  sparsify
+      ->add_flag("--zero-residual", sparsify_args.zero_residual,
+                 "the same as --means estimate: new factors measure the optimum itself")
+      ->excludes(means_option);
   sparsify->add_flag("--no-blanket", sparsify_args.no_blanket,
                      "chow-liu, glc, glc-dense, nfr-*: replace only the factors at the removed "
                      "node and keep those among its neighbours as they are");

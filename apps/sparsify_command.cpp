@@ -69,7 +69,17 @@ void PrintNumber(std::ostream& out, const char* key, double v) {
 
 int Sparsify(const SparsifyArgs& args) {
   slam::SparsifierConfig config;
-  config.means = args.zero_residual ? slam::FactorMeans::kEstimate : slam::FactorMeans::kGradient;
+  if (args.zero_residual || args.means == "estimate") {
+    config.means = slam::FactorMeans::kEstimate;
+  } else if (args.means == "gradient") {
+    config.means = slam::FactorMeans::kGradient;
+  } else if (args.means == "marginal_mean") {
+    config.means = slam::FactorMeans::kMarginalMean;
+  } else {
+    throw InputError(
+        "--means", 0, "",
+        "unknown value '" + args.means + "' (known: estimate, gradient, marginal_mean)");
+  }
   if (args.no_blanket) config.blanket = slam::BlanketPolicy::kFactorsAtK;
   if (args.nfr_chords == "mi") {
     config.nfr_chords = slam::NfrChords::kMutualInformation;
@@ -121,8 +131,8 @@ int Sparsify(const SparsifyArgs& args) {
   PrintNumber(json, "kld_mean", kl.mean_term);
   PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
   json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
-       << ",\"gradient_kept\":"
-       << (config.means == slam::FactorMeans::kGradient ? "true" : "false");
+       << ",\"gradient_kept\":" << (config.means == slam::FactorMeans::kGradient ? "true" : "false")
+       << ",\"means\":\"" << (args.zero_residual ? "estimate" : args.means) << '"';
   if (args.method == "nfr-subgraph") json << ",\"nfr_chords\":\"" << args.nfr_chords << '"';
   json << ",\"blanket\":" << (args.no_blanket ? "false" : "true");
   json << "}\n";

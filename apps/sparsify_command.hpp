@@ -13,7 +13,8 @@ struct SparsifyArgs {
   std::string method;                 ///< a slam::SparsifierNames() entry
   std::optional<double> keep_share;   ///< keep this share of the nodes, evenly by id
   std::string remove;                 ///< or: a file of node ids to remove
-  bool zero_residual = false;         ///< new factors' measurements at x* (no gradient kept)
+  bool zero_residual = false;         ///< new factors' measurements at x*: --means estimate
+  std::string means = "gradient";     ///< estimate | gradient | marginal_mean
   bool no_blanket = false;            ///< replace only the factors at k, keep those among N
   std::string nfr_chords = "joined";  ///< nfr-subgraph's extra pairs: joined | mi
 };

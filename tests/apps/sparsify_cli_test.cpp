@@ -139,6 +139,37 @@ TEST(SparsifyCli, NfrTreeIsNoWorseThanChowLiuAndTheSubgraphNoWorseThanTheTree) {
   EXPECT_NE(chords.err.find("--nfr-chords"), std::string::npos) << chords.err;
 }
 
+// --means: where the new factors put their minimum. For an exact method the marginal's mean
+// and its gradient give the same factors (KLD 0 either way); estimate is --zero-residual;
+// an unknown value, or both flags, exit 2 naming the option.
+TEST(SparsifyCli, MeansPicksWhereTheNewFactorsPutTheirMinimum) {
+  const fs::path graph = Ring();
+  const auto run = [&](const std::string& args) {
+    const Result r = Lifelong("sparsify " + graph.string() + " --keep-share 0.5 " + args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto gradient = run("--method exact");
+  const auto mean = run("--method exact --means marginal_mean");
+  EXPECT_EQ(gradient["means"], "gradient");
+  EXPECT_EQ(mean["means"], "marginal_mean");
+  EXPECT_NEAR(mean["kld"].get<double>(), gradient["kld"].get<double>(), 1e-9);
+  EXPECT_LT(mean["kld"].get<double>(), 1e-6);
+  const auto estimate = run("--method chow-liu --means estimate");
+  const auto zero = run("--method chow-liu --zero-residual");
+  EXPECT_EQ(estimate["means"], "estimate");
+  EXPECT_EQ(estimate["gradient_kept"], false);
+  EXPECT_EQ(estimate["kld"], zero["kld"]);
+  const Result bad =
+      Lifelong("sparsify " + graph.string() + " --method chow-liu --keep-share 0.5 --means median");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--means"), std::string::npos) << bad.err;
+  const Result both =
+      Lifelong("sparsify " + graph.string() +
+               " --method chow-liu --keep-share 0.5 --zero-residual --means gradient");
+  EXPECT_EQ(both.code, 2);
+}
+
 // --no-blanket keeps the factors among the removed node's neighbours: chow-liu then replaces
 // only the factors at k, so the ring's chords survive as they were and the graph keeps more
 // edges; exact has no blanket either way (byte-identical output).

@@ -121,11 +121,12 @@ struct PruningConfig {
   /// Where the new factors' measurements put their minimum (sparsifier.hpp "Means"): at the
   /// estimate (zero residual, the seed), or moved to keep the exact marginal's gradient or
   /// mean, so the pull of measurements the estimate has not yet followed survives a removal.
-  FactorMeans factor_means = FactorMeans::kEstimate;
+  /// The marginal's mean with robust_marginal is the default (BENCHMARKS.md, issue #16).
+  FactorMeans factor_means = FactorMeans::kMarginalMean;
   /// A loop edge enters a removal's marginal with the weight the optimizer's robust kernel
   /// gives it at the estimate (its IRLS weight), as in the objective the optimizer minimizes.
-  /// false: with its full information.
-  bool robust_marginal = false;
+  /// false: with its full information (the seed).
+  bool robust_marginal = true;
 };
 
 struct MapperConfig {

@@ -220,6 +220,16 @@ TEST(MapperConfigFile, PrunedBudgetExampleSetsOnlyThePruning) {
   ExpectSameConfig(loaded, expected);
 }
 
+TEST(MapperConfigFile, SeedMarginalizationExampleRestoresTheSeedsRules) {
+  const MapperConfig loaded = LoadMapperConfig(kDir + "seed_marginalization.yaml");
+  MapperConfig expected = slam::DefaultMapperConfig();
+  expected.pruning.gain_threshold_bits = 0.0;
+  expected.pruning.max_edges_per_node = 0.0;
+  expected.pruning.factor_means = slam::FactorMeans::kEstimate;
+  expected.pruning.robust_marginal = false;
+  ExpectSameConfig(loaded, expected);
+}
+
 TEST(MapperConfigFile, OverridesApplyAndTheRestStaysAtBase) {
   MapperConfig base = AllChanged();
   base.pruning.mode = slam::PruningMode::kChowLiu;

@@ -112,6 +112,16 @@ VectorXd HeldStep(const MatrixXd& H, const VectorXd& g) {
   return -H.bottomRightCorner(d, d).ldlt().solve(g.tail(d));
 }
 
+// The exact marginal of node 0's clique as method `name` replaces it: with the factors among
+// the neighbours for the blanket methods, and their clique factors for GLC.
+void ExactMarginalAsSeenBy(const std::string& name, const PoseGraph& g, const Values& v,
+                           MatrixXd* lambda_N, VectorXd* g_N) {
+  const bool blanket = name == "chow-liu" || name == "glc" || name == "glc-dense" ||
+                       name == "nfr-tree" || name == "nfr-subgraph";
+  const bool cliques = name == "glc" || name == "glc-dense";
+  EliminateFirstBlock(LinearizeClique(g, v, 0, blanket, cliques), lambda_N, g_N);
+}
+
 TEST(Sparsifier, KeepGradientKeepsTheHessianAndMatchesTheMarginalsGradient) {
   std::mt19937 rng(43);
   const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
@@ -119,12 +129,9 @@ TEST(Sparsifier, KeepGradientKeepsTheHessianAndMatchesTheMarginalsGradient) {
   SparsifierConfig config;
   config.means = FactorMeans::kGradient;
   for (const std::string& name : SparsifierNames()) {
-    const bool blanket = name == "chow-liu" || name == "glc" || name == "glc-dense" ||
-                         name == "nfr-tree" || name == "nfr-subgraph";
-    const bool cliques = name == "glc" || name == "glc-dense";
     MatrixXd lambda_N;
     VectorXd g_N;
-    EliminateFirstBlock(LinearizeClique(g, v, 0, blanket, cliques), &lambda_N, &g_N);
+    ExactMarginalAsSeenBy(name, g, v, &lambda_N, &g_N);
     const Replacement plain = MakeSparsifier(name)->Replace(g, v, 0);
     const Replacement kept = MakeSparsifier(name, config)->Replace(g, v, 0);
     const std::vector<NodeId>& n = kept.neighbours;
@@ -147,12 +154,9 @@ TEST(Sparsifier, KeepMeanPutsTheFactorsMinimumAtTheMarginalsMean) {
   mean.means = FactorMeans::kMarginalMean;
   gradient.means = FactorMeans::kGradient;
   for (const std::string& name : SparsifierNames()) {
-    const bool blanket = name == "chow-liu" || name == "glc" || name == "glc-dense" ||
-                         name == "nfr-tree" || name == "nfr-subgraph";
-    const bool cliques = name == "glc" || name == "glc-dense";
     MatrixXd lambda_N;
     VectorXd g_N;
-    EliminateFirstBlock(LinearizeClique(g, v, 0, blanket, cliques), &lambda_N, &g_N);
+    ExactMarginalAsSeenBy(name, g, v, &lambda_N, &g_N);
     const Replacement kept = MakeSparsifier(name, mean)->Replace(g, v, 0);
     const MatrixXd h = FactorsHessian(kept.neighbours, v, kept.edges, kept.cliques);
     const VectorXd want = HeldStep(lambda_N, g_N), got = HeldStep(h, CostGradient(kept, v));

@@ -69,16 +69,16 @@ void PrintNumber(std::ostream& out, const char* key, double v) {
 
 int Sparsify(const SparsifyArgs& args) {
   slam::SparsifierConfig config;
-  if (args.zero_residual || args.means == "estimate") {
+  const std::string means = args.zero_residual ? "estimate" : args.means;
+  if (means == "estimate") {
     config.means = slam::FactorMeans::kEstimate;
-  } else if (args.means == "gradient") {
+  } else if (means == "gradient") {
     config.means = slam::FactorMeans::kGradient;
-  } else if (args.means == "marginal_mean") {
+  } else if (means == "marginal_mean") {
     config.means = slam::FactorMeans::kMarginalMean;
   } else {
-    throw InputError(
-        "--means", 0, "",
-        "unknown value '" + args.means + "' (known: estimate, gradient, marginal_mean)");
+    throw InputError("--means", 0, "",
+                     "unknown value '" + means + "' (known: estimate, gradient, marginal_mean)");
   }
   if (args.no_blanket) config.blanket = slam::BlanketPolicy::kFactorsAtK;
   if (args.nfr_chords == "mi") {
@@ -132,7 +132,7 @@ int Sparsify(const SparsifyArgs& args) {
   PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
   json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
        << ",\"gradient_kept\":" << (config.means == slam::FactorMeans::kGradient ? "true" : "false")
-       << ",\"means\":\"" << (args.zero_residual ? "estimate" : args.means) << '"';
+       << ",\"means\":\"" << means << '"';
   if (args.method == "nfr-subgraph") json << ",\"nfr_chords\":\"" << args.nfr_chords << '"';
   json << ",\"blanket\":" << (args.no_blanket ? "false" : "true");
   json << "}\n";

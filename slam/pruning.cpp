@@ -237,12 +237,10 @@ void Mapper::State::KeepEdgeBudget() {
       return;
     }
     if (config.pruning.factor_means != FactorMeans::kEstimate) {  // keep the edges' pull too
-      const std::vector<PoseEdge> within = graph.EdgesWithin(best);
+      const LocalSystem replaced = LinearizeEdges(best, values, graph.EdgesWithin(best));
       std::vector<CliqueFactor> no_cliques;
-      const Eigen::MatrixXd lambda = FactorsHessian(best, values, within, no_cliques);
-      PreserveGradient(
-          best, values, EdgesGradient(best, values, within), &result.edges, &no_cliques,
-          config.pruning.factor_means == FactorMeans::kMarginalMean ? &lambda : nullptr);
+      MoveMeans(config.pruning.factor_means, best, values, replaced.H, replaced.g, &result.edges,
+                &no_cliques);
     }
     ApplySparsification(&graph, result);
     prune_state.sparsifications.push_back(

@@ -155,13 +155,21 @@ MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,
   return h;
 }
 
-VectorXd EdgesGradient(const std::vector<NodeId>& nodes, const Values& values,
-                       const std::vector<PoseEdge>& edges) {
+LocalSystem LinearizeEdges(const std::vector<NodeId>& nodes, const Values& values,
+                           const std::vector<PoseEdge>& edges) {
   LocalSystem s;
   s.H = MatrixXd::Zero(Block(nodes.size()), Block(nodes.size()));
   s.g = VectorXd::Zero(Block(nodes.size()));
   for (const PoseEdge& e : edges) AddEdge(e, values, nodes, &s);
-  return s.g;
+  return s;
+}
+
+void MoveMeans(FactorMeans means, const std::vector<NodeId>& nodes, const Values& values,
+               const MatrixXd& lambda_N, const VectorXd& g_N, std::vector<PoseEdge>* edges,
+               std::vector<CliqueFactor>* cliques) {
+  if (means == FactorMeans::kEstimate) return;
+  PreserveGradient(nodes, values, g_N, edges, cliques,
+                   means == FactorMeans::kMarginalMean ? &lambda_N : nullptr);
 }
 
 namespace {
@@ -331,8 +339,7 @@ void KeepGradientIfAsked(const SparsifierConfig& config, const PoseGraph& graph,
   MatrixXd lambda_N;
   VectorXd g_N;
   EliminateFirstBlock(local, &lambda_N, &g_N);
-  PreserveGradient(r->neighbours, values, g_N, &r->edges, &r->cliques,
-                   config.means == FactorMeans::kMarginalMean ? &lambda_N : nullptr);
+  MoveMeans(config.means, r->neighbours, values, lambda_N, g_N, &r->edges, &r->cliques);
 }
 
 bool MarginalToReplace(const SparsifierConfig& config, const PoseGraph& graph, const Values& values,

@@ -41,7 +41,7 @@ enum class NfrChords {
 
 /// Where the new factors' measurements put their minimum (see "Means" above).
 enum class FactorMeans {
-  kEstimate,      ///< at x*: zero residual, the seed's and the mapper's default
+  kEstimate,      ///< at x*: zero residual, the seed's rule
   kGradient,      ///< moved so their gradient at x* is the exact marginal's (PreserveGradient)
   kMarginalMean,  ///< moved so their minimum is the exact marginal's mean x* - Lambda^+ g
 };
@@ -124,9 +124,16 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values,
                       std::vector<CliqueFactor>* cliques,
                       const Eigen::MatrixXd* lambda_N = nullptr);
 
-/// Gradient J^T Omega e of `edges` over `nodes` (ascending) at `values`.
-Eigen::VectorXd EdgesGradient(const std::vector<NodeId>& nodes, const Values& values,
-                              const std::vector<PoseEdge>& edges);
+/// Moves the factors as `means` asks, given the exact marginal (lambda_N, g_N) they replace:
+/// nothing for kEstimate, PreserveGradient for kGradient, and with lambda_N for kMarginalMean.
+void MoveMeans(FactorMeans means, const std::vector<NodeId>& nodes, const Values& values,
+               const Eigen::MatrixXd& lambda_N, const Eigen::VectorXd& g_N,
+               std::vector<PoseEdge>* edges, std::vector<CliqueFactor>* cliques);
+
+/// Hessian J^T Omega J and gradient J^T Omega e of `edges` over `nodes` (ascending) at
+/// `values` (LocalSystem::neighbours is left empty).
+LocalSystem LinearizeEdges(const std::vector<NodeId>& nodes, const Values& values,
+                           const std::vector<PoseEdge>& edges);
 
 /// Hessian of `edges` and `cliques` over `nodes` (ascending) at `values`.
 Eigen::MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,

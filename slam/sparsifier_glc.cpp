@@ -29,10 +29,7 @@ class GlcSparsifier final : public Sparsifier {
       f = GlcDense(r.neighbours, values, m.lambda_N, tol);
       SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
     }
-    if (config_.means != FactorMeans::kEstimate) {
-      PreserveGradient(r.neighbours, values, m.g_N, &r.edges, &r.cliques,
-                       config_.means == FactorMeans::kMarginalMean ? &m.lambda_N : nullptr);
-    }
+    MoveMeans(config_.means, r.neighbours, values, m.lambda_N, m.g_N, &r.edges, &r.cliques);
     return r;
   }
 

@@ -17,10 +17,7 @@ class GlcDenseSparsifier final : public Sparsifier {
     if (!MarginalToReplace(config_, graph, values, k, &r, &m)) return r;
     GlcFactors f = GlcDense(r.neighbours, values, m.lambda_N, config_.eigen_tolerance);
     SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
-    if (config_.means != FactorMeans::kEstimate) {
-      PreserveGradient(r.neighbours, values, m.g_N, &r.edges, &r.cliques,
-                       config_.means == FactorMeans::kMarginalMean ? &m.lambda_N : nullptr);
-    }
+    MoveMeans(config_.means, r.neighbours, values, m.lambda_N, m.g_N, &r.edges, &r.cliques);
     return r;
   }
 

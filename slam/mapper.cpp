@@ -121,15 +121,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
     data.travelled_m = nodes.at(last_node).travelled_m + std::hypot(delta.x, delta.y);
     const Pose2 guess = X_last * delta;
-    std::vector<Eigen::Vector2d> reference;
-    const std::size_t n = recent.size();
-    const std::size_t first = n > static_cast<std::size_t>(inc.local_map_nodes)
-                                  ? n - static_cast<std::size_t>(inc.local_map_nodes)
-                                  : 0;
-    for (std::size_t i = first; i < n; ++i) {
-      const auto world = ToWorld(nodes.at(recent[i]).points, values.at(recent[i]));
-      reference.insert(reference.end(), world.begin(), world.end());
-    }
+    std::vector<Eigen::Vector2d> reference = LocalMap();
     PoseEdge edge;
     edge.from = last_node;
     edge.to = id;
@@ -177,6 +169,36 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   scans_of_node[id].push_back(scans.size() - 1);
   last_node = id;
   have_last = true;
+}
+
+std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
+  const IncrementalConfig& inc = config.incremental;
+  const std::size_t n = recent.size();
+  const auto count = static_cast<std::size_t>(inc.local_map_nodes);
+  const std::vector<NodeId> ids(
+      recent.begin() + static_cast<std::ptrdiff_t>(n > count ? n - count : 0), recent.end());
+  std::vector<Eigen::Vector2d> reference;
+  if (inc.surface_gap_m <= 0.0) {
+    for (NodeId id : ids) {
+      const auto world = ToWorld(nodes.at(id).points, values.at(id));
+      reference.insert(reference.end(), world.begin(), world.end());
+    }
+    return reference;
+  }
+  // Without thinning, the surfaces are sampled at the likelihood field's resolution.
+  const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
+  std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
+  for (NodeId id : ids) {
+    auto it = local_surfaces.find(id);
+    std::vector<Eigen::Vector2d> surface =
+        it != local_surfaces.end() ? std::move(it->second)
+                                   : SurfacePoints(nodes.at(id).scan, spacing, inc.surface_gap_m);
+    const auto world = ToWorld(surface, values.at(id));
+    reference.insert(reference.end(), world.begin(), world.end());
+    kept.emplace(id, std::move(surface));
+  }
+  local_surfaces = std::move(kept);
+  return reference;
 }
 
 void Mapper::State::AnchorScan(const Observation& obs) {

@@ -36,6 +36,40 @@ void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spac
 
 }  // namespace
 
+std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing_m,
+                                           double max_gap_m) {
+  if (!(spacing_m > 0.0)) throw std::invalid_argument("SurfacePoints: spacing_m must be > 0");
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<Eigen::Vector2d> out;
+  const auto keep = [&](const Eigen::Vector2d& p) {
+    const auto vx = static_cast<std::int32_t>(std::floor(p.x() / spacing_m));
+    const auto vy = static_cast<std::int32_t>(std::floor(p.y() / spacing_m));
+    const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(vx)) << 32) |
+                              static_cast<std::uint32_t>(vy);
+    if (seen.insert(key).second) out.push_back(p);
+  };
+  Eigen::Vector2d prev = Eigen::Vector2d::Zero();
+  bool have_prev = false;
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (!scan.IsReturn(i)) {
+      have_prev = false;
+      continue;
+    }
+    const double r = scan.ranges_m[i], a = scan.Bearing(i);
+    Eigen::Vector2d q;
+    scan.T_robot_laser.Apply(r * std::cos(a), r * std::sin(a), &q.x(), &q.y());
+    const double gap = (q - prev).norm();
+    if (have_prev && gap < max_gap_m) {
+      const int n = static_cast<int>(std::ceil(gap / (0.5 * spacing_m)));
+      for (int k = 1; k < n; ++k) keep(prev + (q - prev) * (static_cast<double>(k) / n));
+    }
+    keep(q);
+    prev = q;
+    have_prev = true;
+  }
+  return out;
+}
+
 std::vector<Eigen::Vector2d> ScanToPoints(const LaserScan& scan, double spacing_m) {
   return PointsInReference({PosedScan{&scan, Pose2()}}, spacing_m);
 }

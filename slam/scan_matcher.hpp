@@ -126,6 +126,11 @@ void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2
 /// End points of the returns of a scan in the robot frame (via T_robot_laser), thinned so
 /// that at most one point falls in each spacing_m x spacing_m voxel (the first one kept).
 std::vector<Eigen::Vector2d> ScanToPoints(const LaserScan& scan, double spacing_m);
+/// The scan's surfaces in the robot frame: its return end points and points every
+/// spacing_m / 2 along the segment joining two consecutive returns less than max_gap_m
+/// apart, thinned to one per spacing_m voxel (spacing_m > 0).
+std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing_m,
+                                           double max_gap_m);
 
 /// A scan placed at a pose in the reference frame.
 struct PosedScan {

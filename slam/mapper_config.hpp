@@ -45,8 +45,9 @@ struct IncrementalConfig {
   int local_map_nodes = 8;        ///< recent nodes whose scans form the local map
   double point_spacing_m = 0.05;  ///< voxel thinning of matched points
   /// > 0: the local map joins two consecutive returns of a scan closer than this into a
-  /// surface (SurfacePoints), so its likelihood field is smooth along walls; 0: return points
-  double surface_gap_m = 0.0;
+  /// surface (SurfacePoints), so its likelihood field is smooth along walls hit at grazing
+  /// angles and motion along them is not under-measured; 0: return points (before 2026-12-02)
+  double surface_gap_m = 0.3;
   MatcherConfig matcher;             ///< window around the odometry guess
   double odom_sigma_xy_m = 0.05;     ///< fallback edge when matching fails: base sigma
   double odom_sigma_xy_per_m = 0.1;  ///< ...plus this much per metre travelled

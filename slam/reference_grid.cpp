@@ -13,6 +13,14 @@ namespace lifelong::slam {
 
 namespace {
 
+// The spacing_m voxel of p, as one key.
+std::uint64_t VoxelKey(const Eigen::Vector2d& p, double spacing_m) {
+  const auto vx = static_cast<std::int32_t>(std::floor(p.x() / spacing_m));
+  const auto vy = static_cast<std::int32_t>(std::floor(p.y() / spacing_m));
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(vx)) << 32) |
+         static_cast<std::uint32_t>(vy);
+}
+
 // Appends the return end points of `scan` seen from T_frame_robot, keeping the first point
 // of each spacing_m voxel (voxels shared through `seen`).
 void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spacing_m,
@@ -23,13 +31,7 @@ void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spac
     const double r = scan.ranges_m[i], a = scan.Bearing(i);
     Eigen::Vector2d p;
     T_frame_laser.Apply(r * std::cos(a), r * std::sin(a), &p.x(), &p.y());
-    if (spacing_m > 0.0) {
-      const auto vx = static_cast<std::int32_t>(std::floor(p.x() / spacing_m));
-      const auto vy = static_cast<std::int32_t>(std::floor(p.y() / spacing_m));
-      const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(vx)) << 32) |
-                                static_cast<std::uint32_t>(vy);
-      if (!seen->insert(key).second) continue;
-    }
+    if (spacing_m > 0.0 && !seen->insert(VoxelKey(p, spacing_m)).second) continue;
     out->push_back(p);
   }
 }
@@ -42,11 +44,7 @@ std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing
   std::unordered_set<std::uint64_t> seen;
   std::vector<Eigen::Vector2d> out;
   const auto keep = [&](const Eigen::Vector2d& p) {
-    const auto vx = static_cast<std::int32_t>(std::floor(p.x() / spacing_m));
-    const auto vy = static_cast<std::int32_t>(std::floor(p.y() / spacing_m));
-    const std::uint64_t key = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(vx)) << 32) |
-                              static_cast<std::uint32_t>(vy);
-    if (seen.insert(key).second) out.push_back(p);
+    if (seen.insert(VoxelKey(p, spacing_m)).second) out.push_back(p);
   };
   Eigen::Vector2d prev = Eigen::Vector2d::Zero();
   bool have_prev = false;

@@ -173,29 +173,23 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
 
 std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   const IncrementalConfig& inc = config.incremental;
-  const std::size_t n = recent.size();
-  const auto count = static_cast<std::size_t>(inc.local_map_nodes);
-  const std::vector<NodeId> ids(
-      recent.begin() + static_cast<std::ptrdiff_t>(n > count ? n - count : 0), recent.end());
-  std::vector<Eigen::Vector2d> reference;
-  if (inc.surface_gap_m <= 0.0) {
-    for (NodeId id : ids) {
-      const auto world = ToWorld(nodes.at(id).points, values.at(id));
-      reference.insert(reference.end(), world.begin(), world.end());
-    }
-    return reference;
-  }
+  const auto count = static_cast<std::ptrdiff_t>(inc.local_map_nodes);
+  const auto first = recent.end() - std::min(count, static_cast<std::ptrdiff_t>(recent.size()));
   // Without thinning, the surfaces are sampled at the likelihood field's resolution.
   const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
   std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
-  for (NodeId id : ids) {
-    auto it = local_surfaces.find(id);
-    std::vector<Eigen::Vector2d> surface =
-        it != local_surfaces.end() ? std::move(it->second)
-                                   : SurfacePoints(nodes.at(id).scan, spacing, inc.surface_gap_m);
-    const auto world = ToWorld(surface, values.at(id));
+  std::vector<Eigen::Vector2d> reference;
+  for (auto it = first; it != recent.end(); ++it) {
+    const NodeId id = *it;
+    const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
+    if (inc.surface_gap_m > 0.0) {
+      const auto cached = local_surfaces.find(id);
+      local = &(kept[id] = cached != local_surfaces.end()
+                               ? std::move(cached->second)
+                               : SurfacePoints(nodes.at(id).scan, spacing, inc.surface_gap_m));
+    }
+    const auto world = ToWorld(*local, values.at(id));
     reference.insert(reference.end(), world.begin(), world.end());
-    kept.emplace(id, std::move(surface));
   }
   local_surfaces = std::move(kept);
   return reference;

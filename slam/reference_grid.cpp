@@ -21,6 +21,14 @@ std::uint64_t VoxelKey(const Eigen::Vector2d& p, double spacing_m) {
          static_cast<std::uint32_t>(vy);
 }
 
+// The end point of beam i (a return) in the frame T_frame_laser maps the laser frame into.
+Eigen::Vector2d ReturnPoint(const LaserScan& scan, std::size_t i, const Pose2& T_frame_laser) {
+  const double r = scan.ranges_m[i], a = scan.Bearing(i);
+  Eigen::Vector2d p;
+  T_frame_laser.Apply(r * std::cos(a), r * std::sin(a), &p.x(), &p.y());
+  return p;
+}
+
 // Appends the return end points of `scan` seen from T_frame_robot, keeping the first point
 // of each spacing_m voxel (voxels shared through `seen`).
 void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spacing_m,
@@ -28,9 +36,7 @@ void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spac
   const Pose2 T_frame_laser = T_frame_robot * scan.T_robot_laser;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     if (!scan.IsReturn(i)) continue;
-    const double r = scan.ranges_m[i], a = scan.Bearing(i);
-    Eigen::Vector2d p;
-    T_frame_laser.Apply(r * std::cos(a), r * std::sin(a), &p.x(), &p.y());
+    const Eigen::Vector2d p = ReturnPoint(scan, i, T_frame_laser);
     if (spacing_m > 0.0 && !seen->insert(VoxelKey(p, spacing_m)).second) continue;
     out->push_back(p);
   }
@@ -53,9 +59,7 @@ std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing
       have_prev = false;
       continue;
     }
-    const double r = scan.ranges_m[i], a = scan.Bearing(i);
-    Eigen::Vector2d q;
-    scan.T_robot_laser.Apply(r * std::cos(a), r * std::sin(a), &q.x(), &q.y());
+    const Eigen::Vector2d q = ReturnPoint(scan, i, scan.T_robot_laser);
     const double gap = (q - prev).norm();
     if (have_prev && gap < max_gap_m) {
       const int n = static_cast<int>(std::ceil(gap / (0.5 * spacing_m)));

@@ -182,11 +182,11 @@ std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   for (auto it = first; it != recent.end(); ++it) {
     const NodeId id = *it;
     const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
-    if (inc.surface_gap_m > 0.0) {
+    if (inc.UsesSurfaces()) {
       const auto cached = local_surfaces.find(id);
       local = &(kept[id] = cached != local_surfaces.end()
                                ? std::move(cached->second)
-                               : SurfacePoints(nodes.at(id).scan, spacing, inc.surface_gap_m));
+                               : SurfacePoints(nodes.at(id).scan, spacing, inc.Surfaces()));
     }
     const auto world = ToWorld(*local, values.at(id));
     reference.insert(reference.end(), world.begin(), world.end());

@@ -48,6 +48,14 @@ struct IncrementalConfig {
   /// surface (SurfacePoints), so its likelihood field is smooth along walls hit at grazing
   /// angles and motion along them is not under-measured; 0: return points (before 2026-12-02)
   double surface_gap_m = 0.3;
+  /// > 0: returns up to this far apart are joined too when they lie on one line with their
+  /// neighbours, within surface_line_tol_m (SurfaceRule); 0: off
+  double surface_line_gap_m = 0.0;
+  double surface_line_tol_m = 0.02;
+  /// The rule above, as SurfacePoints takes it.
+  SurfaceRule Surfaces() const { return {surface_gap_m, surface_line_gap_m, surface_line_tol_m}; }
+  /// Whether the local map is made of surfaces rather than return points.
+  bool UsesSurfaces() const { return surface_gap_m > 0.0 || surface_line_gap_m > 0.0; }
   MatcherConfig matcher;             ///< window around the odometry guess
   double odom_sigma_xy_m = 0.05;     ///< fallback edge when matching fails: base sigma
   double odom_sigma_xy_per_m = 0.1;  ///< ...plus this much per metre travelled

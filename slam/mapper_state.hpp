@@ -87,13 +87,13 @@ struct Mapper::State {
   NodeId last_node = 0;
   ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
   /// The surface points (robot frame) of the nodes in the last local map, kept while they
-  /// stay in it (incremental.surface_gap_m > 0).
+  /// stay in it (IncrementalConfig::UsesSurfaces()).
   std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces;
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);
   /// The incremental matcher's reference in the world frame: the last local_map_nodes
-  /// nodes' return points, or their surfaces when incremental.surface_gap_m > 0.
+  /// nodes' return points, or their surfaces (IncrementalConfig::UsesSurfaces()).
   std::vector<Eigen::Vector2d> LocalMap();
   void Reanchor(std::size_t scan, NodeId anchor);
   bool TryCloseLoop(NodeId current);

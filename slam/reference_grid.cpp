@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <unordered_set>
+
+#include <Eigen/Eigenvalues>
 
 #include "slam/scan_matcher.hpp"
 #include "slam/scratch_table.hpp"
@@ -44,30 +48,69 @@ void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spac
 
 }  // namespace
 
+namespace {
+
+// Beams sweeping along a wall spread their returns out gradually: at 1 degree per beam, the
+// step between returns grows by less than 1.8 times from one beam to the next as long as the
+// beams meet the wall at 4 degrees or more. A step many times its neighbours' is a jump.
+constexpr double kMaxStepGrowth = 3.0;
+
+// Whether b-c, the step between consecutive returns a, b, c, d, continues a surface: the four lie
+// within tol_m of their least-squares line, in this order along it, and b-c is at most
+// kMaxStepGrowth times a-b and c-d.
+bool OnOneLine(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+               const Eigen::Vector2d& d, double tol_m) {
+  const double step = (c - b).norm();
+  if (step > kMaxStepGrowth * (b - a).norm() || step > kMaxStepGrowth * (d - c).norm()) {
+    return false;
+  }
+  const Eigen::Vector2d mean = 0.25 * (a + b + c + d);
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Eigen::Vector2d* p : {&a, &b, &c, &d})
+    scatter += (*p - mean) * (*p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  const Eigen::Vector2d along = eig.eigenvectors().col(1), across = eig.eigenvectors().col(0);
+  double last = -std::numeric_limits<double>::infinity();
+  const double sign = along.dot(d - a) >= 0.0 ? 1.0 : -1.0;
+  for (const Eigen::Vector2d* p : {&a, &b, &c, &d}) {
+    if (std::abs(across.dot(*p - mean)) > tol_m) return false;
+    const double t = sign * along.dot(*p - mean);
+    if (!(t > last)) return false;
+    last = t;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing_m,
-                                           double max_gap_m) {
+                                           const SurfaceRule& rule) {
   if (!(spacing_m > 0.0)) throw std::invalid_argument("SurfacePoints: spacing_m must be > 0");
+  // The returns, with a break (nullopt) at every beam without one.
+  std::vector<std::optional<Eigen::Vector2d>> beams(scan.ranges_m.size());
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    if (scan.IsReturn(i)) beams[i] = ReturnPoint(scan, i, scan.T_robot_laser);
+  }
+  const auto joined = [&](std::size_t i) {  // beams i and i + 1
+    const Eigen::Vector2d &p = *beams[i], &q = *beams[i + 1];
+    const double gap = (q - p).norm();
+    if (gap < rule.gap_m) return true;
+    if (!(gap < rule.line_gap_m) || i == 0 || i + 2 >= beams.size()) return false;
+    return beams[i - 1] && beams[i + 2] &&
+           OnOneLine(*beams[i - 1], p, q, *beams[i + 2], rule.line_tol_m);
+  };
   std::unordered_set<std::uint64_t> seen;
   std::vector<Eigen::Vector2d> out;
   const auto keep = [&](const Eigen::Vector2d& p) {
     if (seen.insert(VoxelKey(p, spacing_m)).second) out.push_back(p);
   };
-  Eigen::Vector2d prev = Eigen::Vector2d::Zero();
-  bool have_prev = false;
-  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    if (!scan.IsReturn(i)) {
-      have_prev = false;
-      continue;
-    }
-    const Eigen::Vector2d q = ReturnPoint(scan, i, scan.T_robot_laser);
-    const double gap = (q - prev).norm();
-    if (have_prev && gap < max_gap_m) {
-      const int n = static_cast<int>(std::ceil(gap / (0.5 * spacing_m)));
-      for (int k = 1; k < n; ++k) keep(prev + (q - prev) * (static_cast<double>(k) / n));
-    }
-    keep(q);
-    prev = q;
-    have_prev = true;
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    if (!beams[i]) continue;
+    keep(*beams[i]);
+    if (i + 1 >= beams.size() || !beams[i + 1] || !joined(i)) continue;
+    const Eigen::Vector2d &p = *beams[i], &q = *beams[i + 1];
+    const int n = static_cast<int>(std::ceil((q - p).norm() / (0.5 * spacing_m)));
+    for (int k = 1; k < n; ++k) keep(p + (q - p) * (static_cast<double>(k) / n));
   }
   return out;
 }

@@ -126,11 +126,24 @@ void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2
 /// End points of the returns of a scan in the robot frame (via T_robot_laser), thinned so
 /// that at most one point falls in each spacing_m x spacing_m voxel (the first one kept).
 std::vector<Eigen::Vector2d> ScanToPoints(const LaserScan& scan, double spacing_m);
+/// Which consecutive returns of a scan SurfacePoints joins into a surface.
+struct SurfaceRule {
+  /// Two consecutive returns less than this apart are joined, whatever the shape around them.
+  double gap_m = 0.3;
+  /// Two consecutive returns up to this far apart are joined when the segment lies on one line
+  /// with the segments on either side: the four returns within line_tol_m of their fitted line
+  /// and in beam order along it. A wall hit at a grazing angle passes (its returns spread out
+  /// along it); a depth jump, whose segment runs along the beams from one surface to another
+  /// behind it, does not. 0: off.
+  double line_gap_m = 0.0;
+  double line_tol_m = 0.02;
+};
+
 /// The scan's surfaces in the robot frame: its return end points and points every
-/// spacing_m / 2 along the segment joining two consecutive returns less than max_gap_m
-/// apart, thinned to one per spacing_m voxel (spacing_m > 0).
+/// spacing_m / 2 along each segment joining two consecutive returns that `rule` joins, thinned
+/// to one per spacing_m voxel (spacing_m > 0).
 std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing_m,
-                                           double max_gap_m);
+                                           const SurfaceRule& rule);
 
 /// A scan placed at a pose in the reference frame.
 struct PosedScan {

@@ -93,12 +93,8 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   }
   std::vector<Eigen::Vector2d> reference;
   for (NodeId id : submap) {
-    const Pose2& X = values.at(id);
-    for (const Eigen::Vector2d& p : nodes.at(id).points) {
-      double x = 0.0, y = 0.0;
-      X.Apply(p.x(), p.y(), &x, &y);
-      reference.emplace_back(x, y);
-    }
+    const std::vector<Eigen::Vector2d> points = LoopReference(id);
+    reference.insert(reference.end(), points.begin(), points.end());
   }
   MatcherConfig mc = lc.matcher;
   mc.linear_window_m = std::max(Clamp3Sigma(var_x, lc.min_window_m, lc.max_window_m),
@@ -151,6 +147,14 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   return closed;
 }
 
+std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) const {
+  const IncrementalConfig& inc = config.incremental;
+  if (!config.loops.surfaces || !inc.UsesSurfaces())
+    return ToWorld(nodes.at(id).points, values.at(id));
+  const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
+  return ToWorld(SurfacePoints(nodes.at(id).scan, spacing, inc.Surfaces()), values.at(id));
+}
+
 MatchResult Mapper::State::RefineAgainstNode(NodeId old, const std::vector<Eigen::Vector2d>& points,
                                              const MatchResult& submap_match) {
   const LoopClosingConfig& lc = config.loops;
@@ -158,7 +162,7 @@ MatchResult Mapper::State::RefineAgainstNode(NodeId old, const std::vector<Eigen
   // The submap holds several nodes whose estimates may disagree by what the map still gets
   // wrong; the edge goes to `old` alone, so it is measured against old's scan alone,
   // in a narrow window around the submap's answer.
-  std::vector<Eigen::Vector2d> reference = ToWorld(nodes.at(old).points, values.at(old));
+  std::vector<Eigen::Vector2d> reference = LoopReference(old);
   MatcherConfig mc = lc.matcher;
   mc.linear_window_m = lc.refine_window_m;
   mc.angular_window_rad = lc.refine_window_rad;

@@ -74,6 +74,9 @@ struct LoopClosingConfig {
   double min_window_rad = 0.15;
   double max_window_rad = 0.5;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
+  /// The submap is made of its nodes' surfaces, by the incremental matcher's rule
+  /// (IncrementalConfig::Surfaces), rather than of their return points.
+  bool surfaces = false;
   /// The submap holds one visit: candidates observed within this many observations of the
   /// most likely candidate (and their neighbours alike). 0: every candidate.
   int submap_span = 0;

@@ -95,6 +95,9 @@ struct Mapper::State {
   /// The incremental matcher's reference in the world frame: the last local_map_nodes
   /// nodes' return points, or their surfaces (IncrementalConfig::UsesSurfaces()).
   std::vector<Eigen::Vector2d> LocalMap();
+  /// Node id's points for a loop-closing reference, in the world frame: its surfaces when
+  /// loops.surfaces is set (and the incremental rule makes any), its return points otherwise.
+  std::vector<Eigen::Vector2d> LoopReference(NodeId id) const;
   void Reanchor(std::size_t scan, NodeId anchor);
   bool TryCloseLoop(NodeId current);
   /// Local uniqueness of a loop-closure match: no pose uniqueness_radius_m away (8

@@ -41,6 +41,7 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(a.max_ambiguity, b.max_ambiguity);
   EXPECT_EQ(a.consistency_chi2, b.consistency_chi2);
   EXPECT_EQ(a.min_reference_points, b.min_reference_points);
+  EXPECT_EQ(a.surfaces, b.surfaces);
   ExpectSameMatcher(a.matcher, b.matcher);
   EXPECT_EQ(a.optimize_edge_chi2, b.optimize_edge_chi2);
   EXPECT_EQ(a.optimize_every, b.optimize_every);
@@ -169,6 +170,7 @@ MapperConfig AllChanged() {
   l.max_ambiguity = 0.9;
   l.consistency_chi2 = 11.34;
   l.min_reference_points = 40;
+  l.surfaces = true;
   ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;

@@ -49,8 +49,8 @@ struct IncrementalConfig {
   /// angles and motion along them is not under-measured; 0: return points (before 2026-12-02)
   double surface_gap_m = 0.3;
   /// > 0: returns up to this far apart are joined too when they lie on one line with their
-  /// neighbours, within surface_line_tol_m (SurfaceRule); 0: off
-  double surface_line_gap_m = 0.0;
+  /// neighbours, within surface_line_tol_m (SurfaceRule); 0: off (before 2026-12-02)
+  double surface_line_gap_m = 1.5;
   double surface_line_tol_m = 0.02;
   /// The rule above, as SurfacePoints takes it.
   SurfaceRule Surfaces() const { return {surface_gap_m, surface_line_gap_m, surface_line_tol_m}; }
@@ -75,8 +75,9 @@ struct LoopClosingConfig {
   double max_window_rad = 0.5;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
   /// The submap is made of its nodes' surfaces, by the incremental matcher's rule
-  /// (IncrementalConfig::Surfaces), rather than of their return points.
-  bool surfaces = false;
+  /// (IncrementalConfig::Surfaces), rather than of their return points (false before
+  /// 2026-12-02).
+  bool surfaces = true;
   /// The submap holds one visit: candidates observed within this many observations of the
   /// most likely candidate (and their neighbours alike). 0: every candidate.
   int submap_span = 0;

@@ -143,7 +143,7 @@ MapperConfig AllChanged() {
   c.incremental.local_map_nodes = 5;
   c.incremental.point_spacing_m = 0.04;
   c.incremental.surface_gap_m = 0.25;
-  c.incremental.surface_line_gap_m = 1.5;
+  c.incremental.surface_line_gap_m = 2.5;
   c.incremental.surface_line_tol_m = 0.03;
   ChangeMatcher(&c.incremental.matcher, true);
   c.incremental.odom_sigma_xy_m = 0.06;
@@ -170,7 +170,7 @@ MapperConfig AllChanged() {
   l.max_ambiguity = 0.9;
   l.consistency_chi2 = 11.34;
   l.min_reference_points = 40;
-  l.surfaces = true;
+  l.surfaces = false;
   ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;

@@ -148,11 +148,8 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
 }
 
 std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) const {
-  const IncrementalConfig& inc = config.incremental;
-  if (!config.loops.surfaces || !inc.UsesSurfaces())
-    return ToWorld(nodes.at(id).points, values.at(id));
-  const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
-  return ToWorld(SurfacePoints(nodes.at(id).scan, spacing, inc.Surfaces()), values.at(id));
+  const bool surfaces = config.loops.surfaces && config.incremental.UsesSurfaces();
+  return ToWorld(surfaces ? SurfacesOf(id) : nodes.at(id).points, values.at(id));
 }
 
 MatchResult Mapper::State::RefineAgainstNode(NodeId old, const std::vector<Eigen::Vector2d>& points,

@@ -171,12 +171,16 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   have_last = true;
 }
 
+std::vector<Eigen::Vector2d> Mapper::State::SurfacesOf(NodeId id) const {
+  const IncrementalConfig& inc = config.incremental;
+  const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
+  return SurfacePoints(nodes.at(id).scan, spacing, inc.Surfaces());
+}
+
 std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   const IncrementalConfig& inc = config.incremental;
   const auto count = static_cast<std::ptrdiff_t>(inc.local_map_nodes);
   const auto first = recent.end() - std::min(count, static_cast<std::ptrdiff_t>(recent.size()));
-  // Without thinning, the surfaces are sampled at the likelihood field's resolution.
-  const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
   std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
   std::vector<Eigen::Vector2d> reference;
   for (auto it = first; it != recent.end(); ++it) {
@@ -184,9 +188,8 @@ std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
     const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
     if (inc.UsesSurfaces()) {
       const auto cached = local_surfaces.find(id);
-      local = &(kept[id] = cached != local_surfaces.end()
-                               ? std::move(cached->second)
-                               : SurfacePoints(nodes.at(id).scan, spacing, inc.Surfaces()));
+      local =
+          &(kept[id] = cached != local_surfaces.end() ? std::move(cached->second) : SurfacesOf(id));
     }
     const auto world = ToWorld(*local, values.at(id));
     reference.insert(reference.end(), world.begin(), world.end());

@@ -46,10 +46,6 @@ void AppendPoints(const LaserScan& scan, const Pose2& T_frame_robot, double spac
   }
 }
 
-}  // namespace
-
-namespace {
-
 // Beams sweeping along a wall spread their returns out gradually: at 1 degree per beam, the
 // step between returns grows by less than 1.8 times from one beam to the next as long as the
 // beams meet the wall at 4 degrees or more. A step many times its neighbours' is a jump.

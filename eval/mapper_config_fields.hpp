@@ -131,6 +131,7 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);
   v.Int("min_reference_points", c.min_reference_points, 0);
   v.Bool("surfaces", c.surfaces);
+  v.Bool("surface_lines", c.surface_lines);
   v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, false); });
   v.Number("optimize_edge_chi2", c.optimize_edge_chi2, kNonNegative);
   v.Int("optimize_every", c.optimize_every, 1);

@@ -149,7 +149,10 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
 
 std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) const {
   const bool surfaces = config.loops.surfaces && config.incremental.UsesSurfaces();
-  return ToWorld(surfaces ? SurfacesOf(id) : nodes.at(id).points, values.at(id));
+  if (!surfaces) return ToWorld(nodes.at(id).points, values.at(id));
+  SurfaceRule rule = config.incremental.Surfaces();
+  if (!config.loops.surface_lines) rule.line_gap_m = 0.0;
+  return ToWorld(SurfacesOf(id, rule), values.at(id));
 }
 
 MatchResult Mapper::State::RefineAgainstNode(NodeId old, const std::vector<Eigen::Vector2d>& points,

@@ -171,10 +171,10 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   have_last = true;
 }
 
-std::vector<Eigen::Vector2d> Mapper::State::SurfacesOf(NodeId id) const {
+std::vector<Eigen::Vector2d> Mapper::State::SurfacesOf(NodeId id, const SurfaceRule& rule) const {
   const IncrementalConfig& inc = config.incremental;
   const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
-  return SurfacePoints(nodes.at(id).scan, spacing, inc.Surfaces());
+  return SurfacePoints(nodes.at(id).scan, spacing, rule);
 }
 
 std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
@@ -188,8 +188,8 @@ std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
     const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
     if (inc.UsesSurfaces()) {
       const auto cached = local_surfaces.find(id);
-      local =
-          &(kept[id] = cached != local_surfaces.end() ? std::move(cached->second) : SurfacesOf(id));
+      local = &(kept[id] = cached != local_surfaces.end() ? std::move(cached->second)
+                                                          : SurfacesOf(id, inc.Surfaces()));
     }
     const auto world = ToWorld(*local, values.at(id));
     reference.insert(reference.end(), world.begin(), world.end());

@@ -78,6 +78,8 @@ struct LoopClosingConfig {
   /// (IncrementalConfig::Surfaces), rather than of their return points (false before
   /// 2026-12-02).
   bool surfaces = true;
+  /// ...joined along lines as well (surface_line_gap_m), or by surface_gap_m alone.
+  bool surface_lines = true;
   /// The submap holds one visit: candidates observed within this many observations of the
   /// most likely candidate (and their neighbours alike). 0: every candidate.
   int submap_span = 0;

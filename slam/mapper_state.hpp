@@ -98,9 +98,9 @@ struct Mapper::State {
   /// Node id's points for a loop-closing reference, in the world frame: its surfaces when
   /// loops.surfaces is set (and the incremental rule makes any), its return points otherwise.
   std::vector<Eigen::Vector2d> LoopReference(NodeId id) const;
-  /// Node id's surfaces in the robot frame, by the incremental rule (SurfacePoints), sampled
+  /// Node id's surfaces in the robot frame, by `rule` (SurfacePoints), sampled
   /// at the thinning spacing (the likelihood field's resolution without thinning).
-  std::vector<Eigen::Vector2d> SurfacesOf(NodeId id) const;
+  std::vector<Eigen::Vector2d> SurfacesOf(NodeId id, const SurfaceRule& rule) const;
   void Reanchor(std::size_t scan, NodeId anchor);
   bool TryCloseLoop(NodeId current);
   /// Local uniqueness of a loop-closure match: no pose uniqueness_radius_m away (8

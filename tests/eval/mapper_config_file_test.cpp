@@ -42,6 +42,7 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(a.consistency_chi2, b.consistency_chi2);
   EXPECT_EQ(a.min_reference_points, b.min_reference_points);
   EXPECT_EQ(a.surfaces, b.surfaces);
+  EXPECT_EQ(a.surface_lines, b.surface_lines);
   ExpectSameMatcher(a.matcher, b.matcher);
   EXPECT_EQ(a.optimize_edge_chi2, b.optimize_edge_chi2);
   EXPECT_EQ(a.optimize_every, b.optimize_every);
@@ -171,6 +172,7 @@ MapperConfig AllChanged() {
   l.consistency_chi2 = 11.34;
   l.min_reference_points = 40;
   l.surfaces = false;
+  l.surface_lines = false;
   ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;

@@ -84,9 +84,9 @@ template <class V>
 void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Int("local_map_nodes", c.local_map_nodes, 1);
   v.Number("point_spacing_m", c.point_spacing_m, kNonNegative);
-  v.Number("surface_gap_m", c.surface_gap_m, kNonNegative);
-  v.Number("surface_line_gap_m", c.surface_line_gap_m, kNonNegative);
-  v.Number("surface_line_tol_m", c.surface_line_tol_m, kPositive);
+  v.Number("surface_gap_m", c.surfaces.gap_m, kNonNegative);
+  v.Number("surface_line_gap_m", c.surfaces.line_gap_m, kNonNegative);
+  v.Number("surface_line_tol_m", c.surfaces.line_tol_m, kPositive);
   v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, true); });
   v.Number("odom_sigma_xy_m", c.odom_sigma_xy_m, kPositive);
   v.Number("odom_sigma_xy_per_m", c.odom_sigma_xy_per_m, kNonNegative);

@@ -148,9 +148,9 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
 }
 
 std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) const {
-  const bool surfaces = config.loops.surfaces && config.incremental.UsesSurfaces();
+  const bool surfaces = config.loops.surfaces && config.incremental.surfaces.JoinsAny();
   if (!surfaces) return ToWorld(nodes.at(id).points, values.at(id));
-  SurfaceRule rule = config.incremental.Surfaces();
+  SurfaceRule rule = config.incremental.surfaces;
   if (!config.loops.surface_lines) rule.line_gap_m = 0.0;
   return ToWorld(SurfacesOf(id, rule), values.at(id));
 }

@@ -186,10 +186,10 @@ std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   for (auto it = first; it != recent.end(); ++it) {
     const NodeId id = *it;
     const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
-    if (inc.UsesSurfaces()) {
+    if (inc.surfaces.JoinsAny()) {
       const auto cached = local_surfaces.find(id);
       local = &(kept[id] = cached != local_surfaces.end() ? std::move(cached->second)
-                                                          : SurfacesOf(id, inc.Surfaces()));
+                                                          : SurfacesOf(id, inc.surfaces));
     }
     const auto world = ToWorld(*local, values.at(id));
     reference.insert(reference.end(), world.begin(), world.end());

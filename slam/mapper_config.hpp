@@ -44,18 +44,11 @@ struct KeyframeConfig {
 struct IncrementalConfig {
   int local_map_nodes = 8;        ///< recent nodes whose scans form the local map
   double point_spacing_m = 0.05;  ///< voxel thinning of matched points
-  /// > 0: the local map joins two consecutive returns of a scan closer than this into a
-  /// surface (SurfacePoints), so its likelihood field is smooth along walls hit at grazing
-  /// angles and motion along them is not under-measured; 0: return points (before 2026-12-02)
-  double surface_gap_m = 0.3;
-  /// > 0: returns up to this far apart are joined too when they lie on one line with their
-  /// neighbours, within surface_line_tol_m (SurfaceRule); 0: off (before 2026-12-02)
-  double surface_line_gap_m = 1.5;
-  double surface_line_tol_m = 0.02;
-  /// The rule above, as SurfacePoints takes it.
-  SurfaceRule Surfaces() const { return {surface_gap_m, surface_line_gap_m, surface_line_tol_m}; }
-  /// Whether the local map is made of surfaces rather than return points.
-  bool UsesSurfaces() const { return surface_gap_m > 0.0 || surface_line_gap_m > 0.0; }
+  /// The local map joins consecutive returns of a scan into surfaces (SurfacePoints), so its
+  /// likelihood field is smooth along walls hit at grazing angles and motion along them is
+  /// not under-measured. YAML keys surface_gap_m (0: return points, before 2026-12-02),
+  /// surface_line_gap_m and surface_line_tol_m (the line rule; gap 0: off).
+  SurfaceRule surfaces;
   MatcherConfig matcher;             ///< window around the odometry guess
   double odom_sigma_xy_m = 0.05;     ///< fallback edge when matching fails: base sigma
   double odom_sigma_xy_per_m = 0.1;  ///< ...plus this much per metre travelled
@@ -78,7 +71,7 @@ struct LoopClosingConfig {
   /// (IncrementalConfig::Surfaces), rather than of their return points (false before
   /// 2026-12-02).
   bool surfaces = true;
-  /// ...joined along lines as well (surface_line_gap_m), or by surface_gap_m alone.
+  /// ...joined along lines as well (SurfaceRule::line_gap_m), or by the gap alone.
   bool surface_lines = true;
   /// The submap holds one visit: candidates observed within this many observations of the
   /// most likely candidate (and their neighbours alike). 0: every candidate.

@@ -87,13 +87,13 @@ struct Mapper::State {
   NodeId last_node = 0;
   ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
   /// The surface points (robot frame) of the nodes in the last local map, kept while they
-  /// stay in it (IncrementalConfig::UsesSurfaces()).
+  /// stay in it (SurfaceRule::JoinsAny).
   std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces;
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);
   /// The incremental matcher's reference in the world frame: the last local_map_nodes
-  /// nodes' return points, or their surfaces (IncrementalConfig::UsesSurfaces()).
+  /// nodes' return points, or their surfaces (SurfaceRule::JoinsAny).
   std::vector<Eigen::Vector2d> LocalMap();
   /// Node id's points for a loop-closing reference, in the world frame: its surfaces when
   /// loops.surfaces is set (and the incremental rule makes any), its return points otherwise.

@@ -126,7 +126,8 @@ void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2
 /// End points of the returns of a scan in the robot frame (via T_robot_laser), thinned so
 /// that at most one point falls in each spacing_m x spacing_m voxel (the first one kept).
 std::vector<Eigen::Vector2d> ScanToPoints(const LaserScan& scan, double spacing_m);
-/// Which consecutive returns of a scan SurfacePoints joins into a surface.
+/// Which consecutive returns of a scan SurfacePoints joins into a surface. The defaults are
+/// the mapper's (IncrementalConfig::surfaces).
 struct SurfaceRule {
   /// Two consecutive returns less than this apart are joined, whatever the shape around them.
   double gap_m = 0.3;
@@ -134,9 +135,11 @@ struct SurfaceRule {
   /// with the segments on either side: the four returns within line_tol_m of their fitted line
   /// and in beam order along it. A wall hit at a grazing angle passes (its returns spread out
   /// along it); a depth jump, whose segment runs along the beams from one surface to another
-  /// behind it, does not. 0: off.
-  double line_gap_m = 0.0;
+  /// behind it, does not. 0: off (before 2026-12-02).
+  double line_gap_m = 1.5;
   double line_tol_m = 0.02;
+  /// Whether any returns are joined (else SurfacePoints gives the return points alone).
+  bool JoinsAny() const { return gap_m > 0.0 || line_gap_m > 0.0; }
 };
 
 /// The scan's surfaces in the robot frame: its return end points and points every

@@ -47,7 +47,7 @@ double LargestStep(const std::vector<double>& sorted) {
 TEST(SurfacePoints, FillsTheWallBetweenReturnsAtTheThinningSpacing) {
   const LaserScan scan = WallScan(10.0, 10);  // returns ~0.18 m apart on the wall
   const std::vector<Eigen::Vector2d> returns = ScanToPoints(scan, 0.05);
-  const std::vector<Eigen::Vector2d> surface = SurfacePoints(scan, 0.05, {0.3});
+  const std::vector<Eigen::Vector2d> surface = SurfacePoints(scan, 0.05, {0.3, 0.0});
   EXPECT_GT(LargestStep(SortedY(returns)), 0.17);
   // One point per 5 cm voxel: neighbours are less than two voxels apart.
   EXPECT_LT(LargestStep(SortedY(surface)), 0.1);
@@ -61,9 +61,9 @@ TEST(SurfacePoints, DoesNotJoinReturnsFartherApartThanTheGapOrAcrossAMiss) {
   const LaserScan scan = WallScan(10.0, 10, {0});
   const double half_step = 0.5 * 10.0 * std::tan(1 * kDeg);
   // Returns 0.175 m apart: a gap of 0.1 m keeps the returns alone.
-  EXPECT_EQ(SurfacePoints(scan, 0.05, {0.1}).size(), ScanToPoints(scan, 0.05).size());
+  EXPECT_EQ(SurfacePoints(scan, 0.05, {0.1, 0.0}).size(), ScanToPoints(scan, 0.05).size());
   // The missing beam 0 leaves the wall open between beams -1 and 1.
-  for (const Eigen::Vector2d& p : SurfacePoints(scan, 0.05, {0.3})) {
+  for (const Eigen::Vector2d& p : SurfacePoints(scan, 0.05, {0.3, 0.0})) {
     EXPECT_FALSE(std::abs(p.y()) < half_step) << p.y();
   }
 }
@@ -85,7 +85,7 @@ TEST(SurfacePoints, TheLineRuleJoinsAWallHitAtAGrazingAngleBeyondTheGap) {
     std::sort(x.begin(), x.end());
     return x;
   };
-  EXPECT_GT(LargestStep(wall_y(SurfacePoints(scan, 0.05, {0.3}))), 0.6);
+  EXPECT_GT(LargestStep(wall_y(SurfacePoints(scan, 0.05, {0.3, 0.0}))), 0.6);
   EXPECT_LT(LargestStep(wall_y(SurfacePoints(scan, 0.05, {0.3, 1.5}))), 0.1);
 }
 
@@ -113,7 +113,8 @@ TEST(SurfacePoints, TheLineRuleLeavesCloseReturnsToTheGap) {
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     scan.ranges_m[i] += (i % 2 == 0 ? 0.01f : -0.01f);
   }
-  EXPECT_EQ(SurfacePoints(scan, 0.05, {0.3}).size(), SurfacePoints(scan, 0.05, {0.3, 2.0}).size());
+  EXPECT_EQ(SurfacePoints(scan, 0.05, {0.3, 0.0}).size(),
+            SurfacePoints(scan, 0.05, {0.3, 2.0}).size());
 }
 
 // An aisle 2.6 m wide and 32 m long with a cross passage: the robot moves 0.5 m along it
@@ -139,8 +140,8 @@ TEST(SurfacePoints, ASurfaceReferenceDoesNotShortenMotionAlongAnAisle) {
     const std::vector<Eigen::Vector2d> query = ScanToPoints(scan_b, 0.05);
     const MatchResult on_points =
         Match(ReferenceGrid(ScanToPoints(scan_a, 0.05), config), query, odometry, config);
-    const MatchResult on_surface =
-        Match(ReferenceGrid(SurfacePoints(scan_a, 0.05, {1.0}), config), query, odometry, config);
+    const MatchResult on_surface = Match(
+        ReferenceGrid(SurfacePoints(scan_a, 0.05, {1.0, 0.0}), config), query, odometry, config);
     const MatchResult on_lines = Match(
         ReferenceGrid(SurfacePoints(scan_a, 0.05, {0.1, 2.0}), config), query, odometry, config);
     ASSERT_TRUE(on_points.ok && on_surface.ok && on_lines.ok);

@@ -68,9 +68,12 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
   if (m.loop_verification) {
     const slam::LoopVerifierStats& v = m.loop_verification->counts;
-    json lv = {{"proposed", v.proposed},     {"accepted", v.accepted},
-               {"rejected", v.rejected},     {"expired", v.expired},
-               {"not_unique", v.not_unique}, {"switched_off", m.loop_verification->switched_off}};
+    json lv = {{"proposed", v.proposed},      {"accepted", v.accepted},
+               {"rejected", v.rejected},      {"expired", v.expired},
+               {"not_unique", v.not_unique},  {"switched_off", m.loop_verification->switched_off},
+               {"attempts", v.attempts},      {"few_points", v.few_points},
+               {"low_score", v.low_score},    {"ambiguous", v.ambiguous},
+               {"implausible", v.implausible}};
     if (m.loop_verification->injection) {
       lv["injected"] = v.injected;
       lv["injected_accepted"] = v.injected_accepted;

@@ -52,6 +52,11 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
     if (m <= lc.gate_chi2) candidates.push_back({id, m, node.covariance});
   }
   if (candidates.empty()) return false;
+  loop_state.verifier.NoteAttempt();
+  const auto refuse = [this](MatchRefusal why) {
+    loop_state.verifier.NoteRefused(why);
+    return false;
+  };
   // One traversal only: the candidates observed within submap_span observations of the most
   // likely one. Candidates of different visits disagree by whatever error the map still
   // holds between them; a submap mixing them is blurred, and a closure attached to one node
@@ -101,14 +106,13 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
                                 Clamp3Sigma(var_y, lc.min_window_m, lc.max_window_m));
   mc.angular_window_rad = Clamp3Sigma(var_th, lc.min_window_rad, lc.max_window_rad);
   CropToSearch(nodes.at(current).points, X_cur, mc, &reference);
-  if (static_cast<int>(reference.size()) < lc.min_reference_points) return false;
+  if (static_cast<int>(reference.size()) < lc.min_reference_points)
+    return refuse(MatchRefusal::kFewPoints);
   match_grid.Build(reference, mc);
   const MatchResult match = Match(match_grid, nodes.at(current).points, X_cur, mc);
-  if (!match.ok || match.score < lc.min_score || match.ambiguity > lc.max_ambiguity) return false;
-  if (!LocallyUnique(match, nodes.at(current).points)) {
-    loop_state.verifier.NoteNotUnique();
-    return false;
-  }
+  if (!match.ok || match.score < lc.min_score) return refuse(MatchRefusal::kLowScore);
+  if (match.ambiguity > lc.max_ambiguity) return refuse(MatchRefusal::kAmbiguous);
+  if (!LocallyUnique(match, nodes.at(current).points)) return refuse(MatchRefusal::kNotUnique);
 
   // The correction must be plausible under the projected uncertainty of the best candidate.
   const auto best = std::min_element(
@@ -117,7 +121,8 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   Eigen::Vector3d correction = T2V(match.T_ref_cur) - T2V(X_cur);
   correction.z() = NormalizeAngle(correction.z());
   const Eigen::Matrix3d S = best->covariance + match.covariance;
-  if (correction.dot(S.inverse() * correction) > lc.consistency_chi2) return false;
+  if (correction.dot(S.inverse() * correction) > lc.consistency_chi2)
+    return refuse(MatchRefusal::kImplausible);
 
   // Attach the closure to the candidate nearest to the matched pose.
   NodeId old = candidates.front().id;

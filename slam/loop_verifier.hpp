@@ -74,7 +74,17 @@ struct LoopVerifierStats {
   int not_unique = 0;  ///< matches refused before verification: not locally unique
   int injected = 0;    ///< wrong closures injected (false-closure test)
   int injected_accepted = 0;
+  // The funnel before verification: attempts = few_points + low_score + ambiguous +
+  // not_unique + implausible + proposed.
+  int attempts = 0;     ///< observations with a candidate inside the gate
+  int few_points = 0;   ///< ...whose submap had fewer points in reach than the minimum
+  int low_score = 0;    ///< ...whose best match scored below the minimum
+  int ambiguous = 0;    ///< ...whose best match had a close second farther away
+  int implausible = 0;  ///< ...whose correction lay outside the consistency gate
 };
+
+/// Why the mapper refused a loop-closure match before it became a hypothesis.
+enum class MatchRefusal { kFewPoints, kLowScore, kAmbiguous, kNotUnique, kImplausible };
 
 class LoopVerifier {
  public:
@@ -87,8 +97,28 @@ class LoopVerifier {
   void Expire(double travelled_m);
   /// Forgets accepted closures involving a removed node (they no longer count as evidence).
   void ForgetNode(NodeId id);
-  /// Counts a match the mapper refused as not locally unique (it never became a hypothesis).
-  void NoteNotUnique() { ++stats_.not_unique; }
+  /// Counts a loop-closing attempt (a candidate inside the gate).
+  void NoteAttempt() { ++stats_.attempts; }
+  /// Counts an attempt the mapper refused before it became a hypothesis.
+  void NoteRefused(MatchRefusal why) {
+    switch (why) {
+      case MatchRefusal::kFewPoints:
+        ++stats_.few_points;
+        break;
+      case MatchRefusal::kLowScore:
+        ++stats_.low_score;
+        break;
+      case MatchRefusal::kAmbiguous:
+        ++stats_.ambiguous;
+        break;
+      case MatchRefusal::kNotUnique:
+        ++stats_.not_unique;
+        break;
+      case MatchRefusal::kImplausible:
+        ++stats_.implausible;
+        break;
+    }
+  }
   /// True when a pending hypothesis involves the node (pruning must keep it).
   bool IsPending(NodeId id) const;
 

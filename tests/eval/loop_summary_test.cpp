@@ -17,7 +17,7 @@ nlohmann::json ModeJsonOf(const ModeSummary& m) {
 
 TEST(LoopSummary, VerificationCountsWithoutInjection) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0}, false, 2};
+  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0, 64, 3, 10, 4, 2}, false, 2};
   const auto j = ModeJsonOf(m)["loop_verification"];
   EXPECT_EQ(j["proposed"], 40);
   EXPECT_EQ(j["accepted"], 31);
@@ -25,6 +25,11 @@ TEST(LoopSummary, VerificationCountsWithoutInjection) {
   EXPECT_EQ(j["expired"], 7);
   EXPECT_EQ(j["not_unique"], 5);
   EXPECT_EQ(j["switched_off"], 2);
+  EXPECT_EQ(j["attempts"], 64);
+  EXPECT_EQ(j["few_points"], 3);
+  EXPECT_EQ(j["low_score"], 10);
+  EXPECT_EQ(j["ambiguous"], 4);
+  EXPECT_EQ(j["implausible"], 2);
   EXPECT_FALSE(j.contains("injected"));  // not a silent zero: the test was off
   EXPECT_FALSE(ModeJsonOf(m).contains("loop_precision_last_hour"));
 }

@@ -88,6 +88,17 @@ TEST(Mapper, StandardKeepsEveryNodeAndTracksTheTruth) {
   EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
 }
 
+// Every loop-closing attempt ends in exactly one place: a refusal or a proposed hypothesis.
+TEST(Mapper, LoopClosingFunnelAddsUp) {
+  Mapper mapper(DefaultMapperConfig());
+  for (const Observation& o : Corridor3()) mapper.AddObservation(o);
+  const LoopVerifierStats& s = mapper.loop_verification();
+  EXPECT_GT(s.proposed, 0);
+  EXPECT_GT(s.low_score + s.ambiguous + s.not_unique, 0);  // a corridor repeats along itself
+  EXPECT_EQ(s.attempts,
+            s.few_points + s.low_score + s.ambiguous + s.not_unique + s.implausible + s.proposed);
+}
+
 TEST(Mapper, PrunedStaysConnectedSparseAndAccurate) {
   const MapRun run = MapWith(PruningMode::kChowLiu);
   ASSERT_EQ(run.trajectory.size(), Corridor3().size());  // removed scans keep a pose

@@ -2,10 +2,12 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <sstream>
+#include <utility>
 
 #include "io/atomic_file.hpp"
 
@@ -77,6 +79,20 @@ bool WritePlotFile(const fs::path& path, const std::string& text, PlotResult* re
   }
 }
 
+/// The (mode, data file) pairs with the modes of `order` first, in that order.
+std::vector<std::pair<std::string, std::string>> InLegendOrder(
+    const std::map<std::string, std::string>& data_files, const std::vector<std::string>& order) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& mode : order) {
+    const auto it = data_files.find(mode);
+    if (it != data_files.end()) out.emplace_back(*it);
+  }
+  for (const auto& entry : data_files) {
+    if (std::find(order.begin(), order.end(), entry.first) == order.end()) out.push_back(entry);
+  }
+  return out;
+}
+
 /// Writes the script, runs gnuplot, renames the PNG into place.
 bool Render(const Figure& f, const std::map<std::string, std::string>& data_files,
             const std::string& out_dir, const std::string& terminal, const PlotConfig& c,
@@ -95,7 +111,7 @@ bool Render(const Figure& f, const std::map<std::string, std::string>& data_file
       gp << "set ylabel " << GpQuote(panel.ylabel) << "\n"
          << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
       int i = 0;
-      for (const auto& [mode, file] : data_files) {
+      for (const auto& [mode, file] : InLegendOrder(data_files, c.mode_order)) {
         gp << (i++ ? ", \\\n     " : "")
            << panel.clauses(GpQuote(ModeColourHex(mode)),
                             GpQuote(fs::path(file).lexically_relative(out_dir).string()),

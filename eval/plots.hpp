@@ -19,6 +19,9 @@ struct PlotConfig {
   bool log_time = false;            ///< log-scale y axis for the time per observation
   int width_px = 800;               ///< px
   int height_px = 500;              ///< px
+  /// Legend (and drawing) order: these modes first, as given (the run's --modes, baseline
+  /// first); any other mode after them by name.
+  std::vector<std::string> mode_order;
 };
 
 /// ok == false with a message (e.g. gnuplot missing) instead of an exception: figures are

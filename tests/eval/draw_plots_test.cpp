@@ -1,5 +1,7 @@
 // Map images (pixel colours at known cells, y up, cropping) and gnuplot figures.
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -192,6 +194,25 @@ TEST(PlotsTest, EachModeKeepsItsColourInEveryRun) {
       EXPECT_EQ(CountColour(img, red) > 50, modes.count("pruned") == 1) << name;
     }
   }
+}
+
+// The legend lists the modes as the run gave them (baseline first), not by name.
+TEST(PlotsTest, LegendFollowsTheRunsModeOrder) {
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_plot_order";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  PlotConfig config;
+  config.mode_order = {"standard", "pruned"};
+  const ModeTimelines modes{
+      {"pruned", Timeline(50, 3)}, {"standard", Timeline(50, 10)}, {"a-new-mode", Timeline(50, 5)}};
+  ASSERT_TRUE(PlotTimelines(modes, dir.string(), config).ok);
+  std::ifstream in(dir / "plot_data" / "nodes.gp");
+  const std::string script((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = [&](const std::string& mode) { return script.find("title '" + mode + "'"); };
+  ASSERT_NE(at("standard"), std::string::npos) << script;
+  EXPECT_LT(at("standard"), at("pruned"));
+  EXPECT_LT(at("pruned"), at("a-new-mode"));
 }
 
 // A run is written into a staging directory and renamed: plot_data/ must still re-make its

@@ -184,6 +184,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("resolution_m", c.grid.resolution_m, kPositive);
     s.Number("max_free_range_m", c.grid.max_free_range_m, kNonNegative);
     s.Number("max_hit_range_m", c.grid.max_hit_range_m, kPositive);
+    s.Int("max_dropout_beams", c.grid.max_dropout_beams, 0);
   });
   v.Section("optimizer", [&](auto& s) { VisitOptimizer(s, c.optimizer); });
   v.Section("map_update", [&](auto& s) {

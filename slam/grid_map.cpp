@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "slam/scratch_table.hpp"
 
@@ -139,10 +141,42 @@ CellIndex GridMap::CellOf(double x_m, double y_m) const {
           static_cast<int>(std::floor(y_m / config_.resolution_m))};
 }
 
+namespace {
+
+// Per beam, how far a "no return" beam may clear: for a dropout (a run of at most
+// max_dropout_beams of them between two returns, or between the scan's end and a return),
+// one cell short of the nearer return; otherwise unbounded.
+std::vector<double> DropoutClearRanges(const LaserScan& scan, const GridMapConfig& config) {
+  const std::size_t n = scan.ranges_m.size();
+  std::vector<double> out(n, std::numeric_limits<double>::infinity());
+  if (config.max_dropout_beams <= 0) return out;
+  const auto run_max = static_cast<std::size_t>(config.max_dropout_beams);
+  for (std::size_t i = 0; i < n;) {
+    if (scan.IsReturn(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;  // [i, end) is a run of "no return" beams
+    while (end < n && !scan.IsReturn(end)) ++end;
+    // At the first or last beam of the scan the one return beside the run stands for both.
+    if ((i > 0 || end < n) && end - i <= run_max) {
+      const double before = i > 0 ? scan.ranges_m[i - 1] : scan.ranges_m[end];
+      const double after = end < n ? scan.ranges_m[end] : scan.ranges_m[i - 1];
+      const double nearer = std::min(before, after);
+      for (std::size_t k = i; k < end; ++k) out[k] = nearer - config.resolution_m;
+    }
+    i = end;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
                                               const Pose2& T_world_robot) const {
   const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
   const CellIndex origin = CellOf(T_world_laser.x, T_world_laser.y);
+  const std::vector<double> dropout_clear = DropoutClearRanges(scan, config_);
   std::vector<Beam> beams;
   beams.reserve(scan.ranges_m.size());
   CellIndex lo = origin, hi = origin;
@@ -152,7 +186,8 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
     // Returns beyond the usable range are too sparse and too noisy to map (one beam per
     // cell at best): like "no return" beams they only clear space, up to max_free_range_m.
     const bool hit = scan.IsReturn(i) && r <= config_.max_hit_range_m;
-    const double range = hit ? r : std::min(r, config_.max_free_range_m);
+    const double range = hit ? r : std::min({r, config_.max_free_range_m, dropout_clear[i]});
+    if (!(range > 0.0)) continue;
     const double a = scan.Bearing(i);
     double x = 0.0, y = 0.0;
     T_world_laser.Apply(range * std::cos(a), range * std::sin(a), &x, &y);

@@ -115,6 +115,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
+  EXPECT_EQ(a.grid.max_dropout_beams, b.grid.max_dropout_beams);
   ExpectSameOptimizer(a.optimizer, b.optimizer);
   EXPECT_EQ(a.map_move_epsilon_m, b.map_move_epsilon_m);
   EXPECT_EQ(a.map_move_epsilon_rad, b.map_move_epsilon_rad);
@@ -192,7 +193,7 @@ MapperConfig AllChanged() {
                0.5,
                slam::FactorMeans::kMarginalMean,
                true};
-  c.grid = {0.1, 6.0, 9.5};
+  c.grid = {0.1, 6.0, 9.5, 3};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;
   o.max_iterations = 25;

@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -77,6 +78,45 @@ TEST(GridMapTest, FarReturnOnlyClearsUpToMaxFreeRange) {
   for (int x = 0; x <= 4; ++x) EXPECT_EQ(map.Hits({x, 0}), 0u);
   map.AddScan(OneBeam(0.26f, 10.0), kCellCentre);  // within range: a hit in cell 5
   EXPECT_EQ(map.Hits({5, 0}), 1u);
+}
+
+// Beams all along +x (zero field of view) from cell (0, 0)'s centre, range_max 10 m.
+LaserScan BeamsAlongX(std::vector<float> ranges_m) {
+  LaserScan scan;
+  scan.range_max_m = 10.0;
+  scan.ranges_m = std::move(ranges_m);
+  return scan;
+}
+
+// A "no return" beam between two returns from a wall 0.26 m away is a dropout: it clears
+// space up to one cell short of the wall, never through it (the hall scenario's 1 % dropout
+// kept every scan's information gain above the threshold through such rays).
+TEST(GridMapTest, DropoutBetweenReturnsStopsShortOfTheWall) {
+  GridMapConfig config;
+  config.max_free_range_m = 0.5;  // open space would be cleared to cell 10
+  GridMap map(config);
+  map.AddScan(BeamsAlongX({0.26f, 10.0f, 0.26f}), kCellCentre);
+  EXPECT_EQ(map.Hits({5, 0}), 2u);
+  EXPECT_EQ(map.Misses({5, 0}), 0u);  // the dropout did not cross the wall cell...
+  for (int x = 6; x <= 10; ++x) EXPECT_FALSE(map.IsKnown({x, 0})) << x;  // ...nor behind it
+  EXPECT_EQ(map.Misses({3, 0}), 3u);  // in front of the wall: all three beams
+
+  // Off, a run longer than max_dropout_beams, or no return at all: open space, cleared to
+  // max_free_range_m.
+  for (const auto& [run, scan] : {std::pair{0, BeamsAlongX({0.26f, 10.0f, 0.26f})},
+                                  std::pair{1, BeamsAlongX({0.26f, 10.0f, 10.0f, 0.26f})},
+                                  std::pair{2, BeamsAlongX({10.0f, 10.0f, 10.0f})}}) {
+    config.max_dropout_beams = run;
+    GridMap open(config);
+    open.AddScan(scan, kCellCentre);
+    EXPECT_GE(open.Misses({8, 0}), 1u) << run;
+  }
+  // The scan's last beam lost: the return beside it bounds it.
+  config.max_dropout_beams = 2;
+  GridMap edge(config);
+  edge.AddScan(BeamsAlongX({0.26f, 0.26f, 10.0f}), kCellCentre);
+  EXPECT_EQ(edge.Misses({5, 0}), 0u);
+  EXPECT_FALSE(edge.IsKnown({6, 0}));
 }
 
 TEST(GridMapTest, CountsAccumulateAndProbabilityIsTheirRatio) {

@@ -145,11 +145,13 @@ namespace {
 
 // Per beam, how far a "no return" beam may clear: for a dropout (a run of at most
 // max_dropout_beams of them between two returns, or between the scan's end and a return),
-// one cell short of the nearer return; otherwise unbounded.
-std::vector<double> DropoutClearRanges(const LaserScan& scan, const GridMapConfig& config) {
+// one cell short of the nearer return; otherwise unbounded. Written into *out (reused, so the
+// hot path allocates nothing once it has seen its widest scan).
+void DropoutClearRanges(const LaserScan& scan, const GridMapConfig& config,
+                        std::vector<double>* out) {
   const std::size_t n = scan.ranges_m.size();
-  std::vector<double> out(n, std::numeric_limits<double>::infinity());
-  if (config.max_dropout_beams <= 0) return out;
+  out->assign(n, std::numeric_limits<double>::infinity());
+  if (config.max_dropout_beams <= 0) return;
   const auto run_max = static_cast<std::size_t>(config.max_dropout_beams);
   for (std::size_t i = 0; i < n;) {
     if (scan.IsReturn(i)) {
@@ -163,11 +165,11 @@ std::vector<double> DropoutClearRanges(const LaserScan& scan, const GridMapConfi
       const double before = i > 0 ? scan.ranges_m[i - 1] : scan.ranges_m[end];
       const double after = end < n ? scan.ranges_m[end] : scan.ranges_m[i - 1];
       const double nearer = std::min(before, after);
-      for (std::size_t k = i; k < end; ++k) out[k] = nearer - config.resolution_m;
+      std::fill(out->begin() + static_cast<std::ptrdiff_t>(i),
+                out->begin() + static_cast<std::ptrdiff_t>(end), nearer - config.resolution_m);
     }
     i = end;
   }
-  return out;
 }
 
 }  // namespace
@@ -176,7 +178,8 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
                                               const Pose2& T_world_robot) const {
   const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
   const CellIndex origin = CellOf(T_world_laser.x, T_world_laser.y);
-  const std::vector<double> dropout_clear = DropoutClearRanges(scan, config_);
+  thread_local std::vector<double> dropout_clear;
+  DropoutClearRanges(scan, config_, &dropout_clear);
   std::vector<Beam> beams;
   beams.reserve(scan.ranges_m.size());
   CellIndex lo = origin, hi = origin;

@@ -50,10 +50,10 @@ struct GridMapConfig {
   double max_free_range_m = 8.0;  ///< m, "no return" beams add misses up to this range
   double max_hit_range_m = 12.0;  ///< m, returns farther than this count as "no return"
   /// A run of at most this many "no return" beams between two returns (or a return and the
-  /// scan's first or last beam) is a dropout (a beam
-  /// lost on a dark or shiny surface, not open space): it clears space only up to one cell
-  /// short of the nearer of the two returns. 0: every "no return" beam clears up to
-  /// max_free_range_m (before 2026-12-02), so a dropout draws free space through the wall.
+  /// scan's first or last beam) is a dropout, a beam lost on a dark or shiny surface rather
+  /// than open space: it clears space only up to one cell short of the nearer return. 0:
+  /// every "no return" beam clears up to max_free_range_m (before 2026-12-02), so a dropout
+  /// draws free space through the wall.
   int max_dropout_beams = 2;
 };
 

@@ -101,23 +101,12 @@ class LoopVerifier {
   void NoteAttempt() { ++stats_.attempts; }
   /// Counts an attempt the mapper refused before it became a hypothesis.
   void NoteRefused(MatchRefusal why) {
-    switch (why) {
-      case MatchRefusal::kFewPoints:
-        ++stats_.few_points;
-        break;
-      case MatchRefusal::kLowScore:
-        ++stats_.low_score;
-        break;
-      case MatchRefusal::kAmbiguous:
-        ++stats_.ambiguous;
-        break;
-      case MatchRefusal::kNotUnique:
-        ++stats_.not_unique;
-        break;
-      case MatchRefusal::kImplausible:
-        ++stats_.implausible;
-        break;
-    }
+    // In the order of MatchRefusal.
+    static constexpr int LoopVerifierStats::*kCount[] = {
+        &LoopVerifierStats::few_points, &LoopVerifierStats::low_score,
+        &LoopVerifierStats::ambiguous, &LoopVerifierStats::not_unique,
+        &LoopVerifierStats::implausible};
+    ++(stats_.*kCount[static_cast<int>(why)]);
   }
   /// True when a pending hypothesis involves the node (pruning must keep it).
   bool IsPending(NodeId id) const;

@@ -68,7 +68,7 @@ struct LoopClosingConfig {
   double max_window_rad = 0.5;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
   /// The submap is made of its nodes' surfaces, by the incremental matcher's rule
-  /// (IncrementalConfig::Surfaces), rather than of their return points (false before
+  /// (IncrementalConfig::surfaces), rather than of their return points (false before
   /// 2026-12-02).
   bool surfaces = true;
   /// ...joined along lines as well (SurfaceRule::line_gap_m), or by the gap alone.

@@ -130,6 +130,7 @@ int Sparsify(const SparsifyArgs& args) {
   PrintNumber(json, "kld", kl.kl);
   PrintNumber(json, "kld_mean", kl.mean_term);
   PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
+  PrintNumber(json, "local_kl", stats.local_kl_sum);
   json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
        << ",\"gradient_kept\":" << (config.means == slam::FactorMeans::kGradient ? "true" : "false")
        << ",\"means\":\"" << means << '"';

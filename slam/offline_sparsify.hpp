@@ -25,7 +25,8 @@ struct OfflineSparsifyStats {
   std::size_t max_clique = 0;   ///< largest elimination clique met (neighbours of a node)
 };
 
-/// Removes `remove` (any order; done ascending) from *graph with `sparsifier`; `values` is
+/// Removes `remove` (any order; done ascending, or connected set by connected set for a
+/// sparsifier that ReplacesSets) from *graph with `sparsifier`; `values` is
 /// the estimate every factor is linearized at (not changed). Each id must be a node.
 OfflineSparsifyStats SparsifyOffline(PoseGraph* graph, const Values& values,
                                      std::vector<NodeId> remove, const Sparsifier& sparsifier);

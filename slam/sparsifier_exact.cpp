@@ -1,6 +1,8 @@
 // Sparsifier "exact": one dense root-relative clique over N, the exact Schur complement (kExact).
-// Wraps slam::Marginalize, so its factors are those of the mapper's matching mode.
+// Wraps slam::Marginalize, so its factors are those of the mapper's matching mode. A connected
+// set of removed nodes goes at once, through one sparse factorization (set_marginal.hpp).
 #include "slam/marginalization.hpp"
+#include "slam/set_marginal.hpp"
 #include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
@@ -14,6 +16,18 @@ class ExactSparsifier final : public Sparsifier {
     Replacement r = FromMarginalization(
         Marginalize(graph, values, k, MarginalizationMethod::kExact, BlanketPolicy::kFactorsAtK));
     KeepGradientIfAsked(config_, graph, values, k, false, false, &r);
+    return r;
+  }
+  bool ReplacesSets() const override { return true; }
+  std::optional<Replacement> ReplaceSet(const PoseGraph& graph, const Values& values,
+                                        const std::vector<NodeId>& set) const override {
+    std::optional<SetMarginal> m = MarginalizeSet(graph, values, set, false);
+    if (!m) return std::nullopt;
+    Replacement r;
+    r.neighbours = m->boundary;
+    r.cliques.push_back(ToCliqueFactor(r.neighbours, values, m->marginal.lambda_N));
+    MoveMeans(config_.means, r.neighbours, values, m->marginal.lambda_N, m->marginal.g_N, &r.edges,
+              &r.cliques);
     return r;
   }
 

@@ -1,7 +1,10 @@
 // Sparsifier "glc-dense": the exact marginal as one root-shifted GLC factor (glc.hpp steps 1-3).
 // Linearizes k's clique itself (with the factors among N under BlanketPolicy::kBlanket, as
-// GLC removes intra-clique factors), so it also replaces earlier GLC factors within N.
+// GLC removes intra-clique factors), so it also replaces earlier GLC factors within N. A
+// connected set of removed nodes goes at once (set_marginal.hpp), absorbing the factors among
+// its whole boundary.
 #include "slam/glc.hpp"
+#include "slam/set_marginal.hpp"
 #include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
@@ -18,6 +21,21 @@ class GlcDenseSparsifier final : public Sparsifier {
     GlcFactors f = GlcDense(r.neighbours, values, m.lambda_N, config_.eigen_tolerance);
     SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
     MoveMeans(config_.means, r.neighbours, values, m.lambda_N, m.g_N, &r.edges, &r.cliques);
+    return r;
+  }
+  bool ReplacesSets() const override { return true; }
+  std::optional<Replacement> ReplaceSet(const PoseGraph& graph, const Values& values,
+                                        const std::vector<NodeId>& set) const override {
+    const bool within = config_.blanket == BlanketPolicy::kBlanket;
+    std::optional<SetMarginal> m = MarginalizeSet(graph, values, set, within);
+    if (!m) return std::nullopt;
+    Replacement r;
+    r.neighbours = m->boundary;
+    r.absorb_edges_within = r.absorb_cliques_within = within;
+    GlcFactors f = GlcDense(r.neighbours, values, m->marginal.lambda_N, config_.eigen_tolerance);
+    SetFactors(config_, values, m->marginal, std::move(f.edges), std::move(f.cliques), &r);
+    MoveMeans(config_.means, r.neighbours, values, m->marginal.lambda_N, m->marginal.g_N, &r.edges,
+              &r.cliques);
     return r;
   }
 

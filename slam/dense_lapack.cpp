@@ -1,6 +1,7 @@
 #include "slam/dense_lapack.hpp"
 
 #include <stdexcept>
+#include <vector>
 
 extern "C" {
 // Fortran LAPACK / BLAS (column-major, every argument by pointer, string lengths appended).
@@ -10,6 +11,9 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
             const int* n, const double* alpha, const double* a, const int* lda, double* b,
             const int* ldb, std::size_t side_len, std::size_t uplo_len, std::size_t transa_len,
             std::size_t diag_len);
+void dsyevd_(const char* jobz, const char* uplo, const int* n, double* a, const int* lda, double* w,
+             double* work, const int* lwork, int* iwork, const int* liwork, int* info,
+             std::size_t jobz_len, std::size_t uplo_len);
 }
 
 namespace lifelong::slam {
@@ -32,6 +36,25 @@ void SolveLowerInPlace(const Eigen::MatrixXd& L, Eigen::MatrixXd* b) {
   if (m == 0 || n == 0) return;
   const double one = 1.0;
   dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, b->data(), &m, 1, 1, 1, 1);
+}
+
+bool SymmetricEigenInPlace(Eigen::MatrixXd* a, Eigen::VectorXd* w) {
+  if (a->rows() != a->cols()) throw std::invalid_argument("SymmetricEigenInPlace: not square");
+  const int n = static_cast<int>(a->rows());
+  w->resize(n);
+  if (n == 0) return true;
+  int info = 0, lwork = -1, liwork = -1, iwork_size = 0;
+  double work_size = 0.0;
+  dsyevd_("V", "L", &n, a->data(), &n, w->data(), &work_size, &lwork, &iwork_size, &liwork, &info,
+          1, 1);
+  if (info != 0) return false;
+  lwork = static_cast<int>(work_size);
+  liwork = iwork_size;
+  std::vector<double> work(static_cast<std::size_t>(lwork));
+  std::vector<int> iwork(static_cast<std::size_t>(liwork));
+  dsyevd_("V", "L", &n, a->data(), &n, w->data(), work.data(), &lwork, iwork.data(), &liwork, &info,
+          1, 1);
+  return info == 0;
 }
 
 }  // namespace lifelong::slam

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
+#include "slam/dense_lapack.hpp"
 #include "slam/pose_graph.hpp"
 
 namespace lifelong::slam::clique {
@@ -40,12 +41,12 @@ inline const Pose2& At(const Values& values, NodeId n) {
 /// Moore-Penrose inverse of a symmetric PSD matrix (eigenvalues below cut * max dropped).
 inline Eigen::MatrixXd PinvPsd(const Eigen::MatrixXd& m, double cut = 1e-12) {
   if (m.rows() == 0) return m;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(m);
-  const Eigen::VectorXd ev = eig.eigenvalues();
+  const SymmetricEigen eig = DecomposeSymmetric(m);
+  const Eigen::VectorXd& ev = eig.values;
   const double tol = cut * std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
   Eigen::VectorXd inv = Eigen::VectorXd::Zero(ev.size());
   for (Eigen::Index i = 0; i < ev.size(); ++i) inv(i) = ev(i) > tol ? 1.0 / ev(i) : 0.0;
-  return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+  return eig.vectors * inv.asDiagonal() * eig.vectors.transpose();
 }
 
 }  // namespace lifelong::slam::clique

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 extern "C" {
 // Fortran LAPACK / BLAS (column-major, every argument by pointer, string lengths appended).
 void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info,
@@ -55,6 +57,13 @@ bool SymmetricEigenInPlace(Eigen::MatrixXd* a, Eigen::VectorXd* w) {
   dsyevd_("V", "L", &n, a->data(), &n, w->data(), work.data(), &lwork, iwork.data(), &liwork, &info,
           1, 1);
   return info == 0;
+}
+
+SymmetricEigen DecomposeSymmetric(const Eigen::MatrixXd& m) {
+  SymmetricEigen d{Eigen::VectorXd(), m};
+  if (m.rows() > kLapackEigenFrom && SymmetricEigenInPlace(&d.vectors, &d.values)) return d;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(m);
+  return {eig.eigenvalues(), eig.eigenvectors()};
 }
 
 }  // namespace lifelong::slam

@@ -124,35 +124,13 @@ std::vector<WeightedPair> PairWeights(const MatrixXd& sigma) {
 
 }  // namespace
 
-namespace {
-
-/// Sym(m) = V diag(values) V^T, values ascending. Eigen's solver up to kLapackFrom rows, LAPACK's
-/// divide and conquer (dense_lapack.hpp) above, where Eigen's takes minutes to hours (a boundary
-/// clique of city10000 at keep share 0.25: d = 7098). The switch is by size so that the small
-/// cliques of every graph measured keep their results: which eigenvalues fall below the
-/// tolerance's cut can flip with rounding, and over thousands of removals that moves glc's
-/// KLD by a few per cent (intel at 0.25: 28.7 nats, 29.8 with LAPACK for every clique).
-constexpr Eigen::Index kLapackFrom = 300;
-struct Decomposition {
-  VectorXd values;
-  MatrixXd vectors;
-};
-Decomposition Decompose(const MatrixXd& m) {
-  Decomposition d{VectorXd(), Sym(m)};
-  if (m.rows() > kLapackFrom && SymmetricEigenInPlace(&d.vectors, &d.values)) return d;
-  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Sym(m));
-  return {eig.eigenvalues(), eig.eigenvectors()};
-}
-
-}  // namespace
-
 MatrixXd InformativePart(const MatrixXd& lambda, double tolerance, int* rank) {
   return InformativeAbove(lambda, tolerance, 0.0, rank);
 }
 
 MatrixXd InformativeAbove(const MatrixXd& lambda, double tolerance, double reference, int* rank) {
   if (lambda.rows() == 0) return lambda;
-  const Decomposition eig = Decompose(lambda);
+  const SymmetricEigen eig = DecomposeSymmetric(Sym(lambda));
   VectorXd ev = eig.values;
   const double cut = tolerance * std::max({ev.maxCoeff(), reference, 0.0});
   int kept = 0;
@@ -215,7 +193,7 @@ GlcFactors GlcChowLiu(const std::vector<NodeId>& nodes, const Values& values,
 double InformativeKl(const MatrixXd& lambda_p, const MatrixXd& lambda_q, double tolerance) {
   const Index d = lambda_p.rows() - 3;
   if (d <= 0) return 0.0;
-  const Decomposition eig = Decompose(lambda_p.bottomRightCorner(d, d));
+  const SymmetricEigen eig = DecomposeSymmetric(Sym(lambda_p.bottomRightCorner(d, d)));
   const VectorXd& ev = eig.values;
   const double cut = tolerance * std::max(ev.maxCoeff(), 0.0);
   std::vector<Index> keep;

@@ -272,6 +272,7 @@ double Mapper::State::Gain(NodeId id) {
   NodeData& data = nodes.at(id);
   data.gain_bits = map.InformationGain(cells);
   data.gain_valid = true;
+  data.gain_seen = prune_state.changes_made;
   return data.gain_bits;
 }
 
@@ -303,7 +304,9 @@ double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   for (const auto& [id, data] : state_->nodes) {
     // A change not yet applied invalidates the gain before any use.
-    if (!data.gain_valid || state_->prune_state.ChangedSinceLastRound(data.footprint)) continue;
+    if (!data.gain_valid || state_->prune_state.ChangedSince(data.footprint, data.gain_seen)) {
+      continue;
+    }
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
     worst = std::max(worst, std::abs(fresh - data.gain_bits));

@@ -33,7 +33,8 @@ struct NodeData {
   double travelled_m = 0.0;         ///< robot path length (odometry) at this scan
   std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
   double gain_bits = 0.0;           ///< information gain when last computed...
-  bool gain_valid = false;          ///< ...still exact unless a map change shares a block
+  bool gain_valid = false;          ///< ...still exact unless a later map change shares a block
+  std::uint64_t gain_seen = 0;      ///< the latest map change (PruningState) it was computed after
   Footprint footprint;              ///< of `touched` (kept when the list is freed)
 };
 

@@ -134,10 +134,11 @@ void Mapper::State::Prune(NodeId current) {
     gains[id] = 0.0;
   }
   // A remembered gain stays exact until the map changes in one of its scan's cells: every
-  // node (not only this round's candidates) forgets its gain when a change since the last
-  // round shares a block with its footprint.
+  // node (not only this round's candidates) forgets its gain when a change it was not
+  // computed after shares a block with its footprint. (The gains recomputed after last
+  // round's removals have seen those removals.)
   for (auto& [id, data] : nodes) {
-    if (data.gain_valid && prune_state.ChangedSinceLastRound(data.footprint))
+    if (data.gain_valid && prune_state.ChangedSince(data.footprint, data.gain_seen))
       data.gain_valid = false;
   }
   prune_state.map_changes.clear();
@@ -159,7 +160,7 @@ void Mapper::State::Prune(NodeId current) {
     RemoveNode(victim, gain);
     // Only the gains of scans sharing cells with the removed one can have changed; the
     // nodes outside this round see the change at the next one.
-    prune_state.map_changes.push_back(changed);
+    prune_state.NoteMapChange(changed);
     for (auto& [id, g] : gains) {
       if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
     }

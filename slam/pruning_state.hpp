@@ -50,18 +50,27 @@ struct PruningState {
   std::unique_ptr<Sparsifier> sparsifier;  ///< what replaces its clique
   std::vector<MarginalizationRecord> marginalizations;
   std::vector<SparsificationRecord> sparsifications;
-  std::vector<Footprint> map_changes;  ///< since the last pruning round
+  /// A change of the map's counts, numbered in the order they happen.
+  struct MapChange {
+    std::uint64_t number;
+    Footprint cells;
+  };
+  std::vector<MapChange> map_changes;  ///< since the last pruning round
+  std::uint64_t changes_made = 0;      ///< number of the latest change
 
   bool active() const { return policy != nullptr; }
   /// Records that the map's counts changed in these cells (pruned modes: gains of scans
   /// sharing a block with them must be recomputed).
   void NoteMapChange(const Footprint& cells) {
-    if (active()) map_changes.push_back(cells);
+    if (active()) map_changes.push_back({++changes_made, cells});
   }
-  /// Whether a map change since the last pruning round touches a scan with this footprint.
-  bool ChangedSinceLastRound(const Footprint& scan) const {
-    return std::any_of(map_changes.begin(), map_changes.end(),
-                       [&](const Footprint& change) { return scan.Shares(change); });
+  /// Whether a map change since the last pruning round, made after change `seen` (the latest
+  /// one a gain was computed after), touches a scan with this footprint. A gain computed in
+  /// the last round after a removal has seen that removal.
+  bool ChangedSince(const Footprint& scan, std::uint64_t seen) const {
+    return std::any_of(map_changes.begin(), map_changes.end(), [&](const MapChange& change) {
+      return change.number > seen && scan.Shares(change.cells);
+    });
   }
 };
 

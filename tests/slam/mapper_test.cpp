@@ -180,6 +180,26 @@ TEST(Footprint, NeverMissesASharedCellAndSeparatesDisjointBlocks) {
   EXPECT_FALSE(Footprint::Of({}).Shares(Footprint::Of(corner)));
 }
 
+// A gain computed after a map change has seen it: only later changes that share a block with
+// the scan make it stale (pruning.cpp). Before, a gain recomputed after a removal was thrown
+// away at the next round for that same removal.
+TEST(PruningState, AGainIsStaleOnlyForChangesItHasNotSeen) {
+  PruningState state;
+  state.policy = MakeRemovalPolicy("information-gain", {});
+  const Footprint scan = Footprint::Of({{{0, 0}, {1, 0}}, {{5, 5}, {0, 1}}});
+  const Footprint near = Footprint::Of({{{3, 3}, {1, 0}}});
+  const Footprint far = Footprint::Of({{{100, 100}, {1, 0}}});
+  state.NoteMapChange(near);
+  const std::uint64_t seen = state.changes_made;  // a gain computed now
+  EXPECT_TRUE(state.ChangedSince(scan, 0));
+  EXPECT_FALSE(state.ChangedSince(scan, seen));
+  state.NoteMapChange(far);
+  EXPECT_FALSE(state.ChangedSince(scan, seen));
+  state.NoteMapChange(near);
+  EXPECT_TRUE(state.ChangedSince(scan, seen));
+  EXPECT_EQ(state.changes_made, 3u);
+}
+
 // pruning.robust_marginal: a loop edge inside the set enters the marginal with the kernel's
 // IRLS weight at the estimate (Cauchy: 1 / (1 + s / delta^2)); odometry edges and edges
 // leaving the set keep their information, and the returned records restore it.

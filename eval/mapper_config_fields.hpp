@@ -170,6 +170,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("gain_threshold_bits", c.pruning.gain_threshold_bits, kAnyNumber);
     s.Number("radius_m", c.pruning.radius_m, kNonNegative);
     s.Int("keep_recent_nodes", c.pruning.keep_recent_nodes, 0);
+    s.Int("round_period", c.pruning.round_period, 1);
     s.Int("node_budget", c.pruning.node_budget, 0);
     s.Number("max_edges_per_node", c.pruning.max_edges_per_node, kNonNegative);
     s.Enum("blanket", c.pruning.blanket, kBlankets);

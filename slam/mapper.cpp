@@ -88,7 +88,9 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     stats.stages.loop_ms =
         ms_since(t) - (stats.stages.backend_ms + stats.stages.map_update_ms - nested);
   }
-  if (s.config.pruning.mode != PruningMode::kNone) s.Prune(current);
+  if (s.config.pruning.mode != PruningMode::kNone &&
+      s.observations % s.config.pruning.round_period == 0)
+    s.Prune(current);
 
   s.step = nullptr;
   // The mapper's own time; the statistics below are instrumentation, not mapping.

@@ -103,6 +103,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
   EXPECT_EQ(a.pruning.radius_m, b.pruning.radius_m);
   EXPECT_EQ(a.pruning.keep_recent_nodes, b.pruning.keep_recent_nodes);
+  EXPECT_EQ(a.pruning.round_period, b.pruning.round_period);
   EXPECT_EQ(a.pruning.node_budget, b.pruning.node_budget);
   EXPECT_EQ(a.pruning.max_edges_per_node, b.pruning.max_edges_per_node);
   EXPECT_EQ(a.pruning.blanket, b.pruning.blanket);
@@ -184,6 +185,7 @@ MapperConfig AllChanged() {
                -0.5,
                4.5,
                2,
+               4,
                300,
                1.5,
                slam::BlanketPolicy::kFactorsAtK,

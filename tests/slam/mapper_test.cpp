@@ -119,6 +119,29 @@ TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {
             static_cast<double>(chow_liu.edges) / static_cast<double>(chow_liu.nodes));
 }
 
+// pruning.round_period: nodes go only at every n-th graph node, and the gains stay exact
+// across the skipped ones.
+TEST(Mapper, PrunesOnlyAtEveryNthNode) {
+  MapperConfig config = DefaultMapperConfig();
+  config.pruning.mode = PruningMode::kChowLiu;
+  config.pruning.round_period = 3;
+  Mapper mapper(config);
+  int rounds_with_removals = 0, off_period = 0, removed_before = 0;
+  double worst = 0.0;
+  mapper.on_observation = [&](const StepStats& step) {
+    if (step.nodes_removed_total > removed_before) {
+      ++rounds_with_removals;
+      if (step.observation_index % 3 != 0) ++off_period;
+    }
+    removed_before = step.nodes_removed_total;
+    worst = std::max(worst, mapper.MaxGainCacheError());
+  };
+  for (const Observation& o : Corridor3()) mapper.AddObservation(o);
+  EXPECT_GT(rounds_with_removals, 5);
+  EXPECT_EQ(off_period, 0);
+  EXPECT_LT(worst, 1e-9);
+}
+
 // Remembered gains are only reused while no map change overlaps their scan: checked against
 // a fresh computation after every observation (a version that forgot changes made while a
 // node was outside the pruning neighbourhood failed this).

@@ -17,6 +17,7 @@
 
 #include "io/atomic_file.hpp"
 #include "sensor/input_error.hpp"
+#include "slam/dense_lapack.hpp"
 
 namespace lifelong::io {
 namespace {
@@ -30,6 +31,7 @@ class LineReader {
       : file_(file), line_(line), in_(text) {}
 
   int line() const { return line_; }
+  std::size_t Length() const { return in_.str().size(); }
   std::string Tag() {
     std::string tag;
     in_ >> tag;
@@ -143,7 +145,15 @@ void ReadEdge(Parsed* p, LineReader* r) {
 
 void ReadClique(Parsed* p, LineReader* r) {
   const slam::NodeId m = r->Id("size");
-  if (m < 2 || m > 1000) r->Fail("size", "clique size must be in [2, 1000]");
+  if (m < 2) r->Fail("size", "clique size must be at least 2");
+  // Every token takes at least two characters of the line, so a size the record cannot hold
+  // is refused before anything of its size is allocated.
+  const double tokens = static_cast<double>(m) * 4.0 - 3.0 +
+                        4.5 * static_cast<double>(m - 1) * static_cast<double>(m - 1) +
+                        1.5 * static_cast<double>(m - 1);
+  if (2.0 * tokens > static_cast<double>(r->Length()) + 1.0) {
+    r->Fail("size", "the record is too short for a clique of " + std::to_string(m) + " nodes");
+  }
   slam::CliqueFactor c;
   for (slam::NodeId k = 0; k < m; ++k) c.nodes.push_back(r->Id("node"));
   if (std::set<slam::NodeId>(c.nodes.begin(), c.nodes.end()).size() != c.nodes.size()) {
@@ -156,9 +166,9 @@ void ReadClique(Parsed* p, LineReader* r) {
     for (Eigen::Index j = i; j < d; ++j) c.information(i, j) = c.information(j, i) = r->Number("I");
   }
   r->ExpectEnd();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c.information, Eigen::EigenvaluesOnly);
-  const double max_ev = eig.eigenvalues().cwiseAbs().maxCoeff();
-  if (eig.eigenvalues().minCoeff() < -1e-9 * max_ev) {
+  const Eigen::VectorXd ev = slam::SymmetricEigenvalues(c.information);
+  const double max_ev = ev.cwiseAbs().maxCoeff();
+  if (ev.minCoeff() < -1e-9 * max_ev) {
     r->Fail("information", "clique information is not positive semidefinite");
   }
   p->cliques.push_back({c, r->line()});

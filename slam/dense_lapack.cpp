@@ -1,5 +1,6 @@
 #include "slam/dense_lapack.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <vector>
 
@@ -64,6 +65,29 @@ SymmetricEigen DecomposeSymmetric(const Eigen::MatrixXd& m) {
   if (m.rows() > kLapackEigenFrom && SymmetricEigenInPlace(&d.vectors, &d.values)) return d;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(m);
   return {eig.eigenvalues(), eig.eigenvectors()};
+}
+
+Eigen::VectorXd SymmetricEigenvalues(const Eigen::MatrixXd& m) {
+  if (m.rows() != m.cols()) throw std::invalid_argument("SymmetricEigenvalues: not square");
+  const int n = static_cast<int>(m.rows());
+  if (m.rows() > kLapackEigenFrom) {
+    Eigen::MatrixXd a = m;
+    Eigen::VectorXd w(n);
+    int info = 0, lwork = -1, liwork = -1, iwork_size = 0;
+    double work_size = 0.0;
+    dsyevd_("N", "L", &n, a.data(), &n, w.data(), &work_size, &lwork, &iwork_size, &liwork, &info,
+            1, 1);
+    lwork = static_cast<int>(work_size);
+    liwork = iwork_size;
+    std::vector<double> work(static_cast<std::size_t>(std::max(lwork, 1)));
+    std::vector<int> iwork(static_cast<std::size_t>(std::max(liwork, 1)));
+    if (info == 0) {
+      dsyevd_("N", "L", &n, a.data(), &n, w.data(), work.data(), &lwork, iwork.data(), &liwork,
+              &info, 1, 1);
+    }
+    if (info == 0) return w;
+  }
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
 }  // namespace lifelong::slam

@@ -34,5 +34,7 @@ struct SymmetricEigen {
   Eigen::MatrixXd vectors;
 };
 SymmetricEigen DecomposeSymmetric(const Eigen::MatrixXd& m);
+/// The eigenvalues alone, ascending, with the same switch of solver.
+Eigen::VectorXd SymmetricEigenvalues(const Eigen::MatrixXd& m);
 
 }  // namespace lifelong::slam

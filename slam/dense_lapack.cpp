@@ -41,51 +41,45 @@ void SolveLowerInPlace(const Eigen::MatrixXd& L, Eigen::MatrixXd* b) {
   dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, b->data(), &m, 1, 1, 1, 1);
 }
 
-bool SymmetricEigenInPlace(Eigen::MatrixXd* a, Eigen::VectorXd* w) {
-  if (a->rows() != a->cols()) throw std::invalid_argument("SymmetricEigenInPlace: not square");
+namespace {
+
+/// dsyevd on `a` (lower triangle read): jobz "V" leaves the eigenvectors in `a`, "N" only the
+/// eigenvalues in w. False if it did not converge.
+bool Dsyevd(const char* jobz, Eigen::MatrixXd* a, Eigen::VectorXd* w) {
+  if (a->rows() != a->cols()) throw std::invalid_argument("dsyevd: not square");
   const int n = static_cast<int>(a->rows());
   w->resize(n);
   if (n == 0) return true;
   int info = 0, lwork = -1, liwork = -1, iwork_size = 0;
-  double work_size = 0.0;
-  dsyevd_("V", "L", &n, a->data(), &n, w->data(), &work_size, &lwork, &iwork_size, &liwork, &info,
+  double work_size = 0.0;  // a workspace query first
+  dsyevd_(jobz, "L", &n, a->data(), &n, w->data(), &work_size, &lwork, &iwork_size, &liwork, &info,
           1, 1);
   if (info != 0) return false;
-  lwork = static_cast<int>(work_size);
-  liwork = iwork_size;
+  lwork = std::max(static_cast<int>(work_size), 1);
+  liwork = std::max(iwork_size, 1);
   std::vector<double> work(static_cast<std::size_t>(lwork));
   std::vector<int> iwork(static_cast<std::size_t>(liwork));
-  dsyevd_("V", "L", &n, a->data(), &n, w->data(), work.data(), &lwork, iwork.data(), &liwork, &info,
-          1, 1);
+  dsyevd_(jobz, "L", &n, a->data(), &n, w->data(), work.data(), &lwork, iwork.data(), &liwork,
+          &info, 1, 1);
   return info == 0;
 }
 
+}  // namespace
+
+bool SymmetricEigenInPlace(Eigen::MatrixXd* a, Eigen::VectorXd* w) { return Dsyevd("V", a, w); }
+
 SymmetricEigen DecomposeSymmetric(const Eigen::MatrixXd& m) {
   SymmetricEigen d{Eigen::VectorXd(), m};
-  if (m.rows() > kLapackEigenFrom && SymmetricEigenInPlace(&d.vectors, &d.values)) return d;
+  if (m.rows() > kLapackEigenFrom && Dsyevd("V", &d.vectors, &d.values)) return d;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(m);
   return {eig.eigenvalues(), eig.eigenvectors()};
 }
 
 Eigen::VectorXd SymmetricEigenvalues(const Eigen::MatrixXd& m) {
-  if (m.rows() != m.cols()) throw std::invalid_argument("SymmetricEigenvalues: not square");
-  const int n = static_cast<int>(m.rows());
   if (m.rows() > kLapackEigenFrom) {
     Eigen::MatrixXd a = m;
-    Eigen::VectorXd w(n);
-    int info = 0, lwork = -1, liwork = -1, iwork_size = 0;
-    double work_size = 0.0;
-    dsyevd_("N", "L", &n, a.data(), &n, w.data(), &work_size, &lwork, &iwork_size, &liwork, &info,
-            1, 1);
-    lwork = static_cast<int>(work_size);
-    liwork = iwork_size;
-    std::vector<double> work(static_cast<std::size_t>(std::max(lwork, 1)));
-    std::vector<int> iwork(static_cast<std::size_t>(std::max(liwork, 1)));
-    if (info == 0) {
-      dsyevd_("N", "L", &n, a.data(), &n, w.data(), work.data(), &lwork, iwork.data(), &liwork,
-              &info, 1, 1);
-    }
-    if (info == 0) return w;
+    Eigen::VectorXd w;
+    if (Dsyevd("N", &a, &w)) return w;
   }
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly).eigenvalues();
 }

@@ -38,43 +38,54 @@ void AddCliqueHessian(const CliqueFactor& clique, const Values& values,
   AddCliqueLinearized(clique, values, index, H, nullptr);
 }
 
-void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
-                         const std::vector<NodeId>& index, MatrixXd* H, Eigen::VectorXd* g) {
+CliqueLinearization LinearizeCliqueFactor(const CliqueFactor& clique,
+                                          const std::vector<Pose2>& poses, bool gradient) {
   const std::size_t k = clique.nodes.size() - 1;
-  const Pose2& Xr = At(values, clique.nodes[0]);
-  const Eigen::Index r = Block(clique::IndexOf(index, clique.nodes[0], "marginalization"));
-  const MatrixXd& omega = clique.information;
-  MatrixXd R(Block(k), 3);                         // the root's Jacobian blocks, stacked
-  std::vector<Matrix3d> N(k);                      // node j's Jacobian (block row j only)
-  std::vector<Eigen::Index> at(k);                 // node j's block in H
-  Eigen::VectorXd e(g != nullptr ? Block(k) : 0);  // the errors, for the gradient only
+  const MatrixXd& lambda = clique.information;
+  CliqueLinearization l;
+  l.R.resize(Block(k), 3);
+  l.N.resize(k);
+  if (gradient) l.e.resize(Block(k));
   for (std::size_t j = 0; j < k; ++j) {
-    const NodeId n = clique.nodes[j + 1];
     Matrix3d Jr;
-    RelativeErrorJacobians(Xr, At(values, n), clique.T_root_node[j], &Jr, &N[j]);
-    R.block<3, 3>(Block(j), 0) = Jr;
-    at[j] = Block(clique::IndexOf(index, n, "marginalization"));
-    if (g != nullptr)
-      e.segment<3>(Block(j)) = RelativeError(Xr, At(values, n), clique.T_root_node[j]);
-  }
-  // Columns of Omega J: the root's (Omega R), node b's (Omega's block column b times N_b).
-  const MatrixXd omega_r = omega * R;
-  std::vector<MatrixXd> omega_n(k);
-  for (std::size_t b = 0; b < k; ++b) omega_n[b] = omega.middleCols<3>(Block(b)) * N[b];
-  H->block<3, 3>(r, r) += R.transpose() * omega_r;
-  for (std::size_t b = 0; b < k; ++b) {
-    const Matrix3d rb = R.transpose() * omega_n[b];
-    H->block<3, 3>(r, at[b]) += rb;
-    H->block<3, 3>(at[b], r) += rb.transpose();
-    for (std::size_t a = 0; a < k; ++a) {
-      H->block<3, 3>(at[a], at[b]) += N[a].transpose() * omega_n[b].middleRows<3>(Block(a));
+    RelativeErrorJacobians(poses[0], poses[j + 1], clique.T_root_node[j], &Jr, &l.N[j]);
+    l.R.block<3, 3>(Block(j), 0) = Jr;
+    if (gradient) {
+      l.e.segment<3>(Block(j)) = RelativeError(poses[0], poses[j + 1], clique.T_root_node[j]);
     }
   }
-  if (g == nullptr) return;
-  const Eigen::VectorXd w = omega * e;
-  g->segment<3>(r) += R.transpose() * w;
-  for (std::size_t j = 0; j < k; ++j)
-    g->segment<3>(at[j]) += N[j].transpose() * w.segment<3>(Block(j));
+  l.lambda_r = lambda * l.R;
+  l.lambda_n.resize(k);
+  for (std::size_t b = 0; b < k; ++b) l.lambda_n[b] = lambda.middleCols<3>(Block(b)) * l.N[b];
+  if (gradient) l.w = lambda * l.e;
+  return l;
+}
+
+Matrix3d CliqueLinearization::H(std::size_t u, std::size_t v) const {
+  if (u == 0 && v == 0) return R.transpose() * lambda_r;
+  if (u == 0) return R.transpose() * lambda_n[v - 1];
+  if (v == 0) return (R.transpose() * lambda_n[u - 1]).transpose();
+  return N[u - 1].transpose() * lambda_n[v - 1].middleRows<3>(Block(u - 1));
+}
+
+Eigen::Vector3d CliqueLinearization::g(std::size_t u) const {
+  if (u == 0) return R.transpose() * w;
+  return N[u - 1].transpose() * w.segment<3>(Block(u - 1));
+}
+
+void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
+                         const std::vector<NodeId>& index, MatrixXd* H, Eigen::VectorXd* g) {
+  std::vector<Pose2> poses;
+  std::vector<Eigen::Index> at;  // member u's block in H
+  for (NodeId n : clique.nodes) {
+    poses.push_back(At(values, n));
+    at.push_back(Block(clique::IndexOf(index, n, "marginalization")));
+  }
+  const CliqueLinearization l = LinearizeCliqueFactor(clique, poses, g != nullptr);
+  for (std::size_t u = 0; u < at.size(); ++u) {
+    for (std::size_t v = 0; v < at.size(); ++v) H->block<3, 3>(at[u], at[v]) += l.H(u, v);
+    if (g != nullptr) g->segment<3>(at[u]) += l.g(u);
+  }
 }
 
 }  // namespace lifelong::slam

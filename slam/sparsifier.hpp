@@ -84,12 +84,12 @@ class Sparsifier {
   virtual std::string Name() const = 0;
   /// Node k must exist in graph and values, with all its neighbours.
   virtual Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const = 0;
+  /// Whether ReplaceSet can replace sets (then SparsifyOffline hands it each connected set).
+  virtual bool ReplacesSets() const { return false; }
   /// A method whose factors are the exact marginal (exact, glc-dense) does not depend on the
   /// order of elimination, so it may replace a connected set of removed nodes (ascending) at
   /// once, with what removing them one at a time would leave (set_marginal.hpp); r's
   /// neighbours are then the set's boundary. nullopt: remove them one at a time.
-  /// Whether ReplaceSet can replace sets (then SparsifyOffline hands it each connected set).
-  virtual bool ReplacesSets() const { return false; }
   virtual std::optional<Replacement> ReplaceSet(const PoseGraph& graph, const Values& values,
                                                 const std::vector<NodeId>& set) const {
     (void)graph, (void)values, (void)set;

@@ -17,10 +17,7 @@ class GlcDenseSparsifier final : public Sparsifier {
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
     Replacement r;
     CliqueMarginal m;
-    if (!MarginalToReplace(config_, graph, values, k, &r, &m)) return r;
-    GlcFactors f = GlcDense(r.neighbours, values, m.lambda_N, config_.eigen_tolerance);
-    SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
-    MoveMeans(config_.means, r.neighbours, values, m.lambda_N, m.g_N, &r.edges, &r.cliques);
+    if (MarginalToReplace(config_, graph, values, k, &r, &m)) Fill(values, m, &r);
     return r;
   }
   bool ReplacesSets() const override { return true; }
@@ -32,14 +29,17 @@ class GlcDenseSparsifier final : public Sparsifier {
     Replacement r;
     r.neighbours = m->boundary;
     r.absorb_edges_within = r.absorb_cliques_within = within;
-    GlcFactors f = GlcDense(r.neighbours, values, m->marginal.lambda_N, config_.eigen_tolerance);
-    SetFactors(config_, values, m->marginal, std::move(f.edges), std::move(f.cliques), &r);
-    MoveMeans(config_.means, r.neighbours, values, m->marginal.lambda_N, m->marginal.g_N, &r.edges,
-              &r.cliques);
+    Fill(values, m->marginal, &r);
     return r;
   }
 
  private:
+  /// r's factors: the exact marginal m over r's neighbours as one GLC factor, moved as asked.
+  void Fill(const Values& values, const CliqueMarginal& m, Replacement* r) const {
+    GlcFactors f = GlcDense(r->neighbours, values, m.lambda_N, config_.eigen_tolerance);
+    SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), r);
+    MoveMeans(config_.means, r->neighbours, values, m.lambda_N, m.g_N, &r->edges, &r->cliques);
+  }
   SparsifierConfig config_;
 };
 

@@ -38,6 +38,13 @@ struct CellUpdate {
   CellCounts delta;
 };
 
+/// A cell as a change of the map left it: its counts, and how many of the increment lists
+/// in the map touch it (have a nonzero increment there: scans, for TouchedCells' lists).
+struct CellState {
+  CellCounts counts;
+  std::uint32_t lists = 0;
+};
+
 /// Inclusive cell-index box. `empty` when the map holds no counts.
 struct CellBounds {
   CellIndex min;
@@ -97,12 +104,16 @@ class GridMap {
   /// Exactly undoes AddScan with the same arguments.
   void RemoveScan(const LaserScan& scan, const Pose2& T_world_robot);
   void MoveScan(const LaserScan& scan, const Pose2& T_world_old, const Pose2& T_world_new);
-  void Add(const std::vector<CellUpdate>& updates);
+  /// Adds an increment list; with `after`, also gives the state each of its cells is left
+  /// in (one per update, in its order).
+  void Add(const std::vector<CellUpdate>& updates, std::vector<CellState>* after = nullptr);
   /// Throws std::logic_error when a count would go negative (the updates were never added),
-  /// leaving the map unchanged.
-  void Remove(const std::vector<CellUpdate>& updates);
+  /// leaving the map unchanged (and `after` unspecified).
+  void Remove(const std::vector<CellUpdate>& updates, std::vector<CellState>* after = nullptr);
 
   CellCounts Counts(CellIndex c) const;
+  /// How many increment lists in the map touch the cell (CellState::lists).
+  std::uint32_t Lists(CellIndex c) const;
   std::uint32_t Hits(CellIndex c) const { return Counts(c).hits; }
   std::uint32_t Misses(CellIndex c) const { return Counts(c).misses; }
   /// p(occ), 0.5 for an unknown cell.
@@ -124,6 +135,10 @@ class GridMap {
   std::int64_t QuantizedGain(const std::vector<CellUpdate>& updates) const;
 
  private:
+  struct Cell {
+    CellCounts counts;
+    std::uint32_t lists = 0;
+  };
   struct Chunk;
   /// The chunks looked up recently, direct-mapped by key: consecutive cells of an update
   /// list (ordered by row) come from the few chunks the rows cross, so most lookups hit.
@@ -133,8 +148,8 @@ class GridMap {
     std::array<Chunk*, kSlots> chunks{};
     std::array<bool, kSlots> valid{};
   };
-  CellCounts* Find(CellIndex c, Cursor* cursor) const;
-  CellCounts* FindOrCreate(CellIndex c, Cursor* cursor);
+  Cell* Find(CellIndex c, Cursor* cursor) const;
+  Cell* FindOrCreate(CellIndex c, Cursor* cursor);
 
   GridMapConfig config_;
   std::unordered_map<std::uint64_t, std::unique_ptr<Chunk>> chunks_;

@@ -74,19 +74,14 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     }
   }
   s.step = &stats;
-  const auto ms_since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-  };
-  auto t = std::chrono::steady_clock::now();
-  s.AddSequentialNode(obs, &stats);
-  stats.stages.match_ms = ms_since(t);
+  {
+    const ScopedMs timer = s.Stage(&StageTimes::match_ms);
+    s.AddSequentialNode(obs, &stats);
+  }
   const NodeId current = s.last_node;
   if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
-    const double nested = stats.stages.backend_ms + stats.stages.map_update_ms;
-    t = std::chrono::steady_clock::now();
+    const ScopedMs timer = s.Stage(&StageTimes::loop_ms);
     stats.loop_closed = s.TryCloseLoop(current);
-    stats.stages.loop_ms =
-        ms_since(t) - (stats.stages.backend_ms + stats.stages.map_update_ms - nested);
   }
   if (s.config.pruning.mode != PruningMode::kNone &&
       s.observations % s.config.pruning.round_period == 0)
@@ -150,8 +145,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   } else {
     data.touched = map.TouchedCells(data.scan, data.T_world_map);
     data.footprint = Footprint::Of(data.touched);
-    map.Add(data.touched);
-    prune_state.NoteMapChange(data.footprint);
+    ChangeMap(data.touched, data.footprint, true);
   }
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
@@ -222,17 +216,20 @@ void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
 void Mapper::State::OptimizeAndSyncMap() {
   using Ms = std::chrono::duration<double, std::milli>;
   const auto start = std::chrono::steady_clock::now();
-  const OptimizerSummary summary = Optimize(graph, &values, config.optimizer);
-  const auto optimized = std::chrono::steady_clock::now();
+  OptimizerSummary summary;
+  {
+    const ScopedMs timer = Stage(&StageTimes::backend_ms);
+    summary = Optimize(graph, &values, config.optimizer);
+  }
   loop_state.since_optimize = 0;
-  SyncMap();
+  {
+    const ScopedMs timer = Stage(&StageTimes::map_update_ms);
+    SyncMap();
+  }
   if (step) {
-    const auto end = std::chrono::steady_clock::now();
     step->optimized = true;
     step->optimizer_iterations += summary.iterations;
-    step->optimize_ms += Ms(end - start).count();
-    step->stages.backend_ms += Ms(optimized - start).count();
-    step->stages.map_update_ms += Ms(end - optimized).count();
+    step->optimize_ms += Ms(std::chrono::steady_clock::now() - start).count();
   }
 }
 
@@ -247,35 +244,17 @@ void Mapper::State::SyncMap() {
         // Only the nodes near the robot keep their cell lists (Prune); the others get theirs
         // computed for the move and freed again, so memory follows the neighbourhood.
         const bool cached = !data.touched.empty();
-        prune_state.NoteMapChange(data.footprint);
-        map.Remove(Touched(id));
+        Untrack(id);
+        ChangeMap(Touched(id), data.footprint, false);
         data.touched = map.TouchedCells(data.scan, X);
         data.footprint = Footprint::Of(data.touched);
-        map.Add(data.touched);
-        prune_state.NoteMapChange(data.footprint);
+        ChangeMap(data.touched, data.footprint, true);
+        data.gain_valid = false;  // its own cells moved
         if (!cached) std::vector<CellUpdate>().swap(data.touched);
       }
       data.T_world_map = X;
     }
   }
-}
-
-const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
-  NodeData& data = nodes.at(id);
-  if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
-  // (The footprint is kept when the list is freed: it is set wherever the list is computed
-  // at a new pose.)
-  return data.touched;
-}
-
-double Mapper::State::Gain(NodeId id) {
-  const ScopedMs timer(step ? &step->stages.gain_ms : nullptr);
-  const std::vector<CellUpdate>& cells = Touched(id);
-  NodeData& data = nodes.at(id);
-  data.gain_bits = map.InformationGain(cells);
-  data.gain_valid = true;
-  data.gain_seen = prune_state.changes_made;
-  return data.gain_bits;
 }
 
 void Mapper::Finish() {
@@ -305,13 +284,16 @@ int Mapper::observations() const { return state_->observations; }
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   for (const auto& [id, data] : state_->nodes) {
-    // A change not yet applied invalidates the gain before any use.
-    if (!data.gain_valid || state_->prune_state.ChangedSince(data.footprint, data.gain_seen)) {
+    // A change not yet applied invalidates a remembered gain before any use.
+    const bool tracked = state_->prune_state.tracked.Tracks(id);
+    if (!tracked &&
+        (!data.gain_valid || state_->prune_state.ChangedSince(data.footprint, data.gain_seen))) {
       continue;
     }
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
-    worst = std::max(worst, std::abs(fresh - data.gain_bits));
+    const double known = static_cast<double>(state_->KnownGain(id)) * kEntropyQuantumBits;
+    worst = std::max(worst, std::abs(fresh - known));
   }
   return worst;
 }

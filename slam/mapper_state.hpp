@@ -32,30 +32,45 @@ struct NodeData {
   int scan_index = 0;
   double travelled_m = 0.0;         ///< robot path length (odometry) at this scan
   std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
-  double gain_bits = 0.0;           ///< information gain when last computed...
-  bool gain_valid = false;          ///< ...still exact unless a later map change shares a block
-  std::uint64_t gain_seen = 0;      ///< the latest map change (PruningState) it was computed after
+  std::int64_t gain_quanta = 0;     ///< information gain (kEntropyQuantumBits) as last known...
+  bool gain_valid = false;          ///< ...still exact unless a later map change reaches it
+  std::uint64_t gain_seen = 0;      ///< the latest map change (PruningState) it has seen
   Footprint footprint;              ///< of `touched` (kept when the list is freed)
+
+  double GainBits() const { return static_cast<double>(gain_quanta) * kEntropyQuantumBits; }
 };
 
-/// Adds the wall time of its scope, in ms, to *total (nothing when total is null): the
-/// per-stage times of StepStats.
+/// Adds the wall time of its scope, in ms, to *total, less the time of the timers nested in
+/// it, so that the per-stage times of StepStats never count a moment twice (the map update
+/// inside the matching stage, say, is the gains' when it updates gains). Nothing when total
+/// is null. `innermost` is the timers' stack top, kept by the caller.
 class ScopedMs {
  public:
-  explicit ScopedMs(double* total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ScopedMs(double* total, ScopedMs** innermost)
+      : total_(total),
+        innermost_(innermost),
+        parent_(total ? *innermost : nullptr),
+        start_(std::chrono::steady_clock::now()) {
+    if (total_) *innermost_ = this;
+  }
   ~ScopedMs() {
-    if (total_) {
-      *total_ +=
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
-              .count();
-    }
+    if (!total_) return;
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+            .count();
+    *total_ += ms - nested_ms_;
+    if (parent_) parent_->nested_ms_ += ms;
+    *innermost_ = parent_;
   }
   ScopedMs(const ScopedMs&) = delete;
   ScopedMs& operator=(const ScopedMs&) = delete;
 
  private:
   double* total_;
+  ScopedMs** innermost_;
+  ScopedMs* parent_;
   std::chrono::steady_clock::time_point start_;
+  double nested_ms_ = 0.0;
 };
 
 /// Where a scan of the stream is held: relative to an anchor node.
@@ -83,13 +98,20 @@ struct Mapper::State {
   std::vector<std::size_t> pending;  ///< non-keyframe scans since the last node
   NodeId next_id = 0;
   int observations = 0;
-  StepStats* step = nullptr;  ///< stats of the observation being processed
+  StepStats* step = nullptr;            ///< stats of the observation being processed
+  ScopedMs* innermost_timer = nullptr;  ///< of the stage timers running
   bool have_last = false;
   NodeId last_node = 0;
   ReferenceGrid match_grid;  ///< the matchers' table, rebuilt in place for each match
   /// The surface points (robot frame) of the nodes in the last local map, kept while they
   /// stay in it (SurfaceRule::JoinsAny).
   std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces;
+
+  /// Times its scope as the stage `field` of the observation being processed (none when
+  /// there is none).
+  ScopedMs Stage(double StageTimes::*field) {
+    return ScopedMs(step ? &(step->stages.*field) : nullptr, &innermost_timer);
+  }
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   void AnchorScan(const Observation& obs);
@@ -122,8 +144,19 @@ struct Mapper::State {
   void SyncMap();
   /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.
   const std::vector<CellUpdate>& Touched(NodeId id);
-  /// Information gain of node `id`'s scan, computed now and remembered with its box.
+  /// Information gain of node `id`'s scan: kept by the index, else remembered, else computed
+  /// now; from then on tracked by the index while its cell list is cached.
   double Gain(NodeId id);
+  /// Stops tracking node `id`'s gain (before its cells move, leave the map or are freed); it
+  /// remembers the gain.
+  void Untrack(NodeId id);
+  /// The gain last known (tracked, or remembered when gain_valid), in quanta.
+  std::int64_t KnownGain(NodeId id) const;
+  /// Adds an increment list to the map (or removes it); in the pruned modes the tracked
+  /// gains follow and the change is numbered (PruningState::map_changes).
+  void ChangeMap(const std::vector<CellUpdate>& cells, const Footprint& footprint, bool add);
+  /// Makes every untracked node that a change since its gain shares a block with forget it.
+  void ForgetStaleGains();
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// While the graph holds more than max_edges_per_node edges per node, replaces the edges

@@ -133,19 +133,11 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  // A remembered gain stays exact until the map changes in one of its scan's cells: every
-  // node (not only this round's candidates) forgets its gain when a change it was not
-  // computed after shares a block with its footprint. (The gains recomputed after last
-  // round's removals have seen those removals.)
-  for (auto& [id, data] : nodes) {
-    if (data.gain_valid && prune_state.ChangedSince(data.footprint, data.gain_seen))
-      data.gain_valid = false;
-  }
+  // The tracked gains are exact; a remembered one stays exact until the map changes in one
+  // of its scan's cells (the gains recomputed after last round's removals have seen them).
+  ForgetStaleGains();
   prune_state.map_changes.clear();
-  for (auto& [id, gain] : gains) {
-    const NodeData& data = nodes.at(id);
-    gain = data.gain_valid ? data.gain_bits : Gain(id);
-  }
+  for (auto& [id, gain] : gains) gain = Gain(id);
   std::set<NodeId> considered = protected_ids;
   for (const auto& [id, gain] : gains) considered.insert(id);
 
@@ -155,27 +147,26 @@ void Mapper::State::Prune(NodeId current) {
     const NodeId victim = *next;
     const double gain = gains.at(victim);
     gains.erase(victim);
-    // Its gain, hence its footprint, is current.
-    const Footprint changed = nodes.at(victim).footprint;
     RemoveNode(victim, gain);
-    // Only the gains of scans sharing cells with the removed one can have changed; the
-    // nodes outside this round see the change at the next one.
-    prune_state.NoteMapChange(changed);
-    for (auto& [id, g] : gains) {
-      if (nodes.at(id).footprint.Shares(changed)) g = Gain(id);
-    }
+    // Only the gains of scans sharing cells with the removed one can have changed: the
+    // index has updated the tracked ones; the nodes outside this round see the change at
+    // the next one.
+    ForgetStaleGains();
+    for (auto& [id, g] : gains) g = Gain(id);
   }
   if (prune_state.sparsifier->Name() == "chow-liu" && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
   // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
   // so memory follows the neighbourhood, not the graph.
   for (auto& [id, data] : nodes) {
-    if (!data.touched.empty() && !considered.count(id))
+    if (!data.touched.empty() && !considered.count(id)) {
+      Untrack(id);
       std::vector<CellUpdate>().swap(data.touched);
+    }
   }
 }
 
 void Mapper::State::KeepEdgeBudget() {
-  const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
+  const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
   // The nodes within `hops` edges of `centre`, ascending.
   const auto ball = [this](NodeId centre, int hops) {
     std::set<NodeId> in{centre}, frontier{centre};
@@ -250,7 +241,7 @@ void Mapper::State::KeepEdgeBudget() {
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
-  const ScopedMs timer(step ? &step->stages.marginalize_ms : nullptr);
+  const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
   loop_state.verifier.ForgetNode(id);
   // With robust_marginal, the loop edges of the clique (at the node and among its
   // neighbours) enter the marginal as the optimizer weighs them at the estimate: information
@@ -287,7 +278,9 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
     Reanchor(scan, keeper);
   }
   scans_of_node.erase(id);
-  map.Remove(Touched(id));
+  // Its gain, hence its footprint, is current.
+  Untrack(id);
+  ChangeMap(Touched(id), nodes.at(id).footprint, false);
   ApplyReplacement(&graph, id, replacement);
   prune_state.marginalizations.push_back(
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "slam/gain_index.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/mapper.hpp"
 #include "slam/removal_policy.hpp"
@@ -57,10 +58,13 @@ struct PruningState {
   };
   std::vector<MapChange> map_changes;  ///< since the last pruning round
   std::uint64_t changes_made = 0;      ///< number of the latest change
+  /// The gains of the scans near the robot (those with cell lists), kept exact through every
+  /// change; the other nodes remember theirs until a change shares a block with them.
+  GainIndex tracked;
+  std::vector<CellState> counts_after;  ///< scratch: the cells as a change leaves them
 
   bool active() const { return policy != nullptr; }
-  /// Records that the map's counts changed in these cells (pruned modes: gains of scans
-  /// sharing a block with them must be recomputed).
+  /// Records that the map's counts changed in these cells (pruned modes).
   void NoteMapChange(const Footprint& cells) {
     if (active()) map_changes.push_back({++changes_made, cells});
   }

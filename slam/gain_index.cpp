@@ -1,0 +1,199 @@
+// The index of tracked scans by chunk (gain_index.hpp).
+#include "slam/gain_index.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace lifelong::slam {
+
+namespace {
+
+constexpr int kBits = ChunkedCells::kChunkBits;
+constexpr int kMask = (1 << kBits) - 1;
+
+std::uint64_t ChunkKey(int cx, int cy) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) |
+         static_cast<std::uint32_t>(cy);
+}
+
+int BitOf(CellIndex c) { return ((c.y & kMask) << kBits) | (c.x & kMask); }
+
+CellCounts Minus(CellCounts a, CellCounts b) { return {a.hits - b.hits, a.misses - b.misses}; }
+CellCounts Plus(CellCounts a, CellCounts b) { return {a.hits + b.hits, a.misses + b.misses}; }
+
+}  // namespace
+
+void ChunkedCells::Assign(const std::vector<CellUpdate>& cells) {
+  chunks.clear();
+  order.resize(cells.size());
+  if (cells.empty()) return;
+  // Chunks of the list's box, numbered row by row; a counting sort by that number keeps
+  // each chunk's cells in list order, which is bit order within a chunk.
+  int x0 = cells.front().cell.x, x1 = x0;
+  for (const CellUpdate& u : cells) {
+    x0 = std::min(x0, u.cell.x);
+    x1 = std::max(x1, u.cell.x);
+  }
+  const int cx0 = x0 >> kBits, cy0 = cells.front().cell.y >> kBits;
+  const auto width = static_cast<std::size_t>((x1 >> kBits) - cx0 + 1);
+  const auto height = static_cast<std::size_t>((cells.back().cell.y >> kBits) - cy0 + 1);
+  const auto number = [&](CellIndex c) {
+    return static_cast<std::size_t>((c.y >> kBits) - cy0) * width +
+           static_cast<std::size_t>((c.x >> kBits) - cx0);
+  };
+  start.assign(width * height + 1, 0);
+  for (const CellUpdate& u : cells) ++start[number(u.cell) + 1];
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  next.assign(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    order[next[number(cells[i].cell)]++] = static_cast<std::uint32_t>(i);
+  }
+  for (std::size_t n = 0; n + 1 < start.size(); ++n) {
+    if (start[n] == start[n + 1]) continue;
+    Chunk chunk;
+    chunk.key = ChunkKey(cx0 + static_cast<int>(n % width), cy0 + static_cast<int>(n / width));
+    chunk.first = start[n];
+    for (std::uint32_t i = start[n]; i < start[n + 1]; ++i) {
+      const int bit = BitOf(cells[order[i]].cell);
+      chunk.bits[static_cast<std::size_t>(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
+    }
+    std::uint16_t before = 0;
+    for (std::size_t w = 0; w < kWords; ++w) {
+      chunk.before[w] = before;
+      before = static_cast<std::uint16_t>(before + __builtin_popcountll(chunk.bits[w]));
+    }
+    chunks.push_back(chunk);
+  }
+}
+
+void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int64_t gain) {
+  if (Tracks(id)) throw std::logic_error("GainIndex::Track: node " + std::to_string(id) + " twice");
+  std::uint32_t slot = 0;
+  if (free_slots_.empty()) {
+    slot = static_cast<std::uint32_t>(scans_.size());
+    scans_.emplace_back();
+  } else {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
+  }
+  ChunkedCells grouped;
+  grouped.Assign(cells);
+  Scan& scan = scans_[slot];
+  scan.gain = gain;
+  scan.deltas.resize(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) scan.deltas[i] = cells[grouped.order[i]].delta;
+  scan.keys.clear();
+  for (const ChunkedCells::Chunk& chunk : grouped.chunks) {
+    chunks_[chunk.key].push_back({slot, chunk});
+    scan.keys.push_back(chunk.key);
+  }
+  slots_.emplace(id, slot);
+}
+
+std::int64_t GainIndex::Untrack(NodeId id) {
+  const auto it = slots_.find(id);
+  if (it == slots_.end()) {
+    throw std::logic_error("GainIndex::Untrack: node " + std::to_string(id) + " not tracked");
+  }
+  const std::uint32_t slot = it->second;
+  Scan& scan = scans_[slot];
+  for (std::uint64_t key : scan.keys) {
+    const auto chunk = chunks_.find(key);
+    std::vector<Piece>& pieces = chunk->second;
+    const auto piece = std::find_if(pieces.begin(), pieces.end(),
+                                    [slot](const Piece& p) { return p.slot == slot; });
+    *piece = pieces.back();
+    pieces.pop_back();
+    if (pieces.empty()) chunks_.erase(chunk);
+  }
+  slots_.erase(it);
+  free_slots_.push_back(slot);
+  std::vector<CellCounts>().swap(scan.deltas);
+  return scan.gain;
+}
+
+void GainIndex::Clear() {
+  chunks_.clear();
+  slots_.clear();
+  scans_.clear();
+  free_slots_.clear();
+}
+
+std::int64_t GainIndex::Gain(NodeId id) const {
+  const auto it = slots_.find(id);
+  if (it == slots_.end()) {
+    throw std::logic_error("GainIndex::Gain: node " + std::to_string(id) + " not tracked");
+  }
+  return scans_[it->second].gain;
+}
+
+bool GainIndex::Reaches(const CellBounds& box) const {
+  if (box.empty || chunks_.empty()) return false;
+  for (int cy = box.min.y >> kBits; cy <= box.max.y >> kBits; ++cy) {
+    for (int cx = box.min.x >> kBits; cx <= box.max.x >> kBits; ++cx) {
+      if (chunks_.count(ChunkKey(cx, cy))) return true;
+    }
+  }
+  return false;
+}
+
+// (Cloned for CPUs with and without the POPCNT instruction: the rank of a bit in a piece
+// is a population count, a library call on the x86-64 baseline.)
+__attribute__((target_clones("popcnt", "default"))) void GainIndex::Apply(
+    const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added) {
+  if (slots_.empty()) return;
+  if (after.size() != cells.size()) {
+    throw std::logic_error("GainIndex::Apply: one state per cell expected");
+  }
+  // A cell whose counts are pure (hits only or misses only) before and after, and that at
+  // least two lists touch before and after, changes no scan's gain: each term
+  // Q(n - d_k) - Q(n) is then Q(pure, nonzero) - Q(pure, nonzero) = 0 - 0. That is almost
+  // every cell of free space; only the others are looked up.
+  const auto pure = [](CellCounts n) { return n.hits == 0 || n.misses == 0; };
+  relevant_.clear();
+  relevant_states_.clear();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const CellCounts d = cells[i].delta;
+    const CellState& a = after[i];
+    const std::uint32_t touches = (d.hits != 0 || d.misses != 0) ? 1 : 0;
+    const std::uint32_t lists_before = added ? a.lists - touches : a.lists + touches;
+    const CellCounts before = added ? Minus(a.counts, d) : Plus(a.counts, d);
+    if (pure(a.counts) && pure(before) && std::min(a.lists, lists_before) >= 2) continue;
+    relevant_.push_back(cells[i]);
+    relevant_states_.push_back(
+        {before, a.counts, QuantizedEntropy(before), QuantizedEntropy(a.counts)});
+  }
+  scratch_.Assign(relevant_);
+  changed_.resize(std::size_t{1} << (2 * kBits));
+  Changed* changed = changed_.data();
+  for (const ChunkedCells::Chunk& chunk : scratch_.chunks) {
+    const auto found = chunks_.find(chunk.key);
+    if (found == chunks_.end()) continue;
+    const std::uint32_t end = chunk.first + chunk.before.back() +
+                              static_cast<std::uint32_t>(__builtin_popcountll(chunk.bits.back()));
+    for (std::uint32_t place = chunk.first; place < end; ++place) {
+      const std::uint32_t i = scratch_.order[place];
+      changed[static_cast<std::size_t>(BitOf(relevant_[i].cell))] = relevant_states_[i];
+    }
+    for (const Piece& piece : found->second) {
+      Scan& scan = scans_[piece.slot];
+      std::int64_t delta = 0;
+      for (int w = 0; w < ChunkedCells::kWords; ++w) {
+        std::uint64_t shared =
+            chunk.bits[static_cast<std::size_t>(w)] & piece.cells.bits[static_cast<std::size_t>(w)];
+        while (shared != 0) {
+          const int b = __builtin_ctzll(shared);
+          shared &= shared - 1;
+          const Changed& c = changed[static_cast<std::size_t>(w * 64 + b)];
+          const CellCounts d = scan.deltas[piece.cells.Place(w, b)];
+          delta += (QuantizedEntropy(Minus(c.after, d)) - c.q_after) -
+                   (QuantizedEntropy(Minus(c.before, d)) - c.q_before);
+        }
+      }
+      scan.gain += delta;
+    }
+  }
+}
+
+}  // namespace lifelong::slam

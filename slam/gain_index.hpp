@@ -1,0 +1,100 @@
+// The information gains of the scans near the robot, kept exact as the map changes (seed
+// eq. 5.11, in quanta of kEntropyQuantumBits). The gain of scan k is a sum over its cells,
+//   I(z_k) = sum_c Q(n_c - d_kc) - Q(n_c),
+// so a change of the counts of cell c from b to a alters it by
+//   [Q(a - d_kc) - Q(a)] - [Q(b - d_kc) - Q(b)]
+// and a change elsewhere not at all. The index holds every tracked scan's cells chunk by
+// chunk (32 x 32 cells) as a bitmap with its increments: a change of the map meets each
+// tracked scan in a chunk with one AND of two bitmaps, and costs one term per cell the two
+// share, instead of a pass over all cells of every scan it reaches. The quantized entropies
+// are integers, so a gain kept up to date this way equals the gain computed afresh, bit for
+// bit.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "slam/grid_map.hpp"
+#include "slam/pose_graph.hpp"
+
+namespace lifelong::slam {
+
+/// An increment list's cells grouped by 32 x 32-cell chunk: per chunk, a bitmap of the cells
+/// (bit (y mod 32) * 32 + x mod 32) and where they lie in `order`.
+struct ChunkedCells {
+  static constexpr int kChunkBits = 5;
+  static constexpr int kWords = (1 << (2 * kChunkBits)) / 64;
+  struct Chunk {
+    std::uint64_t key = 0;
+    std::array<std::uint64_t, kWords> bits{};
+    std::array<std::uint16_t, kWords> before{};  ///< cells of the chunk in earlier words
+    std::uint32_t first = 0;                     ///< its first cell's place in `order`
+    /// Place in `order` of the cell at bit `b` (set) of word w.
+    std::uint32_t Place(int w, int b) const {
+      const std::uint64_t below = (std::uint64_t{1} << b) - 1;
+      return first + before[static_cast<std::size_t>(w)] +
+             static_cast<std::uint32_t>(
+                 __builtin_popcountll(bits[static_cast<std::size_t>(w)] & below));
+    }
+  };
+  std::vector<Chunk> chunks;
+  std::vector<std::uint32_t> order;  ///< indices into the list, chunk by chunk, by bit
+
+  /// Groups a list ordered by (y, x), each cell once (GridMap::TouchedCells).
+  void Assign(const std::vector<CellUpdate>& cells);
+
+ private:
+  std::vector<std::uint32_t> start, next;  ///< Assign's counting sort
+};
+
+class GainIndex {
+ public:
+  bool Tracks(NodeId id) const { return slots_.count(id) != 0; }
+  std::size_t size() const { return slots_.size(); }
+  /// Starts tracking a scan in the map, whose increment list is `cells` and whose gain is
+  /// `gain` quanta now. Throws std::logic_error when it is tracked already.
+  void Track(NodeId id, const std::vector<CellUpdate>& cells, std::int64_t gain);
+  /// Stops tracking it (before its cells move or leave the map). Returns its gain.
+  std::int64_t Untrack(NodeId id);
+  /// Stops tracking every scan.
+  void Clear();
+  /// The gain of a tracked scan, exact for the map as it is now.
+  std::int64_t Gain(NodeId id) const;
+  /// Whether a change within this cell box can reach a tracked scan.
+  bool Reaches(const CellBounds& box) const;
+  /// Updates the tracked gains for a change of the map: `cells` were just added to it (or
+  /// removed from it), leaving the counts `after` (GridMap::Add, Remove). The scan changed
+  /// must not be tracked.
+  void Apply(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added);
+
+ private:
+  /// A tracked scan's cells in one chunk.
+  struct Piece {
+    std::uint32_t slot;
+    ChunkedCells::Chunk cells;  ///< `first` indexes the slot's deltas
+  };
+  struct Scan {
+    std::int64_t gain = 0;
+    std::vector<CellCounts> deltas;   ///< its increments, chunk by chunk, by bit
+    std::vector<std::uint64_t> keys;  ///< of its chunks
+  };
+
+  std::unordered_map<std::uint64_t, std::vector<Piece>> chunks_;
+  std::unordered_map<NodeId, std::uint32_t> slots_;
+  std::vector<Scan> scans_;                ///< by slot
+  std::vector<std::uint32_t> free_slots_;  ///< of untracked scans, for reuse
+  ChunkedCells scratch_;                   ///< Apply's grouping of a change
+  /// Apply's table for the chunk at hand, by bit: the counts before and after the change,
+  /// and their entropies.
+  struct Changed {
+    CellCounts before, after;
+    std::int64_t q_before, q_after;
+  };
+  std::vector<Changed> changed_;
+  std::vector<CellUpdate> relevant_;      ///< Apply: the cells of a change that matter...
+  std::vector<Changed> relevant_states_;  ///< ...and their states
+};
+
+}  // namespace lifelong::slam

@@ -1,0 +1,119 @@
+// GainIndex keeps the information gains (seed eq. 5.11) of tracked scans exact through every
+// change of the map, bit for bit equal to the gains computed afresh, including where it skips
+// the cells of pure counts.
+#include "slam/gain_index.hpp"
+
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/slam/synthetic_scans.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+// Scans of the room from random poses, with the room straddling cell 0 (negative indices,
+// chunk boundaries).
+std::vector<std::vector<CellUpdate>> RandomLists(const GridMap& map, int n, unsigned seed) {
+  const testing::World room = testing::RoomWorld();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> x(0.5, 7.5), y(0.5, 4.5), theta(-3.1, 3.1);
+  const Pose2 shift(-4.0, -2.5, 0.0);
+  std::vector<std::vector<CellUpdate>> lists;
+  for (int i = 0; i < n; ++i) {
+    const Pose2 pose(x(rng), y(rng), theta(rng));
+    lists.push_back(map.TouchedCells(testing::SimulateScan(room, pose), shift * pose));
+  }
+  return lists;
+}
+
+// The map and index together, as the mapper keeps them.
+struct Fixture {
+  GridMap map;
+  GainIndex index;
+  std::vector<CellState> after;
+
+  void Change(const std::vector<CellUpdate>& cells, bool add) {
+    add ? map.Add(cells, &after) : map.Remove(cells, &after);
+    index.Apply(cells, after, add);
+  }
+};
+
+TEST(GainIndex, TrackedGainsEqualFreshOnesThroughAddsRemovesAndMoves) {
+  Fixture f;
+  const auto lists = RandomLists(f.map, 24, 7);
+  std::map<NodeId, bool> in_map;
+  // Half the scans go in untracked, then every other one is tracked.
+  for (NodeId i = 0; i < 12; ++i) {
+    f.Change(lists[i], true);
+    in_map[i] = true;
+    if (i % 2 == 0) f.index.Track(i, lists[i], f.map.QuantizedGain(lists[i]));
+  }
+  std::mt19937 rng(11);
+  int checked = 0;
+  for (int step = 0; step < 60; ++step) {
+    const NodeId id = static_cast<NodeId>(rng() % lists.size());
+    if (f.index.Tracks(id)) {
+      f.index.Untrack(id);  // before its cells leave the map
+    }
+    f.Change(lists[id], !in_map[id]);
+    in_map[id] = !in_map[id];
+    if (in_map[id] && step % 3 == 0) f.index.Track(id, lists[id], f.map.QuantizedGain(lists[id]));
+    for (const auto& [n, present] : in_map) {
+      if (!present || !f.index.Tracks(n)) continue;
+      ASSERT_EQ(f.index.Gain(n), f.map.QuantizedGain(lists[n])) << "node " << n << " step " << step;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(GainIndex, TrackingTwiceOrUntrackingAStrangerIsALogicError) {
+  Fixture f;
+  const auto lists = RandomLists(f.map, 1, 3);
+  f.Change(lists[0], true);
+  f.index.Track(4, lists[0], 17);
+  EXPECT_THROW(f.index.Track(4, lists[0], 17), std::logic_error);
+  EXPECT_THROW(f.index.Untrack(5), std::logic_error);
+  EXPECT_EQ(f.index.Untrack(4), 17);
+  EXPECT_FALSE(f.index.Tracks(4));
+  EXPECT_THROW(f.index.Gain(4), std::logic_error);
+}
+
+// A cell that only two scans see, both as free space: removing one makes the other its only
+// observer, whose gain then counts the cell's whole bit (from 0 to 1 bit unknown).
+TEST(GainIndex, ASoleObserverLeftBehindGainsTheCell) {
+  Fixture f;
+  const std::vector<CellUpdate> a{{{3, 3}, {0, 1}}}, b{{{3, 3}, {0, 2}}};
+  f.Change(a, true);
+  f.Change(b, true);
+  f.index.Track(1, a, f.map.QuantizedGain(a));
+  EXPECT_EQ(f.index.Gain(1), 0);
+  f.Change(b, false);
+  EXPECT_EQ(f.index.Gain(1), f.map.QuantizedGain(a));
+  EXPECT_EQ(f.index.Gain(1), QuantizedEntropy({0, 0}));
+}
+
+TEST(GridMapLists, CountTheListsTouchingACellAndSurviveAFailedRemove) {
+  GridMap map;
+  const CellIndex c{-40, 7};
+  map.Add({{c, {1, 0}}});
+  map.Add({{c, {0, 3}}, {{0, 0}, {0, 1}}});
+  map.Add({{c, {0, 0}}});  // touches nothing
+  EXPECT_EQ(map.Lists(c), 2u);
+  EXPECT_EQ(map.Lists({0, 0}), 1u);
+  std::vector<CellState> after;
+  map.Remove({{c, {1, 0}}}, &after);
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_EQ(after[0].lists, 1u);
+  EXPECT_EQ(after[0].counts.misses, 3u);
+  EXPECT_THROW(map.Remove({{{0, 0}, {0, 1}}, {c, {0, 9}}}), std::logic_error);
+  EXPECT_EQ(map.Lists({0, 0}), 1u);
+  EXPECT_EQ(map.Lists(c), 1u);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

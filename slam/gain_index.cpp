@@ -128,6 +128,20 @@ std::int64_t GainIndex::Gain(NodeId id) const {
   return scans_[it->second].gain;
 }
 
+std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells,
+                         const std::vector<CellState>& after) {
+  if (after.size() != cells.size())
+    throw std::logic_error("GainOfAdded: one state per cell expected");
+  std::int64_t gain = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const CellCounts a = after[i].counts;
+    // With another list in a cell of pure counts, both terms are 0 (see Apply).
+    if ((a.hits == 0 || a.misses == 0) && after[i].lists >= 2) continue;
+    gain += QuantizedEntropy(Minus(a, cells[i].delta)) - QuantizedEntropy(a);
+  }
+  return gain;
+}
+
 bool GainIndex::Reaches(const CellBounds& box) const {
   if (box.empty || chunks_.empty()) return false;
   for (int cy = box.min.y >> kBits; cy <= box.max.y >> kBits; ++cy) {

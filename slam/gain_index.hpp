@@ -49,6 +49,10 @@ struct ChunkedCells {
   std::vector<std::uint32_t> start, next;  ///< Assign's counting sort
 };
 
+/// The gain (quanta) of a scan just added to the map, from the states its cells were left in
+/// (GridMap::Add): sum_c Q(a_c - d_c) - Q(a_c), with no map lookup.
+std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after);
+
 class GainIndex {
  public:
   bool Tracks(NodeId id) const { return slots_.count(id) != 0; }

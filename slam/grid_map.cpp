@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <vector>
 
-
 namespace lifelong::slam {
 
 namespace {

@@ -148,6 +148,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     ChangeMap(data.touched, data.footprint, true);
   }
   nodes.emplace(id, std::move(data));
+  if (prune_state.active()) TrackAdded(id);
   recent.push_back(id);
 
   // Pending scans go to whichever of the previous and the new node is nearer by odometry.
@@ -249,8 +250,12 @@ void Mapper::State::SyncMap() {
         data.touched = map.TouchedCells(data.scan, X);
         data.footprint = Footprint::Of(data.touched);
         ChangeMap(data.touched, data.footprint, true);
-        data.gain_valid = false;  // its own cells moved
-        if (!cached) std::vector<CellUpdate>().swap(data.touched);
+        if (cached) {
+          TrackAdded(id);
+        } else {
+          data.gain_valid = false;  // its own cells moved
+          std::vector<CellUpdate>().swap(data.touched);
+        }
       }
       data.T_world_map = X;
     }

@@ -155,6 +155,9 @@ struct Mapper::State {
   /// Adds an increment list to the map (or removes it); in the pruned modes the tracked
   /// gains follow and the change is numbered (PruningState::map_changes).
   void ChangeMap(const std::vector<CellUpdate>& cells, const Footprint& footprint, bool add);
+  /// Starts tracking the gain of node `id`, whose cells ChangeMap has just added: the gain
+  /// comes from the states they were left in.
+  void TrackAdded(NodeId id);
   /// Makes every untracked node that a change since its gain shares a block with forget it.
   void ForgetStaleGains();
   void Prune(NodeId current);

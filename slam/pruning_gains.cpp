@@ -46,16 +46,27 @@ void Mapper::State::Untrack(NodeId id) {
 
 void Mapper::State::ChangeMap(const std::vector<CellUpdate>& cells, const Footprint& footprint,
                               bool add) {
-  GainIndex& tracked = prune_state.tracked;
-  if (!tracked.Reaches(footprint.box)) {
+  if (!prune_state.active()) {
     add ? map.Add(cells) : map.Remove(cells);
-  } else {
-    std::vector<CellState>& after = prune_state.counts_after;
-    add ? map.Add(cells, &after) : map.Remove(cells, &after);
+    return;
+  }
+  std::vector<CellState>& after = prune_state.counts_after;
+  add ? map.Add(cells, &after) : map.Remove(cells, &after);
+  GainIndex& tracked = prune_state.tracked;
+  if (tracked.Reaches(footprint.box)) {
     const ScopedMs timer = Stage(&StageTimes::gain_ms);
     tracked.Apply(cells, after, add);
   }
   prune_state.NoteMapChange(footprint);
+}
+
+void Mapper::State::TrackAdded(NodeId id) {
+  const ScopedMs timer = Stage(&StageTimes::gain_ms);
+  NodeData& data = nodes.at(id);
+  data.gain_quanta = GainOfAdded(data.touched, prune_state.counts_after);
+  data.gain_valid = true;
+  data.gain_seen = prune_state.changes_made;
+  prune_state.tracked.Track(id, data.touched, data.gain_quanta);
 }
 
 void Mapper::State::ForgetStaleGains() {

@@ -71,6 +71,19 @@ TEST(GainIndex, TrackedGainsEqualFreshOnesThroughAddsRemovesAndMoves) {
   EXPECT_GT(checked, 100);
 }
 
+// The gain of a scan just added, from the states its cells were left in, is the gain
+// computed from the map.
+TEST(GainIndex, TheGainOfAnAddedScanComesFromTheStatesItLeft) {
+  Fixture f;
+  const auto lists = RandomLists(f.map, 8, 5);
+  for (const auto& list : lists) {
+    f.Change(list, true);
+    EXPECT_EQ(GainOfAdded(list, f.after), f.map.QuantizedGain(list));
+  }
+  f.Change(lists[0], true);  // the same scan twice: a cell of pure counts seen twice
+  EXPECT_EQ(GainOfAdded(lists[0], f.after), f.map.QuantizedGain(lists[0]));
+}
+
 TEST(GainIndex, TrackingTwiceOrUntrackingAStrangerIsALogicError) {
   Fixture f;
   const auto lists = RandomLists(f.map, 1, 3);

@@ -31,9 +31,14 @@ void ChunkedCells::Assign(const std::vector<CellUpdate>& cells) {
   // Chunks of the list's box, numbered row by row; a counting sort by that number keeps
   // each chunk's cells in list order, which is bit order within a chunk.
   int x0 = cells.front().cell.x, x1 = x0;
-  for (const CellUpdate& u : cells) {
-    x0 = std::min(x0, u.cell.x);
-    x1 = std::max(x1, u.cell.x);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const CellIndex c = cells[i].cell;
+    if (i > 0 &&
+        !(c.y > cells[i - 1].cell.y || (c.y == cells[i - 1].cell.y && c.x > cells[i - 1].cell.x))) {
+      throw std::invalid_argument("ChunkedCells: cells must be ordered by (y, x), each once");
+    }
+    x0 = std::min(x0, c.x);
+    x1 = std::max(x1, c.x);
   }
   const int cx0 = x0 >> kBits, cy0 = cells.front().cell.y >> kBits;
   const auto width = static_cast<std::size_t>((x1 >> kBits) - cx0 + 1);

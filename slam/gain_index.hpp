@@ -42,7 +42,8 @@ struct ChunkedCells {
   std::vector<Chunk> chunks;
   std::vector<std::uint32_t> order;  ///< indices into the list, chunk by chunk, by bit
 
-  /// Groups a list ordered by (y, x), each cell once (GridMap::TouchedCells).
+  /// Groups a list ordered by (y, x), each cell once (GridMap::TouchedCells);
+  /// std::invalid_argument otherwise.
   void Assign(const std::vector<CellUpdate>& cells);
 
  private:

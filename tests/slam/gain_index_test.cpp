@@ -6,6 +6,7 @@
 #include <map>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -108,6 +109,29 @@ TEST(GainIndex, ASoleObserverLeftBehindGainsTheCell) {
   f.Change(b, false);
   EXPECT_EQ(f.index.Gain(1), f.map.QuantizedGain(a));
   EXPECT_EQ(f.index.Gain(1), QuantizedEntropy({0, 0}));
+}
+
+TEST(ChunkedCells, GroupsByChunkInBitOrderAndRefusesAnUnorderedList) {
+  // Rows 31 and 32 straddle a band; x = -1 and 0 straddle a chunk column.
+  const std::vector<CellUpdate> cells{{{-1, 31}, {0, 1}},
+                                      {{0, 31}, {0, 1}},
+                                      {{5, 31}, {1, 0}},
+                                      {{-1, 32}, {0, 1}},
+                                      {{3, 32}, {0, 1}}};
+  ChunkedCells grouped;
+  grouped.Assign(cells);
+  ASSERT_EQ(grouped.chunks.size(), 4u);
+  EXPECT_EQ(grouped.order, (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
+  const ChunkedCells::Chunk& second = grouped.chunks[1];  // chunk (0, 0): (0, 31) and (5, 31)
+  EXPECT_EQ(second.first, 1u);
+  EXPECT_EQ(second.Place((31 * 32) / 64, (31 * 32) % 64), 1u);
+  EXPECT_EQ(second.Place((31 * 32 + 5) / 64, (31 * 32 + 5) % 64), 2u);
+  std::vector<CellUpdate> swapped = cells;
+  std::swap(swapped[1], swapped[2]);
+  EXPECT_THROW(grouped.Assign(swapped), std::invalid_argument);
+  std::vector<CellUpdate> twice = cells;
+  twice[1] = twice[0];
+  EXPECT_THROW(grouped.Assign(twice), std::invalid_argument);
 }
 
 TEST(GridMapLists, CountTheListsTouchingACellAndSurviveAFailedRemove) {

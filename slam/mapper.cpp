@@ -144,8 +144,8 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     map.AddScan(data.scan, data.T_world_map);
   } else {
     data.touched = map.TouchedCells(data.scan, data.T_world_map);
-    data.footprint = Footprint::Of(data.touched);
-    ChangeMap(data.touched, data.footprint, true);
+    data.box = BoxOf(data.touched);
+    ChangeMap(data.touched, data.box, true);
   }
   nodes.emplace(id, std::move(data));
   if (prune_state.active()) TrackAdded(id);
@@ -245,17 +245,13 @@ void Mapper::State::SyncMap() {
         // Only the nodes near the robot keep their cell lists (Prune); the others get theirs
         // computed for the move and freed again, so memory follows the neighbourhood.
         const bool cached = !data.touched.empty();
-        Untrack(id);
-        ChangeMap(Touched(id), data.footprint, false);
+        prune_state.tracked.Untrack(id);
+        ChangeMap(Touched(id), data.box, false);
         data.touched = map.TouchedCells(data.scan, X);
-        data.footprint = Footprint::Of(data.touched);
-        ChangeMap(data.touched, data.footprint, true);
-        if (cached) {
-          TrackAdded(id);
-        } else {
-          data.gain_valid = false;  // its own cells moved
-          std::vector<CellUpdate>().swap(data.touched);
-        }
+        data.box = BoxOf(data.touched);
+        ChangeMap(data.touched, data.box, true);
+        TrackAdded(id);
+        if (!cached) std::vector<CellUpdate>().swap(data.touched);
       }
       data.T_world_map = X;
     }
@@ -288,17 +284,11 @@ int Mapper::observations() const { return state_->observations; }
 
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
+  if (!state_->prune_state.active()) return worst;
   for (const auto& [id, data] : state_->nodes) {
-    // A change not yet applied invalidates a remembered gain before any use.
-    const bool tracked = state_->prune_state.tracked.Tracks(id);
-    if (!tracked &&
-        (!data.gain_valid || state_->prune_state.ChangedSince(data.footprint, data.gain_seen))) {
-      continue;
-    }
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
-    const double known = static_cast<double>(state_->KnownGain(id)) * kEntropyQuantumBits;
-    worst = std::max(worst, std::abs(fresh - known));
+    worst = std::max(worst, std::abs(fresh - state_->Gain(id)));
   }
   return worst;
 }

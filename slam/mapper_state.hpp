@@ -30,14 +30,10 @@ struct NodeData {
   Pose2 T_world_map;                    ///< pose at which the scan is rendered in the map
   Pose2 T_odom_robot;                   ///< odometry at the scan
   int scan_index = 0;
-  double travelled_m = 0.0;         ///< robot path length (odometry) at this scan
-  std::vector<CellUpdate> touched;  ///< cells of the scan at T_world_map (pruned modes)
-  std::int64_t gain_quanta = 0;     ///< information gain (kEntropyQuantumBits) as last known...
-  bool gain_valid = false;          ///< ...still exact unless a later map change reaches it
-  std::uint64_t gain_seen = 0;      ///< the latest map change (PruningState) it has seen
-  Footprint footprint;              ///< of `touched` (kept when the list is freed)
-
-  double GainBits() const { return static_cast<double>(gain_quanta) * kEntropyQuantumBits; }
+  double travelled_m = 0.0;  ///< robot path length (odometry) at this scan
+  /// Cells of the scan at T_world_map (pruned modes), cached for the nodes near the robot.
+  std::vector<CellUpdate> touched;
+  CellBounds box;  ///< of those cells (kept when the list is freed)
 };
 
 /// Adds the wall time of its scope, in ms, to *total, less the time of the timers nested in
@@ -144,22 +140,14 @@ struct Mapper::State {
   void SyncMap();
   /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.
   const std::vector<CellUpdate>& Touched(NodeId id);
-  /// Information gain of node `id`'s scan: kept by the index, else remembered, else computed
-  /// now; from then on tracked by the index while its cell list is cached.
-  double Gain(NodeId id);
-  /// Stops tracking node `id`'s gain (before its cells move, leave the map or are freed); it
-  /// remembers the gain.
-  void Untrack(NodeId id);
-  /// The gain last known (tracked, or remembered when gain_valid), in quanta.
-  std::int64_t KnownGain(NodeId id) const;
-  /// Adds an increment list to the map (or removes it); in the pruned modes the tracked
-  /// gains follow and the change is numbered (PruningState::map_changes).
-  void ChangeMap(const std::vector<CellUpdate>& cells, const Footprint& footprint, bool add);
+  /// Information gain of node `id`'s scan (pruned modes), exact for the map as it is.
+  double Gain(NodeId id) const;
+  /// Adds an increment list to the map (or removes it); in the pruned modes the gains
+  /// follow. `box` bounds the cells.
+  void ChangeMap(const std::vector<CellUpdate>& cells, const CellBounds& box, bool add);
   /// Starts tracking the gain of node `id`, whose cells ChangeMap has just added: the gain
   /// comes from the states they were left in.
   void TrackAdded(NodeId id);
-  /// Makes every untracked node that a change since its gain shares a block with forget it.
-  void ForgetStaleGains();
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// While the graph holds more than max_edges_per_node edges per node, replaces the edges
@@ -172,9 +160,8 @@ struct Mapper::State {
 /// Points of the robot frame in the world frame of pose T.
 std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T);
 
-/// Inclusive cell box of an increment list, and whether two boxes share a cell.
+/// Inclusive cell box of an increment list.
 CellBounds BoxOf(const std::vector<CellUpdate>& cells);
-bool Overlap(const CellBounds& a, const CellBounds& b);
 
 /// Rotates a world-frame (x, y, theta) covariance or information into the frame of a pose
 /// with heading theta_rad: R^T M R on the translation block.

@@ -49,45 +49,6 @@ CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
   return b;
 }
 
-Footprint Footprint::Of(const std::vector<CellUpdate>& cells) {
-  Footprint f;
-  f.box = BoxOf(cells);
-  if (f.box.empty) return f;
-  f.first_block = {f.box.min.x >> kBlockBits, f.box.min.y >> kBlockBits};
-  f.blocks_x = (f.box.max.x >> kBlockBits) - f.first_block.x + 1;
-  f.blocks_y = (f.box.max.y >> kBlockBits) - f.first_block.y + 1;
-  const std::size_t n = static_cast<std::size_t>(f.blocks_x) * static_cast<std::size_t>(f.blocks_y);
-  f.bits.assign((n + 63) / 64, 0);
-  for (const CellUpdate& u : cells) {
-    const auto i =
-        static_cast<std::size_t>(((u.cell.y >> kBlockBits) - f.first_block.y) * f.blocks_x +
-                                 ((u.cell.x >> kBlockBits) - f.first_block.x));
-    f.bits[i / 64] |= std::uint64_t{1} << (i % 64);
-  }
-  return f;
-}
-
-bool Footprint::HasBlock(int bx, int by) const {
-  const int x = bx - first_block.x, y = by - first_block.y;
-  if (x < 0 || y < 0 || x >= blocks_x || y >= blocks_y) return false;
-  const auto i = static_cast<std::size_t>(y * blocks_x + x);
-  return (bits[i / 64] >> (i % 64)) & 1u;
-}
-
-bool Footprint::Shares(const Footprint& other) const {
-  if (!Overlap(box, other.box)) return false;
-  const int x0 = std::max(first_block.x, other.first_block.x);
-  const int x1 = std::min(first_block.x + blocks_x, other.first_block.x + other.blocks_x);
-  const int y0 = std::max(first_block.y, other.first_block.y);
-  const int y1 = std::min(first_block.y + blocks_y, other.first_block.y + other.blocks_y);
-  for (int by = y0; by < y1; ++by) {
-    for (int bx = x0; bx < x1; ++bx) {
-      if (HasBlock(bx, by) && other.HasBlock(bx, by)) return true;
-    }
-  }
-  return false;
-}
-
 std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values,
                                           const std::vector<NodeId>& set,
                                           const OptimizerParams& params) {
@@ -102,11 +63,6 @@ std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values
     graph->SetEdgeInformation(i, w * e.information);
   }
   return out;
-}
-
-bool Overlap(const CellBounds& a, const CellBounds& b) {
-  return !a.empty && !b.empty && a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
-         b.min.y <= a.max.y;
 }
 
 void Mapper::State::Prune(NodeId current) {
@@ -133,10 +89,6 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  // The tracked gains are exact; a remembered one stays exact until the map changes in one
-  // of its scan's cells (the gains recomputed after last round's removals have seen them).
-  ForgetStaleGains();
-  prune_state.map_changes.clear();
   for (auto& [id, gain] : gains) gain = Gain(id);
   std::set<NodeId> considered = protected_ids;
   for (const auto& [id, gain] : gains) considered.insert(id);
@@ -148,20 +100,15 @@ void Mapper::State::Prune(NodeId current) {
     const double gain = gains.at(victim);
     gains.erase(victim);
     RemoveNode(victim, gain);
-    // Only the gains of scans sharing cells with the removed one can have changed: the
-    // index has updated the tracked ones; the nodes outside this round see the change at
-    // the next one.
-    ForgetStaleGains();
+    // The index has updated the gains of the scans that shared cells with it.
     for (auto& [id, g] : gains) g = Gain(id);
   }
   if (prune_state.sparsifier->Name() == "chow-liu" && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
-  // The cell lists are a cache for the neighbourhood: free those of the nodes left behind,
-  // so memory follows the neighbourhood, not the graph.
+  // The cell lists are a cache for the neighbourhood (the index keeps every scan's
+  // increments, at half a list's size): free those of the nodes left behind.
   for (auto& [id, data] : nodes) {
-    if (!data.touched.empty() && !considered.count(id)) {
-      Untrack(id);
+    if (!data.touched.empty() && !considered.count(id))
       std::vector<CellUpdate>().swap(data.touched);
-    }
   }
 }
 
@@ -278,9 +225,8 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
     Reanchor(scan, keeper);
   }
   scans_of_node.erase(id);
-  // Its gain, hence its footprint, is current.
-  Untrack(id);
-  ChangeMap(Touched(id), nodes.at(id).footprint, false);
+  prune_state.tracked.Untrack(id);
+  ChangeMap(Touched(id), nodes.at(id).box, false);
   ApplyReplacement(&graph, id, replacement);
   prune_state.marginalizations.push_back(
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});

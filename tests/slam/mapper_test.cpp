@@ -4,7 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <memory>
-#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -142,9 +141,10 @@ TEST(Mapper, PrunesOnlyAtEveryNthNode) {
   EXPECT_LT(worst, 1e-9);
 }
 
-// Remembered gains are only reused while no map change overlaps their scan: checked against
-// a fresh computation after every observation (a version that forgot changes made while a
-// node was outside the pruning neighbourhood failed this).
+// Every node's gain, kept by the index through additions, removals and the optimizer's
+// moves, equals a fresh computation after every observation (a version of the remembered
+// gains that forgot changes made while a node was outside the pruning neighbourhood failed
+// this).
 TEST(Mapper, RememberedGainsStayExact) {
   MapperConfig config = DefaultMapperConfig();
   config.pruning.mode = PruningMode::kChowLiu;
@@ -156,71 +156,6 @@ TEST(Mapper, RememberedGainsStayExact) {
   };
   for (const Observation& o : Corridor3()) mapper.AddObservation(o);
   EXPECT_LT(worst, 1e-9);
-}
-
-// The footprint test that decides which remembered gains a map change can touch must never
-// miss a shared cell (else a stale gain survives), and should tell apart lists whose boxes
-// overlap but whose cells lie in different blocks (rooms on either side of a wall).
-TEST(Footprint, NeverMissesASharedCellAndSeparatesDisjointBlocks) {
-  std::mt19937 rng(3);
-  const auto random_list = [&](int n, int half_width) {
-    std::uniform_int_distribution<int> coord(-half_width, half_width);
-    std::vector<CellUpdate> cells;
-    for (int i = 0; i < n; ++i) cells.push_back({{coord(rng), coord(rng)}, {1, 0}});
-    return cells;
-  };
-  const auto share_a_cell = [](const std::vector<CellUpdate>& a, const std::vector<CellUpdate>& b) {
-    for (const CellUpdate& u : a) {
-      for (const CellUpdate& v : b) {
-        if (u.cell == v.cell) return true;
-      }
-    }
-    return false;
-  };
-  int shared = 0;
-  for (int trial = 0; trial < 300; ++trial) {
-    const int half_width = 5 + trial % 60;
-    const auto a = random_list(1 + trial % 40, half_width),
-               b = random_list(1 + trial % 23, half_width);
-    const Footprint fa = Footprint::Of(a), fb = Footprint::Of(b);
-    if (share_a_cell(a, b)) {
-      ++shared;
-      EXPECT_TRUE(fa.Shares(fb));
-      EXPECT_TRUE(fb.Shares(fa));
-    }
-    EXPECT_EQ(fa.Shares(fb), fb.Shares(fa));
-  }
-  EXPECT_GT(shared, 10);  // the implication was exercised
-  // An L along x = 0..40 at y = 0 and one along x = 0 up to y = 40, against a list at
-  // (40, 40): the boxes overlap, the 16-cell blocks do not.
-  std::vector<CellUpdate> l_shape, corner{{{40, 40}, {1, 0}}};
-  for (int i = 0; i <= 40; ++i) {
-    l_shape.push_back({{i, 0}, {0, 1}});
-    l_shape.push_back({{0, i}, {0, 1}});
-  }
-  EXPECT_TRUE(Overlap(BoxOf(l_shape), BoxOf(corner)));
-  EXPECT_FALSE(Footprint::Of(l_shape).Shares(Footprint::Of(corner)));
-  EXPECT_FALSE(Footprint::Of({}).Shares(Footprint::Of(corner)));
-}
-
-// A gain computed after a map change has seen it: only later changes that share a block with
-// the scan make it stale (pruning.cpp). Before, a gain recomputed after a removal was thrown
-// away at the next round for that same removal.
-TEST(PruningState, AGainIsStaleOnlyForChangesItHasNotSeen) {
-  PruningState state;
-  state.policy = MakeRemovalPolicy("information-gain", {});
-  const Footprint scan = Footprint::Of({{{0, 0}, {1, 0}}, {{5, 5}, {0, 1}}});
-  const Footprint near = Footprint::Of({{{3, 3}, {1, 0}}});
-  const Footprint far = Footprint::Of({{{100, 100}, {1, 0}}});
-  state.NoteMapChange(near);
-  const std::uint64_t seen = state.changes_made;  // a gain computed now
-  EXPECT_TRUE(state.ChangedSince(scan, 0));
-  EXPECT_FALSE(state.ChangedSince(scan, seen));
-  state.NoteMapChange(far);
-  EXPECT_FALSE(state.ChangedSince(scan, seen));
-  state.NoteMapChange(near);
-  EXPECT_TRUE(state.ChangedSince(scan, seen));
-  EXPECT_EQ(state.changes_made, 3u);
 }
 
 // pruning.robust_marginal: a loop edge inside the set enters the marginal with the kernel's

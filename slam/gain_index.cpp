@@ -47,22 +47,27 @@ void ChunkedCells::Assign(const std::vector<CellUpdate>& cells) {
     return static_cast<std::size_t>((c.y >> kBits) - cy0) * width +
            static_cast<std::size_t>((c.x >> kBits) - cx0);
   };
-  start.assign(width * height + 1, 0);
-  for (const CellUpdate& u : cells) ++start[number(u.cell) + 1];
+  // One pass counts each chunk's cells and sets their bits; a second places them.
+  const std::size_t count = width * height;
+  start.assign(count + 1, 0);
+  numbers.resize(cells.size());
+  by_number.assign(count, Chunk{});
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::size_t n = number(cells[i].cell);
+    numbers[i] = static_cast<std::uint32_t>(n);
+    ++start[n + 1];
+    const int bit = BitOf(cells[i].cell);
+    by_number[n].bits[static_cast<std::size_t>(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
+  }
   for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
   next.assign(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    order[next[number(cells[i].cell)]++] = static_cast<std::uint32_t>(i);
-  }
-  for (std::size_t n = 0; n + 1 < start.size(); ++n) {
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    order[next[numbers[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t n = 0; n < count; ++n) {
     if (start[n] == start[n + 1]) continue;
-    Chunk chunk;
+    Chunk chunk = by_number[n];
     chunk.key = ChunkKey(cx0 + static_cast<int>(n % width), cy0 + static_cast<int>(n / width));
     chunk.first = start[n];
-    for (std::uint32_t i = start[n]; i < start[n + 1]; ++i) {
-      const int bit = BitOf(cells[order[i]].cell);
-      chunk.bits[static_cast<std::size_t>(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
-    }
     std::uint16_t before = 0;
     for (std::size_t w = 0; w < kWords; ++w) {
       chunk.before[w] = before;

@@ -47,7 +47,10 @@ struct ChunkedCells {
   void Assign(const std::vector<CellUpdate>& cells);
 
  private:
-  std::vector<std::uint32_t> start, next;  ///< Assign's counting sort
+  // Assign's counting sort: chunk numbers of the cells, each chunk's first place and the
+  // next free one, and the chunks' bitmaps by number.
+  std::vector<std::uint32_t> numbers, start, next;
+  std::vector<Chunk> by_number;
 };
 
 /// The gain (quanta) of a scan just added to the map, from the states its cells were left in

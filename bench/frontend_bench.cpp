@@ -1,7 +1,9 @@
-// Front-end benchmarks: counting grid map updates, information gain and correlative scan
-// matching (incremental and loop-closure windows) on the synthetic room of the tests.
+// Front-end benchmarks: counting grid map updates, information gain (recomputed, and kept by
+// the pruned modes' index) and correlative scan matching (incremental and loop-closure
+// windows) on the synthetic room of the tests.
 #include <benchmark/benchmark.h>
 
+#include "slam/gain_index.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/scan_matcher.hpp"
 #include "tests/slam/synthetic_scans.hpp"
@@ -77,6 +79,49 @@ void BM_InformationGainCachedCells(benchmark::State& state) {
   state.counters["cells"] = static_cast<double>(cells.size());
 }
 BENCHMARK(BM_InformationGainCachedCells)->Unit(benchmark::kMicrosecond);
+
+// The pruned modes' map change: a scan added to the map and removed again, with the gains of
+// the local scans kept exact by the index through both (against recomputing those gains:
+// BM_InformationGainCachedCells times one of them).
+void BM_GainIndexAddRemoveScan(benchmark::State& state) {
+  const Scene s;
+  GridMap map;
+  GainIndex index;
+  std::vector<std::vector<CellUpdate>> local;
+  std::vector<CellState> after;
+  for (std::size_t i = 0; i < s.local_poses.size(); ++i) {
+    local.push_back(map.TouchedCells(s.local_scans[i], s.local_poses[i]));
+    map.Add(local.back());
+  }
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    index.Track(static_cast<NodeId>(i), local[i], map.QuantizedGain(local[i]));
+  }
+  const std::vector<CellUpdate> cells = map.TouchedCells(s.scan, s.truth);
+  for (auto _ : state) {
+    map.Add(cells, &after);
+    index.Apply(cells, after, true);
+    map.Remove(cells, &after);
+    index.Apply(cells, after, false);
+  }
+  state.counters["cells"] = static_cast<double>(cells.size());
+  state.counters["tracked"] = static_cast<double>(index.size());
+}
+BENCHMARK(BM_GainIndexAddRemoveScan)->Unit(benchmark::kMicrosecond);
+
+// Tracking a scan (its cells grouped by chunk) and untracking it.
+void BM_GainIndexTrackScan(benchmark::State& state) {
+  const Scene s;
+  GridMap map;
+  const std::vector<CellUpdate> cells = map.TouchedCells(s.scan, s.truth);
+  map.Add(cells);
+  GainIndex index;
+  for (auto _ : state) {
+    index.Track(0, cells, 0);
+    benchmark::DoNotOptimize(index.Untrack(0));
+  }
+  state.counters["cells"] = static_cast<double>(cells.size());
+}
+BENCHMARK(BM_GainIndexTrackScan)->Unit(benchmark::kMicrosecond);
 
 void BM_BuildLocalReferenceGrid(benchmark::State& state) {
   const Scene s;

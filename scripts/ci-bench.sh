@@ -14,7 +14,7 @@ run_bench() {  # name filter
       > /dev/null 2> "$out/$1.log" || echo "ci-bench: $1 failed (see $out/$1.log)"
   fi
 }
-run_bench frontend_bench 'BM_GridAddRemoveScan|BM_InformationGain|BM_MatchIncremental|BM_MatchLoopClosure/32'
+run_bench frontend_bench 'BM_GridAddRemoveScan|BM_InformationGain|BM_GainIndex|BM_MatchIncremental|BM_MatchLoopClosure/32'
 run_bench marginalization_bench 'BM_Marginalize(Exact|ChowLiu)/(6|20)$'
 run_bench backend_bench 'BM_Optimize/(intel|input_M3500)$'
 run_bench sim_bench 'BM_RayCastOfficeScan361'

@@ -177,6 +177,38 @@ void BM_MatchIncremental(benchmark::State& state) {
 }
 BENCHMARK(BM_MatchIncremental)->Unit(benchmark::kMillisecond);
 
+// The mapper's incremental case with its defaults (configs/default.yaml): the local map is
+// the recent scans' surfaces (returns joined along lines, SurfacePoints) sampled at the
+// 0.05 m thinning spacing, the scan's points thinned likewise, and the off-lattice
+// refinement on.
+void BM_MatchIncrementalSurfaces(benchmark::State& state) {
+  const Scene s;
+  MatcherConfig config;
+  config.linear_window_m = 0.3;
+  config.angular_window_rad = 0.26;
+  config.resolution_m = 0.03;
+  config.sigma_m = 0.05;
+  config.refine = true;
+  std::vector<Eigen::Vector2d> reference;
+  for (const PosedScan& local : s.Local()) {
+    for (const Eigen::Vector2d& p : SurfacePoints(*local.scan, 0.05, SurfaceRule{})) {
+      Eigen::Vector2d q;
+      local.T_ref_robot.Apply(p.x(), p.y(), &q.x(), &q.y());
+      reference.push_back(q);
+    }
+  }
+  const ReferenceGrid ref(reference, config);
+  const std::vector<Eigen::Vector2d> pts = ScanToPoints(s.scan, 0.05);
+  const Pose2 guess = s.truth * Pose2(0.12, -0.08, 5.0 * kDeg);
+  MatchResult r;
+  for (auto _ : state) r = Match(ref, pts, guess, config);
+  state.counters["reference"] = static_cast<double>(reference.size());
+  state.counters["points"] = static_cast<double>(pts.size());
+  state.counters["error_cm"] =
+      100.0 * std::hypot(r.T_ref_cur.x - s.truth.x, r.T_ref_cur.y - s.truth.y);
+}
+BENCHMARK(BM_MatchIncrementalSurfaces)->Unit(benchmark::kMillisecond);
+
 // Loop closure: +-2 m, +-30 deg against one older node's scan; argument: coarse factor.
 void BM_MatchLoopClosure(benchmark::State& state) {
   const Scene s;

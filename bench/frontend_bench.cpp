@@ -153,9 +153,10 @@ void BM_RebuildLocalReferenceGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_RebuildLocalReferenceGrid)->Unit(benchmark::kMicrosecond);
 
+// Times matching the scene's scan, thinned at `spacing_m`, against `ref`.
 void RunMatch(benchmark::State& state, const ReferenceGrid& ref, const Scene& s, const Pose2& guess,
-              const MatcherConfig& config) {
-  const std::vector<Eigen::Vector2d> pts = ScanToPoints(s.scan, 0.03);
+              const MatcherConfig& config, double spacing_m = 0.03) {
+  const std::vector<Eigen::Vector2d> pts = ScanToPoints(s.scan, spacing_m);
   MatchResult r;
   for (auto _ : state) r = Match(ref, pts, guess, config);
   state.counters["beams"] = static_cast<double>(s.scan.ranges_m.size());
@@ -198,14 +199,8 @@ void BM_MatchIncrementalSurfaces(benchmark::State& state) {
     }
   }
   const ReferenceGrid ref(reference, config);
-  const std::vector<Eigen::Vector2d> pts = ScanToPoints(s.scan, 0.05);
-  const Pose2 guess = s.truth * Pose2(0.12, -0.08, 5.0 * kDeg);
-  MatchResult r;
-  for (auto _ : state) r = Match(ref, pts, guess, config);
+  RunMatch(state, ref, s, s.truth * Pose2(0.12, -0.08, 5.0 * kDeg), config, 0.05);
   state.counters["reference"] = static_cast<double>(reference.size());
-  state.counters["points"] = static_cast<double>(pts.size());
-  state.counters["error_cm"] =
-      100.0 * std::hypot(r.T_ref_cur.x - s.truth.x, r.T_ref_cur.y - s.truth.y);
 }
 BENCHMARK(BM_MatchIncrementalSurfaces)->Unit(benchmark::kMillisecond);
 

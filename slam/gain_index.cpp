@@ -5,22 +5,27 @@
 #include <stdexcept>
 #include <string>
 
+#include "slam/cell_chunk.hpp"
+
 namespace lifelong::slam {
 
 namespace {
 
 constexpr int kBits = ChunkedCells::kChunkBits;
-constexpr int kMask = (1 << kBits) - 1;
+using chunk::Key;
 
-std::uint64_t ChunkKey(int cx, int cy) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) |
-         static_cast<std::uint32_t>(cy);
-}
-
-int BitOf(CellIndex c) { return ((c.y & kMask) << kBits) | (c.x & kMask); }
+int BitOf(CellIndex c) { return chunk::Offset(c); }
 
 CellCounts Minus(CellCounts a, CellCounts b) { return {a.hits - b.hits, a.misses - b.misses}; }
 CellCounts Plus(CellCounts a, CellCounts b) { return {a.hits + b.hits, a.misses + b.misses}; }
+
+// Whether no scan's gain can change in a cell in this state: its counts are pure (hits
+// only or misses only) and at least two lists touch it, so each term Q(n - d_k) - Q(n) is
+// Q(pure, nonzero) - Q(pure, nonzero) = 0 - 0, whichever list k is. That is almost every
+// cell of free space.
+bool GainsFlatAt(CellCounts counts, std::uint32_t lists) {
+  return (counts.hits == 0 || counts.misses == 0) && lists >= 2;
+}
 
 }  // namespace
 
@@ -66,7 +71,7 @@ void ChunkedCells::Assign(const std::vector<CellUpdate>& cells) {
   for (std::size_t n = 0; n < count; ++n) {
     if (start[n] == start[n + 1]) continue;
     Chunk chunk = by_number[n];
-    chunk.key = ChunkKey(cx0 + static_cast<int>(n % width), cy0 + static_cast<int>(n / width));
+    chunk.key = Key(cx0 + static_cast<int>(n % width), cy0 + static_cast<int>(n / width));
     chunk.first = start[n];
     std::uint16_t before = 0;
     for (std::size_t w = 0; w < kWords; ++w) {
@@ -87,14 +92,13 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
     slot = free_slots_.back();
     free_slots_.pop_back();
   }
-  ChunkedCells grouped;
-  grouped.Assign(cells);
+  scratch_.Assign(cells);
   Scan& scan = scans_[slot];
   scan.gain = gain;
   scan.deltas.resize(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) scan.deltas[i] = cells[grouped.order[i]].delta;
+  for (std::size_t i = 0; i < cells.size(); ++i) scan.deltas[i] = cells[scratch_.order[i]].delta;
   scan.keys.clear();
-  for (const ChunkedCells::Chunk& chunk : grouped.chunks) {
+  for (const ChunkedCells::Chunk& chunk : scratch_.chunks) {
     chunks_[chunk.key].push_back({slot, chunk});
     scan.keys.push_back(chunk.key);
   }
@@ -123,13 +127,6 @@ std::int64_t GainIndex::Untrack(NodeId id) {
   return scan.gain;
 }
 
-void GainIndex::Clear() {
-  chunks_.clear();
-  slots_.clear();
-  scans_.clear();
-  free_slots_.clear();
-}
-
 std::int64_t GainIndex::Gain(NodeId id) const {
   const auto it = slots_.find(id);
   if (it == slots_.end()) {
@@ -145,18 +142,23 @@ std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells,
   std::int64_t gain = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const CellCounts a = after[i].counts;
-    // With another list in a cell of pure counts, both terms are 0 (see Apply).
-    if ((a.hits == 0 || a.misses == 0) && after[i].lists >= 2) continue;
+    if (GainsFlatAt(a, after[i].lists)) continue;
     gain += QuantizedEntropy(Minus(a, cells[i].delta)) - QuantizedEntropy(a);
   }
   return gain;
 }
 
-bool GainIndex::Reaches(const CellBounds& box) const {
-  if (box.empty || chunks_.empty()) return false;
-  for (int cy = box.min.y >> kBits; cy <= box.max.y >> kBits; ++cy) {
-    for (int cx = box.min.x >> kBits; cx <= box.max.x >> kBits; ++cx) {
-      if (chunks_.count(ChunkKey(cx, cy))) return true;
+bool GainIndex::Reaches(const std::vector<CellUpdate>& cells) const {
+  if (cells.empty() || chunks_.empty()) return false;
+  // The list is ordered by row: its first and last cells bound y.
+  int x0 = cells.front().cell.x, x1 = x0;
+  for (const CellUpdate& u : cells) {
+    x0 = std::min(x0, u.cell.x);
+    x1 = std::max(x1, u.cell.x);
+  }
+  for (int cy = chunk::Of(cells.front().cell.y); cy <= chunk::Of(cells.back().cell.y); ++cy) {
+    for (int cx = chunk::Of(x0); cx <= chunk::Of(x1); ++cx) {
+      if (chunks_.count(Key(cx, cy))) return true;
     }
   }
   return false;
@@ -166,24 +168,20 @@ bool GainIndex::Reaches(const CellBounds& box) const {
 // is a population count, a library call on the x86-64 baseline.)
 __attribute__((target_clones("popcnt", "default"))) void GainIndex::Apply(
     const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added) {
-  if (slots_.empty()) return;
   if (after.size() != cells.size()) {
     throw std::logic_error("GainIndex::Apply: one state per cell expected");
   }
-  // A cell whose counts are pure (hits only or misses only) before and after, and that at
-  // least two lists touch before and after, changes no scan's gain: each term
-  // Q(n - d_k) - Q(n) is then Q(pure, nonzero) - Q(pure, nonzero) = 0 - 0. That is almost
-  // every cell of free space; only the others are looked up.
-  const auto pure = [](CellCounts n) { return n.hits == 0 || n.misses == 0; };
+  if (!Reaches(cells)) return;
+  // Only the cells where a gain can change, before or after, are looked up.
   relevant_.clear();
   relevant_states_.clear();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const CellCounts d = cells[i].delta;
     const CellState& a = after[i];
-    const std::uint32_t touches = (d.hits != 0 || d.misses != 0) ? 1 : 0;
+    const std::uint32_t touches = Touches(d) ? 1 : 0;
     const std::uint32_t lists_before = added ? a.lists - touches : a.lists + touches;
     const CellCounts before = added ? Minus(a.counts, d) : Plus(a.counts, d);
-    if (pure(a.counts) && pure(before) && std::min(a.lists, lists_before) >= 2) continue;
+    if (GainsFlatAt(a.counts, a.lists) && GainsFlatAt(before, lists_before)) continue;
     relevant_.push_back(cells[i]);
     relevant_states_.push_back(
         {before, a.counts, QuantizedEntropy(before), QuantizedEntropy(a.counts)});

@@ -1,4 +1,4 @@
-// The information gains of the scans near the robot, kept exact as the map changes (seed
+// The information gains of the pruned modes' scans, kept exact as the map changes (seed
 // eq. 5.11, in quanta of kEntropyQuantumBits). The gain of scan k is a sum over its cells,
 //   I(z_k) = sum_c Q(n_c - d_kc) - Q(n_c),
 // so a change of the counts of cell c from b to a alters it by
@@ -16,6 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "slam/cell_chunk.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/pose_graph.hpp"
 
@@ -24,7 +25,7 @@ namespace lifelong::slam {
 /// An increment list's cells grouped by 32 x 32-cell chunk: per chunk, a bitmap of the cells
 /// (bit (y mod 32) * 32 + x mod 32) and where they lie in `order`.
 struct ChunkedCells {
-  static constexpr int kChunkBits = 5;
+  static constexpr int kChunkBits = chunk::kBits;
   static constexpr int kWords = (1 << (2 * kChunkBits)) / 64;
   struct Chunk {
     std::uint64_t key = 0;
@@ -66,15 +67,12 @@ class GainIndex {
   void Track(NodeId id, const std::vector<CellUpdate>& cells, std::int64_t gain);
   /// Stops tracking it (before its cells move or leave the map). Returns its gain.
   std::int64_t Untrack(NodeId id);
-  /// Stops tracking every scan.
-  void Clear();
   /// The gain of a tracked scan, exact for the map as it is now.
   std::int64_t Gain(NodeId id) const;
-  /// Whether a change within this cell box can reach a tracked scan.
-  bool Reaches(const CellBounds& box) const;
   /// Updates the tracked gains for a change of the map: `cells` were just added to it (or
   /// removed from it), leaving the counts `after` (GridMap::Add, Remove). The scan changed
-  /// must not be tracked.
+  /// must not be tracked. A change far from every tracked scan costs one pass over its
+  /// cells.
   void Apply(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added);
 
  private:
@@ -93,7 +91,10 @@ class GainIndex {
   std::unordered_map<NodeId, std::uint32_t> slots_;
   std::vector<Scan> scans_;                ///< by slot
   std::vector<std::uint32_t> free_slots_;  ///< of untracked scans, for reuse
-  ChunkedCells scratch_;                   ///< Apply's grouping of a change
+  /// Whether a change of these cells (ordered by row) lies in a chunk of a tracked scan.
+  bool Reaches(const std::vector<CellUpdate>& cells) const;
+
+  ChunkedCells scratch_;  ///< Track's and Apply's grouping of a list
   /// Apply's table for the chunk at hand, by bit: the counts before and after the change,
   /// and their entropies.
   struct Changed {

@@ -7,23 +7,18 @@
 #include <stdexcept>
 #include <vector>
 
+#include "slam/cell_chunk.hpp"
+
 namespace lifelong::slam {
 
 namespace {
 
-constexpr int kChunkBits = 5;  // 32 x 32 cells per chunk
-constexpr int kChunkSide = 1 << kChunkBits;
-constexpr int kChunkMask = kChunkSide - 1;
-
-std::uint64_t ChunkKey(int chunk_x, int chunk_y) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(chunk_x)) << 32) |
-         static_cast<std::uint64_t>(static_cast<std::uint32_t>(chunk_y));
-}
-
-// Floor division by the chunk side (arithmetic shift, as GCC and Clang define it).
-int ChunkOf(int cell) { return cell >> kChunkBits; }
-
-int Offset(CellIndex c) { return ((c.y & kChunkMask) << kChunkBits) | (c.x & kChunkMask); }
+constexpr int kChunkBits = chunk::kBits;
+constexpr int kChunkSide = chunk::kSide;
+constexpr int kChunkMask = chunk::kMask;
+using chunk::Key;
+using chunk::Of;
+using chunk::Offset;
 
 }  // namespace
 
@@ -52,7 +47,7 @@ std::size_t SlotOf(std::uint64_t key) {
 
 GridMap::Cell* GridMap::Find(CellIndex c, Cursor* cursor) const {
   static_assert(Cursor::kSlots == 16, "SlotOf masks with 15");
-  const std::uint64_t key = ChunkKey(ChunkOf(c.x), ChunkOf(c.y));
+  const std::uint64_t key = Key(Of(c.x), Of(c.y));
   const std::size_t slot = SlotOf(key);
   if (!cursor->valid[slot] || cursor->keys[slot] != key) {
     const auto it = chunks_.find(key);
@@ -65,7 +60,7 @@ GridMap::Cell* GridMap::Find(CellIndex c, Cursor* cursor) const {
 }
 
 GridMap::Cell* GridMap::FindOrCreate(CellIndex c, Cursor* cursor) {
-  const std::uint64_t key = ChunkKey(ChunkOf(c.x), ChunkOf(c.y));
+  const std::uint64_t key = Key(Of(c.x), Of(c.y));
   const std::size_t slot = SlotOf(key);
   if (!cursor->valid[slot] || cursor->keys[slot] != key || cursor->chunks[slot] == nullptr) {
     std::unique_ptr<Chunk>& chunk = chunks_[key];
@@ -89,17 +84,13 @@ void ForEachInRuns(const std::vector<CellUpdate>& updates, Lookup&& lookup, F&& 
   for (std::size_t i = 0; i < n;) {
     const CellIndex first = updates[i].cell;
     auto* base = lookup(first);
-    const int chunk_x = ChunkOf(first.x);
-    for (; i < n && updates[i].cell.y == first.y && ChunkOf(updates[i].cell.x) == chunk_x; ++i) {
+    const int chunk_x = Of(first.x);
+    for (; i < n && updates[i].cell.y == first.y && Of(updates[i].cell.x) == chunk_x; ++i) {
       f(updates[i], base ? base + (updates[i].cell.x - first.x) : nullptr);
     }
   }
 }
 
-}  // namespace
-
-namespace {
-bool Touches(const CellCounts& delta) { return delta.hits != 0 || delta.misses != 0; }
 }  // namespace
 
 void GridMap::Add(const std::vector<CellUpdate>& updates, std::vector<CellState>* after) {

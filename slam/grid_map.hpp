@@ -38,8 +38,11 @@ struct CellUpdate {
   CellCounts delta;
 };
 
+/// Whether an increment touches its cell: nonzero (what CellState::lists counts).
+inline bool Touches(CellCounts delta) { return delta.hits != 0 || delta.misses != 0; }
+
 /// A cell as a change of the map left it: its counts, and how many of the increment lists
-/// in the map touch it (have a nonzero increment there: scans, for TouchedCells' lists).
+/// in the map touch it (scans, for TouchedCells' lists).
 struct CellState {
   CellCounts counts;
   std::uint32_t lists = 0;

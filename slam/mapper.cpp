@@ -144,8 +144,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     map.AddScan(data.scan, data.T_world_map);
   } else {
     data.touched = map.TouchedCells(data.scan, data.T_world_map);
-    data.box = BoxOf(data.touched);
-    ChangeMap(data.touched, data.box, true);
+    ChangeMap(data.touched, true);
   }
   nodes.emplace(id, std::move(data));
   if (prune_state.active()) TrackAdded(id);
@@ -246,10 +245,9 @@ void Mapper::State::SyncMap() {
         // computed for the move and freed again, so memory follows the neighbourhood.
         const bool cached = !data.touched.empty();
         prune_state.tracked.Untrack(id);
-        ChangeMap(Touched(id), data.box, false);
+        ChangeMap(Touched(id), false);
         data.touched = map.TouchedCells(data.scan, X);
-        data.box = BoxOf(data.touched);
-        ChangeMap(data.touched, data.box, true);
+        ChangeMap(data.touched, true);
         TrackAdded(id);
         if (!cached) std::vector<CellUpdate>().swap(data.touched);
       }

@@ -33,7 +33,6 @@ struct NodeData {
   double travelled_m = 0.0;  ///< robot path length (odometry) at this scan
   /// Cells of the scan at T_world_map (pruned modes), cached for the nodes near the robot.
   std::vector<CellUpdate> touched;
-  CellBounds box;  ///< of those cells (kept when the list is freed)
 };
 
 /// Adds the wall time of its scope, in ms, to *total, less the time of the timers nested in
@@ -143,8 +142,8 @@ struct Mapper::State {
   /// Information gain of node `id`'s scan (pruned modes), exact for the map as it is.
   double Gain(NodeId id) const;
   /// Adds an increment list to the map (or removes it); in the pruned modes the gains
-  /// follow. `box` bounds the cells.
-  void ChangeMap(const std::vector<CellUpdate>& cells, const CellBounds& box, bool add);
+  /// follow.
+  void ChangeMap(const std::vector<CellUpdate>& cells, bool add);
   /// Starts tracking the gain of node `id`, whose cells ChangeMap has just added: the gain
   /// comes from the states they were left in.
   void TrackAdded(NodeId id);
@@ -159,9 +158,6 @@ struct Mapper::State {
 
 /// Points of the robot frame in the world frame of pose T.
 std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T);
-
-/// Inclusive cell box of an increment list.
-CellBounds BoxOf(const std::vector<CellUpdate>& cells);
 
 /// Rotates a world-frame (x, y, theta) covariance or information into the frame of a pose
 /// with heading theta_rad: R^T M R on the translation block.

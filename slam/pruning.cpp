@@ -36,19 +36,6 @@ Mapper::State::State(const MapperConfig& c) : config(c), loop_state(c.loops.veri
   if (!prune_state.sparsifier) throw std::invalid_argument("unknown sparsifier '" + name + "'");
 }
 
-CellBounds BoxOf(const std::vector<CellUpdate>& cells) {
-  CellBounds b;
-  for (const CellUpdate& u : cells) {
-    if (b.empty) {
-      b.min = b.max = u.cell;
-      b.empty = false;
-    }
-    b.min = {std::min(b.min.x, u.cell.x), std::min(b.min.y, u.cell.y)};
-    b.max = {std::max(b.max.x, u.cell.x), std::max(b.max.y, u.cell.y)};
-  }
-  return b;
-}
-
 std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values,
                                           const std::vector<NodeId>& set,
                                           const OptimizerParams& params) {
@@ -226,7 +213,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   }
   scans_of_node.erase(id);
   prune_state.tracked.Untrack(id);
-  ChangeMap(Touched(id), nodes.at(id).box, false);
+  ChangeMap(Touched(id), false);
   ApplyReplacement(&graph, id, replacement);
   prune_state.marginalizations.push_back(
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});

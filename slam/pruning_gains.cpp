@@ -9,8 +9,6 @@ namespace lifelong::slam {
 const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
   NodeData& data = nodes.at(id);
   if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
-  // (The box is kept when the list is freed: it is set wherever the list is computed at a
-  // new pose.)
   return data.touched;
 }
 
@@ -18,19 +16,15 @@ double Mapper::State::Gain(NodeId id) const {
   return static_cast<double>(prune_state.tracked.Gain(id)) * kEntropyQuantumBits;
 }
 
-void Mapper::State::ChangeMap(const std::vector<CellUpdate>& cells, const CellBounds& box,
-                              bool add) {
+void Mapper::State::ChangeMap(const std::vector<CellUpdate>& cells, bool add) {
   if (!prune_state.active()) {
     add ? map.Add(cells) : map.Remove(cells);
     return;
   }
   std::vector<CellState>& after = prune_state.counts_after;
   add ? map.Add(cells, &after) : map.Remove(cells, &after);
-  GainIndex& tracked = prune_state.tracked;
-  if (tracked.Reaches(box)) {
-    const ScopedMs timer = Stage(&StageTimes::gain_ms);
-    tracked.Apply(cells, after, add);
-  }
+  const ScopedMs timer = Stage(&StageTimes::gain_ms);
+  prune_state.tracked.Apply(cells, after, add);
 }
 
 void Mapper::State::TrackAdded(NodeId id) {

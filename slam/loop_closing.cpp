@@ -224,9 +224,10 @@ void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
        scans[static_cast<std::size_t>(nodes.at(h.old).scan_index)].stamp_s, edge.T_from_to,
        h.injected});
   ++loop_state.since_optimize;
+  ++loop_state.since_sync;
   const Eigen::Vector3d e = RelativeError(values.at(h.old), values.at(h.current), edge.T_from_to);
   if (e.dot(edge.information * e) > lc.optimize_edge_chi2 ||
-      loop_state.since_optimize >= lc.optimize_every) {
+      loop_state.since_sync >= lc.optimize_every) {
     OptimizeAndSyncMap();
   }
 }

@@ -16,6 +16,7 @@ struct LoopClosingState {
   LoopVerifier verifier;                 ///< closures wait here until a group confirms them
   int hypotheses = 0;                    ///< closures proposed by the matcher so far
   int since_optimize = 0;                ///< closures added since the last optimization
+  int since_sync = 0;  ///< closures added since the map was last re-rendered (SyncMap)
 };
 
 }  // namespace lifelong::slam

@@ -13,6 +13,11 @@ namespace {
 
 double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
 
+double MsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 // Information of the odometry fallback edge, in the edge's error frame.
 Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
   const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * Norm(delta);
@@ -214,22 +219,31 @@ void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
 }
 
 void Mapper::State::OptimizeAndSyncMap() {
-  using Ms = std::chrono::duration<double, std::milli>;
+  Optimize();
   const auto start = std::chrono::steady_clock::now();
-  OptimizerSummary summary;
-  {
-    const ScopedMs timer = Stage(&StageTimes::backend_ms);
-    summary = Optimize(graph, &values, config.optimizer);
-  }
-  loop_state.since_optimize = 0;
   {
     const ScopedMs timer = Stage(&StageTimes::map_update_ms);
     SyncMap();
   }
+  loop_state.since_sync = 0;
+  if (step) {
+    step->map_synced = true;
+    step->optimize_ms += MsSince(start);
+  }
+}
+
+void Mapper::State::Optimize() {
+  const auto start = std::chrono::steady_clock::now();
+  OptimizerSummary summary;
+  {
+    const ScopedMs timer = Stage(&StageTimes::backend_ms);
+    summary = slam::Optimize(graph, &values, config.optimizer);
+  }
+  loop_state.since_optimize = 0;
   if (step) {
     step->optimized = true;
     step->optimizer_iterations += summary.iterations;
-    step->optimize_ms += Ms(std::chrono::steady_clock::now() - start).count();
+    step->optimize_ms += MsSince(start);
   }
 }
 

@@ -42,6 +42,7 @@ struct StepStats {
   bool loop_closed = false;
   bool optimized = false;
   double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update
+  bool map_synced = false;   ///< the map re-rendered the scans the estimate moved
   StageTimes stages;         ///< time_ms by stage
   int optimizer_iterations = 0;
 };

@@ -135,7 +135,11 @@ struct Mapper::State {
   /// Nodes that must neither be removed nor sparsified: those of pending hypotheses and of
   /// loop edges whose chi2 at the estimate exceeds loops.suspect_chi2.
   std::set<NodeId> UnsettledNodes() const;
+  /// Optimizes and re-renders the scans that moved (SyncMap).
   void OptimizeAndSyncMap();
+  /// Optimizes the graph only: the map keeps rendering the scans where it had them until the
+  /// next SyncMap, as it does between optimizations.
+  void Optimize();
   void SyncMap();
   /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.
   const std::vector<CellUpdate>& Touched(NodeId id);

@@ -23,22 +23,15 @@
 namespace lifelong::slam {
 
 /// An increment list's cells grouped by 32 x 32-cell chunk: per chunk, a bitmap of the cells
-/// (bit (y mod 32) * 32 + x mod 32) and where they lie in `order`.
+/// (bit (y mod 32) * 32 + x mod 32) and where they lie in `order`, in bit order.
 struct ChunkedCells {
   static constexpr int kChunkBits = chunk::kBits;
   static constexpr int kWords = (1 << (2 * kChunkBits)) / 64;
   struct Chunk {
     std::uint64_t key = 0;
     std::array<std::uint64_t, kWords> bits{};
-    std::array<std::uint16_t, kWords> before{};  ///< cells of the chunk in earlier words
-    std::uint32_t first = 0;                     ///< its first cell's place in `order`
-    /// Place in `order` of the cell at bit `b` (set) of word w.
-    std::uint32_t Place(int w, int b) const {
-      const std::uint64_t below = (std::uint64_t{1} << b) - 1;
-      return first + before[static_cast<std::size_t>(w)] +
-             static_cast<std::uint32_t>(
-                 __builtin_popcountll(bits[static_cast<std::size_t>(w)] & below));
-    }
+    std::uint32_t first = 0;  ///< its first cell's place in `order`
+    std::uint32_t count = 0;  ///< its cells (set bits)
   };
   std::vector<Chunk> chunks;
   std::vector<std::uint32_t> order;  ///< indices into the list, chunk by chunk, by bit
@@ -76,10 +69,14 @@ class GainIndex {
   void Apply(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added);
 
  private:
-  /// A tracked scan's cells in one chunk.
+  /// A tracked scan's cells in one chunk: the chunk's bitmap of them (ChunkedCells) and
+  /// their increments, by bit. Kept small (144 bytes): Apply walks every piece of a chunk.
   struct Piece {
+    std::array<std::uint64_t, ChunkedCells::kWords> bits;
+    /// Inside Scan::deltas, which keeps its buffer while the scan is tracked; held here so
+    /// Apply reads the increments without first loading the scan's record.
+    const CellCounts* deltas;
     std::uint32_t slot;
-    ChunkedCells::Chunk cells;  ///< `first` indexes the slot's deltas
   };
   struct Scan {
     std::int64_t gain = 0;

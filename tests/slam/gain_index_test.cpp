@@ -124,8 +124,9 @@ TEST(ChunkedCells, GroupsByChunkInBitOrderAndRefusesAnUnorderedList) {
   EXPECT_EQ(grouped.order, (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
   const ChunkedCells::Chunk& second = grouped.chunks[1];  // chunk (0, 0): (0, 31) and (5, 31)
   EXPECT_EQ(second.first, 1u);
-  EXPECT_EQ(second.Place((31 * 32) / 64, (31 * 32) % 64), 1u);
-  EXPECT_EQ(second.Place((31 * 32 + 5) / 64, (31 * 32 + 5) % 64), 2u);
+  EXPECT_EQ(second.count, 2u);
+  EXPECT_EQ(second.bits[(31 * 32) / 64],
+            (std::uint64_t{1} << (31 * 32) % 64) | (std::uint64_t{1} << (31 * 32 + 5) % 64));
   std::vector<CellUpdate> swapped = cells;
   std::swap(swapped[1], swapped[2]);
   EXPECT_THROW(grouped.Assign(swapped), std::invalid_argument);

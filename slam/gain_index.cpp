@@ -150,11 +150,12 @@ std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells,
   return gain;
 }
 
-bool GainIndex::Reaches(const std::vector<CellUpdate>& cells) const {
+template <typename List>
+bool GainIndex::Reaches(const List& cells) const {
   if (cells.empty() || chunks_.empty()) return false;
   // The list is ordered by row: its first and last cells bound y.
   int x0 = cells.front().cell.x, x1 = x0;
-  for (const CellUpdate& u : cells) {
+  for (const auto& u : cells) {
     x0 = std::min(x0, u.cell.x);
     x1 = std::max(x1, u.cell.x);
   }
@@ -166,10 +167,15 @@ bool GainIndex::Reaches(const std::vector<CellUpdate>& cells) const {
   return false;
 }
 
-// (Cloned for CPUs with and without the POPCNT instruction: the rank of a bit in a piece
-// is a population count, a library call on the x86-64 baseline.)
-__attribute__((target_clones("popcnt", "default"))) void GainIndex::Apply(
-    const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added) {
+void GainIndex::Consider(CellIndex cell, const CellState& before, const CellState& after) {
+  if (GainsFlatAt(after.counts, after.lists) && GainsFlatAt(before.counts, before.lists)) return;
+  relevant_.push_back({cell, {}});
+  relevant_states_.push_back({before.counts, after.counts, QuantizedEntropy(before.counts),
+                              QuantizedEntropy(after.counts)});
+}
+
+void GainIndex::Apply(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after,
+                      bool added) {
   if (after.size() != cells.size()) {
     throw std::logic_error("GainIndex::Apply: one state per cell expected");
   }
@@ -181,13 +187,24 @@ __attribute__((target_clones("popcnt", "default"))) void GainIndex::Apply(
     const CellCounts d = cells[i].delta;
     const CellState& a = after[i];
     const std::uint32_t touches = Touches(d) ? 1 : 0;
-    const std::uint32_t lists_before = added ? a.lists - touches : a.lists + touches;
-    const CellCounts before = added ? Minus(a.counts, d) : Plus(a.counts, d);
-    if (GainsFlatAt(a.counts, a.lists) && GainsFlatAt(before, lists_before)) continue;
-    relevant_.push_back(cells[i]);
-    relevant_states_.push_back(
-        {before, a.counts, QuantizedEntropy(before), QuantizedEntropy(a.counts)});
+    const CellState before{added ? Minus(a.counts, d) : Plus(a.counts, d),
+                           added ? a.lists - touches : a.lists + touches};
+    Consider(cells[i].cell, before, a);
   }
+  ApplyRelevant();
+}
+
+void GainIndex::Apply(const std::vector<CellChange>& changes) {
+  if (!Reaches(changes)) return;
+  relevant_.clear();
+  relevant_states_.clear();
+  for (const CellChange& c : changes) Consider(c.cell, c.before, c.after);
+  ApplyRelevant();
+}
+
+// (Cloned for CPUs with and without the POPCNT instruction: the rank of a bit in a piece
+// is a population count, a library call on the x86-64 baseline.)
+__attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevant() {
   scratch_.Assign(relevant_);
   changed_.resize(std::size_t{1} << (2 * kBits));
   Changed* changed = changed_.data();

@@ -67,6 +67,8 @@ class GainIndex {
   /// must not be tracked. A change far from every tracked scan costs one pass over its
   /// cells.
   void Apply(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added);
+  /// Same, for cells whose states changed as listed (GridMap::Move), ordered by (y, x).
+  void Apply(const std::vector<CellChange>& changes);
 
  private:
   /// A tracked scan's cells in one chunk: the chunk's bitmap of them (ChunkedCells) and
@@ -89,7 +91,12 @@ class GainIndex {
   std::vector<Scan> scans_;                ///< by slot
   std::vector<std::uint32_t> free_slots_;  ///< of untracked scans, for reuse
   /// Whether a change of these cells (ordered by row) lies in a chunk of a tracked scan.
-  bool Reaches(const std::vector<CellUpdate>& cells) const;
+  template <typename List>
+  bool Reaches(const List& cells) const;
+  /// Keeps a changed cell for ApplyRelevant unless no gain can change in it.
+  void Consider(CellIndex cell, const CellState& before, const CellState& after);
+  /// Updates the tracked gains for the cells Consider kept.
+  void ApplyRelevant();
 
   ChunkedCells scratch_;  ///< Track's and Apply's grouping of a list
   /// Apply's table for the chunk at hand, by bit: the counts before and after the change,
@@ -99,7 +106,7 @@ class GainIndex {
     std::int64_t q_before, q_after;
   };
   std::vector<Changed> changed_;
-  std::vector<CellUpdate> relevant_;      ///< Apply: the cells of a change that matter...
+  std::vector<CellUpdate> relevant_;      ///< Consider: the cells of a change that matter...
   std::vector<Changed> relevant_states_;  ///< ...and their states
 };
 

@@ -259,9 +259,9 @@ void Mapper::State::SyncMap() {
         // computed for the move and freed again, so memory follows the neighbourhood.
         const bool cached = !data.touched.empty();
         prune_state.tracked.Untrack(id);
-        ChangeMap(Touched(id), false);
-        data.touched = map.TouchedCells(data.scan, X);
-        ChangeMap(data.touched, true);
+        std::vector<CellUpdate> moved = map.TouchedCells(data.scan, X);
+        MoveInMap(Touched(id), moved);
+        data.touched = std::move(moved);
         TrackAdded(id);
         if (!cached) std::vector<CellUpdate>().swap(data.touched);
       }

@@ -148,6 +148,10 @@ struct Mapper::State {
   /// Adds an increment list to the map (or removes it); in the pruned modes the gains
   /// follow.
   void ChangeMap(const std::vector<CellUpdate>& cells, bool add);
+  /// Replaces an increment list in the map by another (GridMap::Move: a moved scan's cells
+  /// at its old and new pose); the gains of the other scans follow. The moved scan must not
+  /// be tracked; TrackAdded tracks it again.
+  void MoveInMap(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to);
   /// Starts tracking the gain of node `id`, whose cells ChangeMap has just added: the gain
   /// comes from the states they were left in.
   void TrackAdded(NodeId id);

@@ -27,6 +27,13 @@ void Mapper::State::ChangeMap(const std::vector<CellUpdate>& cells, bool add) {
   prune_state.tracked.Apply(cells, after, add);
 }
 
+void Mapper::State::MoveInMap(const std::vector<CellUpdate>& from,
+                              const std::vector<CellUpdate>& to) {
+  map.Move(from, to, &prune_state.counts_after, &prune_state.changes);
+  const ScopedMs timer = Stage(&StageTimes::gain_ms);
+  prune_state.tracked.Apply(prune_state.changes);
+}
+
 void Mapper::State::TrackAdded(NodeId id) {
   const ScopedMs timer = Stage(&StageTimes::gain_ms);
   const NodeData& data = nodes.at(id);

@@ -39,6 +39,7 @@ struct PruningState {
   /// Every node's information gain, kept exact through every change of the map.
   GainIndex tracked;
   std::vector<CellState> counts_after;  ///< scratch: the cells as a change leaves them
+  std::vector<CellChange> changes;      ///< scratch: the cells a move changed
 
   bool active() const { return policy != nullptr; }
 };

@@ -203,6 +203,97 @@ TEST(GridMapTest, MoveScanEqualsAddingAtTheNewPose) {
   EXPECT_EQ(Snapshot(moved), Snapshot(direct));
 }
 
+// Every known cell's counts and lists.
+std::map<std::pair<int, int>, std::vector<std::uint32_t>> States(const GridMap& map) {
+  std::map<std::pair<int, int>, std::vector<std::uint32_t>> out;
+  map.ForEachKnownCell([&](CellIndex c, CellCounts n) {
+    out[{c.x, c.y}] = {n.hits, n.misses, map.Lists(c)};
+  });
+  return out;
+}
+
+// Move leaves the counts and lists that Remove then Add leave, reports the state of every
+// cell of the new list and exactly the cells whose state changed, and skips the cells whose
+// increment is the same at both poses (most of a small move's).
+TEST(GridMapTest, MoveEqualsRemovingThenAddingAndReportsWhatChanged) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 shift(-4.0, -2.5, 0.0);  // cells on both sides of 0
+  const Pose2 a(2.0, 3.0, 0.3), b(5.0, 2.0, 2.0), a_moved(2.02, 2.99, 0.304);
+  GridMap moved, direct;
+  const LaserScan scan = testing::SimulateScan(room, a);
+  const std::vector<CellUpdate> other =
+      moved.TouchedCells(testing::SimulateScan(room, b), shift * b);
+  const std::vector<CellUpdate> from = moved.TouchedCells(scan, shift * a);
+  const std::vector<CellUpdate> to = moved.TouchedCells(scan, shift * a_moved);
+  for (GridMap* map : {&moved, &direct}) {
+    map->Add(other);
+    map->Add(from);
+  }
+  const auto before = States(moved);
+  std::vector<CellState> after, after_direct;
+  std::vector<CellChange> changed;
+  moved.Move(from, to, &after, &changed);
+  direct.Remove(from);
+  direct.Add(to, &after_direct);
+  EXPECT_EQ(States(moved), States(direct));
+  ASSERT_EQ(after.size(), to.size());
+  for (std::size_t i = 0; i < to.size(); ++i) {
+    EXPECT_EQ(after[i].counts.hits, after_direct[i].counts.hits);
+    EXPECT_EQ(after[i].counts.misses, after_direct[i].counts.misses);
+    EXPECT_EQ(after[i].lists, after_direct[i].lists);
+  }
+  // Cells left with no counts are unknown again: absent from the states.
+  const auto now = States(moved);
+  const auto state = [](const auto& states, const std::pair<int, int>& cell) {
+    const auto it = states.find(cell);
+    return it == states.end() ? std::vector<std::uint32_t>{0, 0, 0} : it->second;
+  };
+  std::size_t differ = 0;
+  for (const auto* states : {&now, &before}) {
+    for (const auto& [cell, unused] : *states) {
+      const bool other_has = (states == &now ? before : now).count(cell) != 0;
+      if (states == &before && other_has) continue;  // counted once, from `now`
+      differ += state(before, cell) != state(now, cell) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(changed.size(), differ);
+  for (std::size_t i = 0; i < changed.size(); ++i) {
+    const CellChange& c = changed[i];
+    EXPECT_EQ(
+        state(now, {c.cell.x, c.cell.y}),
+        (std::vector<std::uint32_t>{c.after.counts.hits, c.after.counts.misses, c.after.lists}));
+    EXPECT_EQ(
+        state(before, {c.cell.x, c.cell.y}),
+        (std::vector<std::uint32_t>{c.before.counts.hits, c.before.counts.misses, c.before.lists}));
+    if (i > 0) {
+      const CellIndex prev = changed[i - 1].cell;
+      EXPECT_TRUE(prev.y < c.cell.y || (prev.y == c.cell.y && prev.x < c.cell.x));
+    }
+  }
+  EXPECT_GT(differ, 0u);
+  EXPECT_LT(differ, from.size());  // a small move keeps many cells' increments
+}
+
+// A list that was never added, or one out of order, leaves the map as it was.
+TEST(GridMapTest, MoveIsAllOrNothing) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 a(2.0, 3.0, 0.3), b(5.0, 2.0, 2.0);
+  GridMap map;
+  const std::vector<CellUpdate> in_map = map.TouchedCells(testing::SimulateScan(room, a), a);
+  const std::vector<CellUpdate> stranger = map.TouchedCells(testing::SimulateScan(room, b), b);
+  map.Add(in_map);
+  const auto before = States(map);
+  EXPECT_THROW(map.Move(stranger, in_map), std::logic_error);
+  EXPECT_EQ(States(map), before);
+  std::vector<CellUpdate> unordered = stranger;
+  std::swap(unordered[10], unordered[20]);
+  EXPECT_THROW(map.Move(in_map, unordered), std::invalid_argument);
+  EXPECT_EQ(States(map), before);
+  map.Move(in_map, stranger);
+  map.Move(stranger, in_map);
+  EXPECT_EQ(States(map), before);
+}
+
 TEST(GridMapTest, NegativeCellIndicesWork) {
   GridMap map;
   map.AddScan(OneBeam(0.26f), Pose2(-0.025, -0.025, 3.14159265358979323846));

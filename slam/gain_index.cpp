@@ -137,6 +137,51 @@ std::int64_t GainIndex::Gain(NodeId id) const {
   return scans_[it->second].gain;
 }
 
+void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
+  const auto it = slots_.find(id);
+  if (it == slots_.end()) {
+    throw std::logic_error("GainIndex::Cells: node " + std::to_string(id) + " not tracked");
+  }
+  const std::uint32_t slot = it->second;
+  const Scan& scan = scans_[slot];
+  cells->clear();
+  cells->reserve(scan.deltas.size());
+  static_assert(chunk::kSide == 32, "two chunk rows per 64-bit word");
+  // The scan's chunks in Track's order, which is by chunk row, then column; each with its
+  // bitmap and the next of its increments to emit (bit order is row order within a chunk).
+  struct Band {
+    int cx, cy;
+    const Piece* piece;
+    const CellCounts* next;
+  };
+  std::vector<Band> bands;
+  for (std::uint64_t key : scan.keys) {
+    const std::vector<Piece>& pieces = chunks_.at(key);
+    const Piece& piece = *std::find_if(pieces.begin(), pieces.end(),
+                                       [slot](const Piece& p) { return p.slot == slot; });
+    bands.push_back({static_cast<int>(static_cast<std::uint32_t>(key >> 32)),
+                     static_cast<int>(static_cast<std::uint32_t>(key)), &piece, piece.deltas});
+  }
+  for (std::size_t first = 0; first < bands.size();) {
+    std::size_t last = first;  // the chunks of one chunk row: [first, last)
+    while (last < bands.size() && bands[last].cy == bands[first].cy) ++last;
+    for (int y = 0; y < chunk::kSide; ++y) {
+      for (std::size_t b = first; b < last; ++b) {
+        Band& band = bands[b];
+        const std::uint64_t word = band.piece->bits[static_cast<std::size_t>(y >> 1)];
+        std::uint64_t row = (word >> ((y & 1) * chunk::kSide)) & 0xffffffffu;
+        while (row != 0) {
+          const int x = __builtin_ctzll(row);
+          row &= row - 1;
+          cells->push_back(
+              {{band.cx * chunk::kSide + x, band.cy * chunk::kSide + y}, *band.next++});
+        }
+      }
+    }
+    first = last;
+  }
+}
+
 std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells,
                          const std::vector<CellState>& after) {
   if (after.size() != cells.size())

@@ -62,6 +62,10 @@ class GainIndex {
   std::int64_t Untrack(NodeId id);
   /// The gain of a tracked scan, exact for the map as it is now.
   std::int64_t Gain(NodeId id) const;
+  /// A tracked scan's increment list as Track got it: ordered by (y, x). Rebuilt from the
+  /// index (a pass over its cells), which is cheaper than tracing the scan again and lets
+  /// the mapper keep no list of its own.
+  void Cells(NodeId id, std::vector<CellUpdate>* cells) const;
   /// Updates the tracked gains for a change of the map: `cells` were just added to it (or
   /// removed from it), leaving the counts `after` (GridMap::Add, Remove). The scan changed
   /// must not be tracked. A change far from every tracked scan costs one pass over its

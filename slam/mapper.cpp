@@ -145,14 +145,15 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     graph.AddEdge(edge);
   }
   data.T_world_map = values.at(id);
+  std::vector<CellUpdate> cells;
   if (config.pruning.mode == PruningMode::kNone) {
     map.AddScan(data.scan, data.T_world_map);
   } else {
-    data.touched = map.TouchedCells(data.scan, data.T_world_map);
-    ChangeMap(data.touched, true);
+    cells = map.TouchedCells(data.scan, data.T_world_map);
+    ChangeMap(cells, true);
   }
   nodes.emplace(id, std::move(data));
-  if (prune_state.active()) TrackAdded(id);
+  if (prune_state.active()) TrackAdded(id, cells);
   recent.push_back(id);
 
   // Pending scans go to whichever of the previous and the new node is nearer by odometry.
@@ -255,15 +256,13 @@ void Mapper::State::SyncMap() {
       if (config.pruning.mode == PruningMode::kNone) {
         map.MoveScan(data.scan, data.T_world_map, X);
       } else {
-        // Only the nodes near the robot keep their cell lists (Prune); the others get theirs
-        // computed for the move and freed again, so memory follows the neighbourhood.
-        const bool cached = !data.touched.empty();
+        // The cells at the old pose come from the gain index, which holds them anyway.
+        std::vector<CellUpdate>& from = prune_state.cells;
+        prune_state.tracked.Cells(id, &from);
         prune_state.tracked.Untrack(id);
-        std::vector<CellUpdate> moved = map.TouchedCells(data.scan, X);
-        MoveInMap(Touched(id), moved);
-        data.touched = std::move(moved);
-        TrackAdded(id);
-        if (!cached) std::vector<CellUpdate>().swap(data.touched);
+        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X);
+        MoveInMap(from, to);
+        TrackAdded(id, to);
       }
       data.T_world_map = X;
     }

@@ -31,8 +31,6 @@ struct NodeData {
   Pose2 T_odom_robot;                   ///< odometry at the scan
   int scan_index = 0;
   double travelled_m = 0.0;  ///< robot path length (odometry) at this scan
-  /// Cells of the scan at T_world_map (pruned modes), cached for the nodes near the robot.
-  std::vector<CellUpdate> touched;
 };
 
 /// Adds the wall time of its scope, in ms, to *total, less the time of the timers nested in
@@ -141,8 +139,6 @@ struct Mapper::State {
   /// next SyncMap, as it does between optimizations.
   void Optimize();
   void SyncMap();
-  /// The cells node `id`'s scan contributes at its map pose, cached in the pruned modes.
-  const std::vector<CellUpdate>& Touched(NodeId id);
   /// Information gain of node `id`'s scan (pruned modes), exact for the map as it is.
   double Gain(NodeId id) const;
   /// Adds an increment list to the map (or removes it); in the pruned modes the gains
@@ -152,9 +148,9 @@ struct Mapper::State {
   /// at its old and new pose); the gains of the other scans follow. The moved scan must not
   /// be tracked; TrackAdded tracks it again.
   void MoveInMap(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to);
-  /// Starts tracking the gain of node `id`, whose cells ChangeMap has just added: the gain
-  /// comes from the states they were left in.
-  void TrackAdded(NodeId id);
+  /// Starts tracking the gain of node `id`, whose cells ChangeMap or MoveInMap has just
+  /// added: the gain comes from the states they were left in.
+  void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// While the graph holds more than max_edges_per_node edges per node, replaces the edges

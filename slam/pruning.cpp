@@ -80,8 +80,6 @@ void Mapper::State::Prune(NodeId current) {
     gains[id] = 0.0;
   }
   for (auto& [id, gain] : gains) gain = Gain(id);
-  std::set<NodeId> considered = protected_ids;
-  for (const auto& [id, gain] : gains) considered.insert(id);
 
   while (!gains.empty()) {
     const std::optional<NodeId> next = prune_state.policy->Next(gains, graph.NumNodes());
@@ -94,12 +92,6 @@ void Mapper::State::Prune(NodeId current) {
     for (auto& [id, g] : gains) g = Gain(id);
   }
   if (prune_state.sparsifier->Name() == "chow-liu" && pc.max_edges_per_node > 0.0) KeepEdgeBudget();
-  // The cell lists are a cache for the neighbourhood (the index keeps every scan's
-  // increments, at half a list's size): free those of the nodes left behind.
-  for (auto& [id, data] : nodes) {
-    if (!data.touched.empty() && !considered.count(id))
-      std::vector<CellUpdate>().swap(data.touched);
-  }
 }
 
 void Mapper::State::KeepEdgeBudget() {
@@ -215,8 +207,9 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
     Reanchor(scan, keeper);
   }
   scans_of_node.erase(id);
+  prune_state.tracked.Cells(id, &prune_state.cells);
   prune_state.tracked.Untrack(id);
-  ChangeMap(Touched(id), false);
+  ChangeMap(prune_state.cells, false);
   ApplyReplacement(&graph, id, replacement);
   prune_state.marginalizations.push_back(
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});

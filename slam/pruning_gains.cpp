@@ -6,12 +6,6 @@
 
 namespace lifelong::slam {
 
-const std::vector<CellUpdate>& Mapper::State::Touched(NodeId id) {
-  NodeData& data = nodes.at(id);
-  if (data.touched.empty()) data.touched = map.TouchedCells(data.scan, data.T_world_map);
-  return data.touched;
-}
-
 double Mapper::State::Gain(NodeId id) const {
   return static_cast<double>(prune_state.tracked.Gain(id)) * kEntropyQuantumBits;
 }
@@ -34,10 +28,9 @@ void Mapper::State::MoveInMap(const std::vector<CellUpdate>& from,
   prune_state.tracked.Apply(prune_state.changes);
 }
 
-void Mapper::State::TrackAdded(NodeId id) {
+void Mapper::State::TrackAdded(NodeId id, const std::vector<CellUpdate>& cells) {
   const ScopedMs timer = Stage(&StageTimes::gain_ms);
-  const NodeData& data = nodes.at(id);
-  prune_state.tracked.Track(id, data.touched, GainOfAdded(data.touched, prune_state.counts_after));
+  prune_state.tracked.Track(id, cells, GainOfAdded(cells, prune_state.counts_after));
 }
 
 }  // namespace lifelong::slam

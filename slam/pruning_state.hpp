@@ -40,6 +40,7 @@ struct PruningState {
   GainIndex tracked;
   std::vector<CellState> counts_after;  ///< scratch: the cells as a change leaves them
   std::vector<CellChange> changes;      ///< scratch: the cells a move changed
+  std::vector<CellUpdate> cells;        ///< scratch: a tracked scan's cells (GainIndex::Cells)
 
   bool active() const { return policy != nullptr; }
 };

@@ -110,6 +110,29 @@ TEST(GainIndex, TrackedGainsEqualFreshOnesThroughMoves) {
   }
 }
 
+// The index gives back each tracked scan's list as it got it: the same cells, increments and
+// order, across chunk boundaries and negative indices (the room straddles cell 0).
+TEST(GainIndex, GivesBackTheListsItTracks) {
+  Fixture f;
+  const auto lists = RandomLists(f.map, 6, 21);
+  for (NodeId i = 0; i < 6; ++i) f.index.Track(i, lists[i], 0);
+  f.index.Untrack(2);
+  std::vector<CellUpdate> cells{{{1, 1}, {1, 1}}};  // replaced, not appended to
+  for (NodeId i = 0; i < 6; ++i) {
+    if (i == 2) {
+      EXPECT_THROW(f.index.Cells(i, &cells), std::logic_error);
+      continue;
+    }
+    f.index.Cells(i, &cells);
+    ASSERT_EQ(cells.size(), lists[i].size());
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      EXPECT_EQ(cells[k].cell, lists[i][k].cell) << "node " << i << " cell " << k;
+      EXPECT_EQ(cells[k].delta.hits, lists[i][k].delta.hits);
+      EXPECT_EQ(cells[k].delta.misses, lists[i][k].delta.misses);
+    }
+  }
+}
+
 // The gain of a scan just added, from the states its cells were left in, is the gain
 // computed from the map.
 TEST(GainIndex, TheGainOfAnAddedScanComesFromTheStatesItLeft) {

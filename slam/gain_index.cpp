@@ -58,29 +58,33 @@ void ChunkedCells::Assign(const std::vector<CellUpdate>& cells) {
     return static_cast<std::size_t>((c.y >> kBits) - cy0) * width +
            static_cast<std::size_t>((c.x >> kBits) - cx0);
   };
-  // One pass counts each chunk's cells and sets their bits; a second places them.
+  // One pass counts each chunk's cells; the chunks that have any are made, in number order;
+  // a second pass places the cells and sets their bits.
   const std::size_t count = width * height;
   start.assign(count + 1, 0);
   numbers.resize(cells.size());
-  by_number.assign(count, Chunk{});
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const std::size_t n = number(cells[i].cell);
     numbers[i] = static_cast<std::uint32_t>(n);
     ++start[n + 1];
-    const int bit = BitOf(cells[i].cell);
-    by_number[n].bits[static_cast<std::size_t>(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
   }
-  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  next.assign(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < cells.size(); ++i)
-    order[next[numbers[i]]++] = static_cast<std::uint32_t>(i);
+  slot_of.resize(count);
   for (std::size_t n = 0; n < count; ++n) {
-    if (start[n] == start[n + 1]) continue;
-    Chunk chunk = by_number[n];
+    const std::uint32_t first = start[n], cells_in = start[n + 1];
+    start[n + 1] += first;
+    if (cells_in == 0) continue;
+    slot_of[n] = static_cast<std::uint32_t>(chunks.size());
+    Chunk& chunk = chunks.emplace_back();
     chunk.key = Key(cx0 + static_cast<int>(n % width), cy0 + static_cast<int>(n / width));
-    chunk.first = start[n];
-    chunk.count = start[n + 1] - start[n];
-    chunks.push_back(chunk);
+    chunk.first = first;
+    chunk.count = cells_in;
+  }
+  next.assign(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::uint32_t n = numbers[i];
+    order[next[n]++] = static_cast<std::uint32_t>(i);
+    const int bit = BitOf(cells[i].cell);
+    chunks[slot_of[n]].bits[static_cast<std::size_t>(bit >> 6)] |= std::uint64_t{1} << (bit & 63);
   }
 }
 
@@ -97,8 +101,9 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
   scratch_.Assign(cells);
   Scan& scan = scans_[slot];
   scan.gain = gain;
-  scan.deltas.resize(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) scan.deltas[i] = cells[scratch_.order[i]].delta;
+  scan.deltas.clear();
+  scan.deltas.reserve(cells.size());  // not zero-filled first
+  for (std::uint32_t i : scratch_.order) scan.deltas.push_back(cells[i].delta);
   scan.keys.clear();
   for (const ChunkedCells::Chunk& chunk : scratch_.chunks) {
     chunks_[chunk.key].push_back({chunk.bits, scan.deltas.data() + chunk.first, slot});

@@ -42,9 +42,8 @@ struct ChunkedCells {
 
  private:
   // Assign's counting sort: chunk numbers of the cells, each chunk's first place and the
-  // next free one, and the chunks' bitmaps by number.
-  std::vector<std::uint32_t> numbers, start, next;
-  std::vector<Chunk> by_number;
+  // next free one, and where each number's chunk is in `chunks` (when it has cells).
+  std::vector<std::uint32_t> numbers, start, next, slot_of;
 };
 
 /// The gain (quanta) of a scan just added to the map, from the states its cells were left in

@@ -101,12 +101,27 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
   scratch_.Assign(cells);
   Scan& scan = scans_[slot];
   scan.gain = gain;
-  scan.deltas.clear();
-  scan.deltas.reserve(cells.size());  // not zero-filled first
-  for (std::uint32_t i : scratch_.order) scan.deltas.push_back(cells[i].delta);
+  constexpr std::uint32_t kNarrowMax = 0xffff;
+  const bool wide = std::any_of(cells.begin(), cells.end(), [](const CellUpdate& u) {
+    return u.delta.hits > kNarrowMax || u.delta.misses > kNarrowMax;
+  });
+  scan.narrow.clear();
+  scan.wide.clear();
+  if (wide) {
+    scan.wide.reserve(cells.size());  // not zero-filled first
+    for (std::uint32_t i : scratch_.order) scan.wide.push_back(cells[i].delta);
+  } else {
+    scan.narrow.reserve(cells.size());
+    for (std::uint32_t i : scratch_.order) {
+      scan.narrow.push_back({static_cast<std::uint16_t>(cells[i].delta.hits),
+                             static_cast<std::uint16_t>(cells[i].delta.misses)});
+    }
+  }
   scan.keys.clear();
   for (const ChunkedCells::Chunk& chunk : scratch_.chunks) {
-    chunks_[chunk.key].push_back({chunk.bits, scan.deltas.data() + chunk.first, slot});
+    const void* deltas = wide ? static_cast<const void*>(scan.wide.data() + chunk.first)
+                              : static_cast<const void*>(scan.narrow.data() + chunk.first);
+    chunks_[chunk.key].push_back({chunk.bits, deltas, slot, wide});
     scan.keys.push_back(chunk.key);
   }
   slots_.emplace(id, slot);
@@ -130,7 +145,8 @@ std::int64_t GainIndex::Untrack(NodeId id) {
   }
   slots_.erase(it);
   free_slots_.push_back(slot);
-  std::vector<CellCounts>().swap(scan.deltas);
+  std::vector<NarrowCounts>().swap(scan.narrow);
+  std::vector<CellCounts>().swap(scan.wide);
   return scan.gain;
 }
 
@@ -142,6 +158,12 @@ std::int64_t GainIndex::Gain(NodeId id) const {
   return scans_[it->second].gain;
 }
 
+CellCounts GainIndex::DeltaOf(const Piece& piece, std::size_t i) {
+  if (piece.wide) return static_cast<const CellCounts*>(piece.deltas)[i];
+  const NarrowCounts d = static_cast<const NarrowCounts*>(piece.deltas)[i];
+  return {d.hits, d.misses};
+}
+
 void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
   const auto it = slots_.find(id);
   if (it == slots_.end()) {
@@ -150,14 +172,14 @@ void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
   const std::uint32_t slot = it->second;
   const Scan& scan = scans_[slot];
   cells->clear();
-  cells->reserve(scan.deltas.size());
+  cells->reserve(scan.narrow.size() + scan.wide.size());
   static_assert(chunk::kSide == 32, "two chunk rows per 64-bit word");
   // The scan's chunks in Track's order, which is by chunk row, then column; each with its
   // bitmap and the next of its increments to emit (bit order is row order within a chunk).
   struct Band {
     int cx, cy;
     const Piece* piece;
-    const CellCounts* next;
+    std::size_t next;
   };
   std::vector<Band> bands;
   for (std::uint64_t key : scan.keys) {
@@ -165,7 +187,7 @@ void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
     const Piece& piece = *std::find_if(pieces.begin(), pieces.end(),
                                        [slot](const Piece& p) { return p.slot == slot; });
     bands.push_back({static_cast<int>(static_cast<std::uint32_t>(key >> 32)),
-                     static_cast<int>(static_cast<std::uint32_t>(key)), &piece, piece.deltas});
+                     static_cast<int>(static_cast<std::uint32_t>(key)), &piece, 0});
   }
   for (std::size_t first = 0; first < bands.size();) {
     std::size_t last = first;  // the chunks of one chunk row: [first, last)
@@ -178,8 +200,8 @@ void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
         while (row != 0) {
           const int x = __builtin_ctzll(row);
           row &= row - 1;
-          cells->push_back(
-              {{band.cx * chunk::kSide + x, band.cy * chunk::kSide + y}, *band.next++});
+          cells->push_back({{band.cx * chunk::kSide + x, band.cy * chunk::kSide + y},
+                            DeltaOf(*band.piece, band.next++)});
         }
       }
     }
@@ -269,31 +291,41 @@ __attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevan
     // piece's first shared one before reading any, so the misses overlap.
     const std::vector<Piece>& pieces = found->second;
     for (const Piece& piece : pieces) {
-      const CellCounts* deltas = piece.deltas;  // of the piece's cells in word w and on
+      std::size_t skipped = 0;  // the piece's cells in the words before w
       for (std::size_t w = 0; w < ChunkedCells::kWords; ++w) {
         const std::uint64_t shared = chunk.bits[w] & piece.bits[w];
         if (shared != 0) {
-          __builtin_prefetch(deltas + Rank(piece.bits[w], __builtin_ctzll(shared)));
+          const std::size_t i =
+              skipped + static_cast<std::size_t>(Rank(piece.bits[w], __builtin_ctzll(shared)));
+          __builtin_prefetch(static_cast<const char*>(piece.deltas) +
+                             i * (piece.wide ? sizeof(CellCounts) : sizeof(NarrowCounts)));
           break;
         }
-        deltas += __builtin_popcountll(piece.bits[w]);
+        skipped += static_cast<std::size_t>(__builtin_popcountll(piece.bits[w]));
       }
     }
-    for (const Piece& piece : pieces) {
+    // The change of one piece's gain, for either width of its increments.
+    const auto change_of = [&chunk, changed](const Piece& piece, const auto* deltas) {
       std::int64_t delta = 0;
-      const CellCounts* deltas = piece.deltas;
       for (std::size_t w = 0; w < ChunkedCells::kWords; ++w) {
         std::uint64_t shared = chunk.bits[w] & piece.bits[w];
         while (shared != 0) {
           const int b = __builtin_ctzll(shared);
           shared &= shared - 1;
           const Changed& c = changed[w * 64 + static_cast<std::size_t>(b)];
-          const CellCounts d = deltas[Rank(piece.bits[w], b)];
+          const auto narrow_or_wide = deltas[Rank(piece.bits[w], b)];
+          const CellCounts d{narrow_or_wide.hits, narrow_or_wide.misses};
           delta += (QuantizedEntropy(Minus(c.after, d)) - c.q_after) -
                    (QuantizedEntropy(Minus(c.before, d)) - c.q_before);
         }
         deltas += __builtin_popcountll(piece.bits[w]);
       }
+      return delta;
+    };
+    for (const Piece& piece : pieces) {
+      const std::int64_t delta =
+          piece.wide ? change_of(piece, static_cast<const CellCounts*>(piece.deltas))
+                     : change_of(piece, static_cast<const NarrowCounts*>(piece.deltas));
       scans_[piece.slot].gain += delta;
     }
   }

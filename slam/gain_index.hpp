@@ -78,16 +78,26 @@ class GainIndex {
   /// their increments, by bit. Kept small (144 bytes): Apply walks every piece of a chunk.
   struct Piece {
     std::array<std::uint64_t, ChunkedCells::kWords> bits;
-    /// Inside Scan::deltas, which keeps its buffer while the scan is tracked; held here so
-    /// Apply reads the increments without first loading the scan's record.
-    const CellCounts* deltas;
+    /// The increments, inside Scan::narrow (or Scan::wide when `wide`), which keeps its
+    /// buffer while the scan is tracked; held here so Apply reads them without first loading
+    /// the scan's record.
+    const void* deltas;
     std::uint32_t slot;
+    bool wide;
+  };
+  /// An increment in 16 bits a count: any scan of fewer than 65 536 beams fits, in half the
+  /// memory (and cache) of CellCounts.
+  struct NarrowCounts {
+    std::uint16_t hits, misses;
   };
   struct Scan {
     std::int64_t gain = 0;
-    std::vector<CellCounts> deltas;   ///< its increments, chunk by chunk, by bit
-    std::vector<std::uint64_t> keys;  ///< of its chunks
+    std::vector<NarrowCounts> narrow;  ///< its increments, chunk by chunk, by bit...
+    std::vector<CellCounts> wide;      ///< ...or these, when a count needs more than 16 bits
+    std::vector<std::uint64_t> keys;   ///< of its chunks
   };
+  /// Increment i of a piece (its cells' increments in bit order).
+  static CellCounts DeltaOf(const Piece& piece, std::size_t i);
 
   std::unordered_map<std::uint64_t, std::vector<Piece>> chunks_;
   std::unordered_map<NodeId, std::uint32_t> slots_;

@@ -133,6 +133,34 @@ TEST(GainIndex, GivesBackTheListsItTracks) {
   }
 }
 
+// A list with a count beyond 16 bits (a dense sensor) is held wide: its gain and its cells
+// stay exact beside narrow ones.
+TEST(GainIndex, ListsWithCountsBeyondSixteenBitsAreHeldWide) {
+  Fixture f;
+  const std::vector<CellUpdate> wide{
+      {{-1, 0}, {0, 70000}}, {{0, 0}, {3, 65536}}, {{40, 0}, {1, 0}}};
+  const std::vector<CellUpdate> narrow{{{-1, 0}, {0, 1}}, {{0, 0}, {65535, 2}}, {{40, 0}, {0, 5}}};
+  f.Change(wide, true);
+  f.index.Track(0, wide, f.map.QuantizedGain(wide));
+  f.Change(narrow, true);
+  f.index.Track(1, narrow, GainOfAdded(narrow, f.after));
+  EXPECT_EQ(f.index.Gain(0), f.map.QuantizedGain(wide));
+  EXPECT_EQ(f.index.Gain(1), f.map.QuantizedGain(narrow));
+  std::vector<CellUpdate> cells;
+  for (const auto& [id, list] : {std::pair{0, wide}, std::pair{1, narrow}}) {
+    f.index.Cells(id, &cells);
+    ASSERT_EQ(cells.size(), list.size());
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      EXPECT_EQ(cells[k].cell, list[k].cell);
+      EXPECT_EQ(cells[k].delta.hits, list[k].delta.hits);
+      EXPECT_EQ(cells[k].delta.misses, list[k].delta.misses);
+    }
+  }
+  f.index.Untrack(1);
+  f.Change(narrow, false);
+  EXPECT_EQ(f.index.Gain(0), f.map.QuantizedGain(wide));
+}
+
 // The gain of a scan just added, from the states its cells were left in, is the gain
 // computed from the map.
 TEST(GainIndex, TheGainOfAnAddedScanComesFromTheStatesItLeft) {

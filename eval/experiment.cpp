@@ -192,9 +192,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   plot_config.mode_order = summary.mode_order;
-  const PlotResult plots = PlotTimelines(timelines, config.out_dir, plot_config);
-  if (!kld.empty()) PlotKld(kld, config.out_dir, plot_config);
-  if (!loop_curves.empty()) PlotLoopCurves(loop_curves, config.out_dir, plot_config);
+  const PlotResult plots = PlotRun(timelines, kld, loop_curves, config.out_dir, plot_config);
   if (!plots.ok) Progress(config, "warning: no figures: " + plots.error + "\n");
   ThrowIfInterrupted();
   summary.wall_time_s = Seconds(start);

@@ -64,7 +64,8 @@ struct Panel {
 struct Figure {
   std::string name;  ///< file stem
   std::string xlabel;
-  std::vector<Panel> panels;  ///< stacked top to bottom, sharing the x axis
+  std::vector<Panel> panels;                 ///< stacked top to bottom, sharing the x axis
+  std::map<std::string, std::string> files;  ///< mode -> its data file
 };
 
 /// Writes a plot_data file atomically; a failure becomes the result's error (figures are
@@ -93,56 +94,69 @@ std::vector<std::pair<std::string, std::string>> InLegendOrder(
   return out;
 }
 
-/// Writes the script, runs gnuplot, renames the PNG into place.
-bool Render(const Figure& f, const std::map<std::string, std::string>& data_files,
-            const std::string& out_dir, const std::string& terminal, const PlotConfig& c,
-            PlotResult* result) {
-  const fs::path png = fs::path(out_dir) / (f.name + ".png");
-  const std::string tmp = io::TempPathFor(png.string());
-  const fs::path script = fs::path(out_dir) / "plot_data" / (f.name + ".gp");
-  {
-    std::ostringstream gp;
-    const int height = f.panels.size() > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
-    gp << "set terminal " << terminal << " noenhanced size " << c.width_px << "," << height
-       << "\nset output " << GpQuote(fs::path(tmp).filename().string()) << "\n"
-       << "set xlabel " << GpQuote(f.xlabel) << "\nset grid\nset key top left\n";
-    if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
-    for (const Panel& panel : f.panels) {
-      gp << "set ylabel " << GpQuote(panel.ylabel) << "\n"
-         << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
-      int i = 0;
-      for (const auto& [mode, file] : InLegendOrder(data_files, c.mode_order)) {
-        gp << (i++ ? ", \\\n     " : "")
-           << panel.clauses(GpQuote(ModeColourHex(mode)),
-                            GpQuote(fs::path(file).lexically_relative(out_dir).string()),
-                            GpQuote(mode));
-      }
-      gp << "\n";
+/// Writes the figure's script (plot_data/<name>.gp; drawing <name>.tmp.png from out_dir).
+bool WriteScript(const Figure& f, const std::string& out_dir, const std::string& terminal,
+                 const PlotConfig& c, PlotResult* result) {
+  const std::string tmp = io::TempPathFor((fs::path(out_dir) / (f.name + ".png")).string());
+  std::ostringstream gp;
+  const int height = f.panels.size() > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
+  // `reset` and `unset output`: each script stands alone, run by itself or after others.
+  gp << "reset\nset terminal " << terminal << " noenhanced size " << c.width_px << "," << height
+     << "\nset output " << GpQuote(fs::path(tmp).filename().string()) << "\n"
+     << "set xlabel " << GpQuote(f.xlabel) << "\nset grid\nset key top left\n";
+  if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
+  for (const Panel& panel : f.panels) {
+    gp << "set ylabel " << GpQuote(panel.ylabel) << "\n"
+       << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
+    int i = 0;
+    for (const auto& [mode, file] : InLegendOrder(f.files, c.mode_order)) {
+      gp << (i++ ? ", \\\n     " : "")
+         << panel.clauses(GpQuote(ModeColourHex(mode)),
+                          GpQuote(fs::path(file).lexically_relative(out_dir).string()),
+                          GpQuote(mode));
     }
-    if (f.panels.size() > 1) gp << "unset multiplot\n";
-    if (!WritePlotFile(script, gp.str(), result)) return false;
+    gp << "\n";
   }
-  const fs::path log = fs::path(out_dir) / "plot_data" / (f.name + ".log");
-  // Paths in the script are relative to out_dir, so that plot_data/ can re-make a figure
+  if (f.panels.size() > 1) gp << "unset multiplot\n";
+  gp << "unset output\n";
+  return WritePlotFile(fs::path(out_dir) / "plot_data" / (f.name + ".gp"), gp.str(), result);
+}
+
+/// Writes the figures' scripts, runs them all in one gnuplot process (a process per
+/// figure cost about 50 ms each), and renames each PNG drawn into place.
+bool RenderAll(const std::vector<Figure>& figures, const std::string& out_dir,
+               const std::string& terminal, const PlotConfig& c, PlotResult* result) {
+  if (figures.empty()) return true;
+  // Paths in the scripts are relative to out_dir, so that plot_data/ can re-make a figure
   // wherever the directory is moved (a run is written in a staging directory and renamed).
-  const std::string cmd = "cd " + ShellQuote(out_dir) + " && " + ShellQuote(c.gnuplot) + " " +
-                          ShellQuote("plot_data/" + f.name + ".gp") + " 2> " +
-                          ShellQuote("plot_data/" + f.name + ".log");
+  std::string cmd = "cd " + ShellQuote(out_dir) + " && " + ShellQuote(c.gnuplot);
+  for (const Figure& f : figures) {
+    if (!WriteScript(f, out_dir, terminal, c, result)) return false;
+    cmd += " " + ShellQuote("plot_data/" + f.name + ".gp");
+  }
+  cmd += " 2> " + ShellQuote("plot_data/gnuplot.log");
   const int status = std::system(cmd.c_str());
   std::error_code ec;
-  if (status != 0 || !fs::exists(tmp)) {
-    result->error = "gnuplot failed on " + script.string() + " (see " + log.string() + ")";
-    fs::remove(tmp, ec);
+  if (status != 0) {  // gnuplot stops at the first script that fails: no figure is trusted
+    for (const Figure& f : figures)
+      fs::remove(io::TempPathFor((fs::path(out_dir) / (f.name + ".png")).string()), ec);
+    result->error = "gnuplot failed (see " +
+                    (fs::path(out_dir) / "plot_data" / "gnuplot.log").string() +
+                    "): no figures written";
     return false;
   }
-  try {
-    io::CommitTempFile(tmp, png.string());
-  } catch (const std::exception& e) {
-    result->error = e.what();
-    return false;
+  bool ok = true;
+  for (const Figure& f : figures) {
+    const fs::path png = fs::path(out_dir) / (f.name + ".png");
+    try {
+      io::CommitTempFile(io::TempPathFor(png.string()), png.string());
+      result->files.push_back(png.string());
+    } catch (const std::exception& e) {
+      result->error = e.what();
+      ok = false;
+    }
   }
-  result->files.push_back(png.string());
-  return true;
+  return ok;
 }
 
 /// Checks gnuplot and prepares <out_dir>/plot_data; sets the error and returns "" if not.
@@ -168,9 +182,115 @@ std::string Lines(const std::string& colour, const std::string& file, const std:
 Figure LinesFigure(const std::string& name, const std::string& ylabel, int col, bool log_y) {
   return {name,
           "observation",
-          {{ylabel, log_y, [col](const std::string& c, const std::string& f, const std::string& t) {
+          {{ylabel, log_y,
+            [col](const std::string& c, const std::string& f, const std::string& t) {
               return Lines(c, f, t, col);
-            }}}};
+            }}},
+          {}};
+}
+
+// The timeline figures (data files written into plot_data/); false with the error set
+// when a data file cannot be written.
+bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
+                     const PlotConfig& config, std::vector<Figure>* figures, PlotResult* r) {
+  std::map<std::string, std::string> files;  // mode -> data file
+  for (const auto& [mode, rows] : timelines) {
+    std::vector<double> ms;
+    for (const TimelineRow& row : rows) ms.push_back(row.time_ms);
+    const std::vector<double> ma = MovingAverage(ms, config.moving_average);
+    const fs::path p = fs::path(out_dir) / "plot_data" / ("timeline_" + SafeName(mode) + ".dat");
+    std::ostringstream out;
+    out << "# obs time_ms time_ms_moving_average nodes edges gamma cumulative_s rss_mib "
+           "graph_mib\n";
+    double cumulative_ms = 0.0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      cumulative_ms += rows[i].time_ms;
+      out << rows[i].obs << ' ' << rows[i].time_ms << ' ' << ma[i] << ' ' << rows[i].nodes << ' '
+          << rows[i].edges << ' ' << rows[i].gamma << ' ' << cumulative_ms / 1000.0 << ' '
+          << rows[i].rss_mb << ' ' << static_cast<double>(rows[i].graph_bytes) / kMiB << '\n';
+    }
+    if (!WritePlotFile(p, out.str(), r)) return false;
+    files[mode] = p.string();
+  }
+  bool any_graph_bytes = false;  // a log axis needs a positive value
+  for (const auto& [mode, rows] : timelines)
+    for (const TimelineRow& row : rows) any_graph_bytes = any_graph_bytes || row.graph_bytes > 0;
+  const std::string ma_label = std::to_string(config.moving_average);
+  const Clauses dots_and_average = [](const std::string& c, const std::string& f,
+                                      const std::string& t) {
+    return f + " using 1:2 with dots lc rgb " + c + " notitle, " + Lines(c, f, t, 3);
+  };
+  std::vector<Figure> made = {
+      {"time_per_obs",
+       "observation",
+       {{"time per observation [ms] (lines: moving average of " + ma_label + ")", config.log_time,
+         dots_and_average}},
+       {}},
+      LinesFigure("nodes", "nodes", 4, false),
+      LinesFigure("edges", "edges", 5, false),
+      LinesFigure("gamma", "gamma index e / (v (v-1) / 2)", 6, true),
+      LinesFigure("cumulative_time", "cumulative mapper time [s]", 7, false),
+      {"memory",
+       "observation",
+       {LinesFigure("", "resident memory of the process [MiB]", 8, false).panels[0],
+        LinesFigure("", "memory held by the graph [MiB]", 9, any_graph_bytes).panels[0]},
+       {}},
+  };
+  for (Figure& f : made) {
+    f.files = files;
+    figures->push_back(std::move(f));
+  }
+  return true;
+}
+
+bool KldFigure(const std::map<std::string, std::vector<double>>& kl_per_mode,
+               const std::string& out_dir, std::vector<Figure>* figures, PlotResult* r) {
+  Figure f{"kld",
+           "marginalization",
+           {{"KL divergence of the approximate clique [nats]", false,
+             [](const std::string& c, const std::string& file, const std::string& t) {
+               return file + " using 1:2 with points pt 7 ps 0.5 lc rgb " + c + " title " + t;
+             }}},
+           {}};
+  for (const auto& [mode, kl] : kl_per_mode) {
+    const fs::path p = fs::path(out_dir) / "plot_data" / ("kld_" + SafeName(mode) + ".dat");
+    std::ostringstream out;
+    out << "# marginalization kl_divergence\n";
+    for (std::size_t i = 0; i < kl.size(); ++i) out << i << ' ' << kl[i] << '\n';
+    if (!WritePlotFile(p, out.str(), r)) return false;
+    f.files[mode] = p.string();
+  }
+  figures->push_back(std::move(f));
+  return true;
+}
+
+bool LoopFigure(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
+                const std::string& out_dir, std::vector<Figure>* figures, PlotResult* r) {
+  const auto column = [](int col) {
+    return [col](const std::string& c, const std::string& file, const std::string& t) {
+      return file + " using 1:" + std::to_string(col) + " with lines lw 2 lc rgb " + c + " title " +
+             t;
+    };
+  };
+  Figure f{"loop_closing",
+           "robot time [s]",
+           {{"loop-closure precision, cumulative", false, column(2)},
+            {"loop-closure recall, cumulative", false, column(3)}},
+           {}};
+  for (const auto& [mode, curve] : curves) {
+    const fs::path p = fs::path(out_dir) / "plot_data" / ("loops_" + SafeName(mode) + ".dat");
+    std::ostringstream out;
+    out << "# t_s precision recall accepted revisits (NaN: not yet defined)\n";
+    for (const LoopCurvePoint& q : curve) {
+      out << q.t_s << ' ' << (q.accepted > 0 ? std::to_string(q.precision) : "NaN") << ' '
+          << (q.revisits > 0 ? std::to_string(q.recall) : "NaN") << ' ' << q.accepted << ' '
+          << q.revisits << '\n';
+    }
+    if (!WritePlotFile(p, out.str(), r)) return false;
+    f.files[mode] = p.string();
+  }
+  figures->push_back(std::move(f));
+  return true;
 }
 
 }  // namespace
@@ -189,123 +309,43 @@ bool GnuplotAvailable(const std::string& gnuplot, std::string* terminal) {
   return true;
 }
 
-PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
-                         const PlotConfig& config) {
+PlotResult PlotRun(const ModeTimelines& timelines,
+                   const std::map<std::string, std::vector<double>>& kl_per_mode,
+                   const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
+                   const std::string& out_dir, const PlotConfig& config) {
   PlotResult r;
-  if (timelines.empty()) {
-    r.error = "no timelines to plot";
+  if (timelines.empty() && kl_per_mode.empty() && curves.empty()) {
+    r.error = "nothing to plot";
     return r;
   }
   const std::string terminal = Prepare(out_dir, config, &r);
   if (terminal.empty()) return r;
-  std::map<std::string, std::string> files;  // mode -> data file
-  for (const auto& [mode, rows] : timelines) {
-    std::vector<double> ms;
-    for (const TimelineRow& row : rows) ms.push_back(row.time_ms);
-    const std::vector<double> ma = MovingAverage(ms, config.moving_average);
-    const fs::path p = fs::path(out_dir) / "plot_data" / ("timeline_" + SafeName(mode) + ".dat");
-    std::ostringstream out;
-    out << "# obs time_ms time_ms_moving_average nodes edges gamma cumulative_s rss_mib "
-           "graph_mib\n";
-    double cumulative_ms = 0.0;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      cumulative_ms += rows[i].time_ms;
-      out << rows[i].obs << ' ' << rows[i].time_ms << ' ' << ma[i] << ' ' << rows[i].nodes << ' '
-          << rows[i].edges << ' ' << rows[i].gamma << ' ' << cumulative_ms / 1000.0 << ' '
-          << rows[i].rss_mb << ' ' << static_cast<double>(rows[i].graph_bytes) / kMiB << '\n';
-    }
-    if (!WritePlotFile(p, out.str(), &r)) return r;
-    files[mode] = p.string();
+  std::vector<Figure> figures;
+  if ((!timelines.empty() && !TimelineFigures(timelines, out_dir, config, &figures, &r)) ||
+      (!kl_per_mode.empty() && !KldFigure(kl_per_mode, out_dir, &figures, &r)) ||
+      (!curves.empty() && !LoopFigure(curves, out_dir, &figures, &r))) {
+    return r;
   }
-  bool any_graph_bytes = false;  // a log axis needs a positive value
-  for (const auto& [mode, rows] : timelines)
-    for (const TimelineRow& row : rows) any_graph_bytes = any_graph_bytes || row.graph_bytes > 0;
-  const std::string ma_label = std::to_string(config.moving_average);
-  const Clauses dots_and_average = [](const std::string& c, const std::string& f,
-                                      const std::string& t) {
-    return f + " using 1:2 with dots lc rgb " + c + " notitle, " + Lines(c, f, t, 3);
-  };
-  const std::vector<Figure> figures = {
-      {"time_per_obs",
-       "observation",
-       {{"time per observation [ms] (lines: moving average of " + ma_label + ")", config.log_time,
-         dots_and_average}}},
-      LinesFigure("nodes", "nodes", 4, false),
-      LinesFigure("edges", "edges", 5, false),
-      LinesFigure("gamma", "gamma index e / (v (v-1) / 2)", 6, true),
-      LinesFigure("cumulative_time", "cumulative mapper time [s]", 7, false),
-      {"memory",
-       "observation",
-       {LinesFigure("", "resident memory of the process [MiB]", 8, false).panels[0],
-        LinesFigure("", "memory held by the graph [MiB]", 9, any_graph_bytes).panels[0]}},
-  };
-  r.ok = true;
-  for (const Figure& f : figures) r.ok = Render(f, files, out_dir, terminal, config, &r) && r.ok;
+  r.ok = RenderAll(figures, out_dir, terminal, config, &r);
   return r;
+}
+
+PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
+                         const PlotConfig& config) {
+  if (timelines.empty()) return {false, "no timelines to plot", {}};
+  return PlotRun(timelines, {}, {}, out_dir, config);
 }
 
 PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode,
                    const std::string& out_dir, const PlotConfig& config) {
-  PlotResult r;
-  if (kl_per_mode.empty()) {
-    r.error = "no KL divergences to plot";
-    return r;
-  }
-  const std::string terminal = Prepare(out_dir, config, &r);
-  if (terminal.empty()) return r;
-  std::map<std::string, std::string> files;
-  for (const auto& [mode, kl] : kl_per_mode) {
-    const fs::path p = fs::path(out_dir) / "plot_data" / ("kld_" + SafeName(mode) + ".dat");
-    std::ostringstream out;
-    out << "# marginalization kl_divergence\n";
-    for (std::size_t i = 0; i < kl.size(); ++i) out << i << ' ' << kl[i] << '\n';
-    if (!WritePlotFile(p, out.str(), &r)) return r;
-    files[mode] = p.string();
-  }
-  const Figure f{"kld",
-                 "marginalization",
-                 {{"KL divergence of the approximate clique [nats]", false,
-                   [](const std::string& c, const std::string& file, const std::string& t) {
-                     return file + " using 1:2 with points pt 7 ps 0.5 lc rgb " + c + " title " + t;
-                   }}}};
-  r.ok = Render(f, files, out_dir, terminal, config, &r);
-  return r;
+  if (kl_per_mode.empty()) return {false, "no KL divergences to plot", {}};
+  return PlotRun({}, kl_per_mode, {}, out_dir, config);
 }
 
 PlotResult PlotLoopCurves(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
                           const std::string& out_dir, const PlotConfig& config) {
-  PlotResult r;
-  if (curves.empty()) {
-    r.error = "no loop-closure curves to plot";
-    return r;
-  }
-  const std::string terminal = Prepare(out_dir, config, &r);
-  if (terminal.empty()) return r;
-  std::map<std::string, std::string> files;
-  for (const auto& [mode, curve] : curves) {
-    const fs::path p = fs::path(out_dir) / "plot_data" / ("loops_" + SafeName(mode) + ".dat");
-    std::ostringstream out;
-    out << "# t_s precision recall accepted revisits (NaN: not yet defined)\n";
-    for (const LoopCurvePoint& q : curve) {
-      out << q.t_s << ' ' << (q.accepted > 0 ? std::to_string(q.precision) : "NaN") << ' '
-          << (q.revisits > 0 ? std::to_string(q.recall) : "NaN") << ' ' << q.accepted << ' '
-          << q.revisits << '\n';
-    }
-    if (!WritePlotFile(p, out.str(), &r)) return r;
-    files[mode] = p.string();
-  }
-  const auto column = [](int col) {
-    return [col](const std::string& c, const std::string& file, const std::string& t) {
-      return file + " using 1:" + std::to_string(col) + " with lines lw 2 lc rgb " + c + " title " +
-             t;
-    };
-  };
-  const Figure f{"loop_closing",
-                 "robot time [s]",
-                 {{"loop-closure precision, cumulative", false, column(2)},
-                  {"loop-closure recall, cumulative", false, column(3)}}};
-  r.ok = Render(f, files, out_dir, terminal, config, &r);
-  return r;
+  if (curves.empty()) return {false, "no loop-closure curves to plot", {}};
+  return PlotRun({}, {}, curves, out_dir, config);
 }
 
 }  // namespace lifelong::eval

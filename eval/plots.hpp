@@ -51,6 +51,15 @@ PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode
 PlotResult PlotLoopCurves(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
                           const std::string& out_dir, const PlotConfig& config = {});
 
+/// Every figure of a run in one gnuplot process (a process per figure cost about 50 ms):
+/// PlotTimelines' figures, kld.png and loop_closing.png, each when its data is not empty.
+/// The scripts stay in plot_data/ and each re-makes its figure alone; gnuplot's messages go
+/// to plot_data/gnuplot.log. When gnuplot fails no figure is written.
+PlotResult PlotRun(const ModeTimelines& timelines,
+                   const std::map<std::string, std::vector<double>>& kl_per_mode,
+                   const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
+                   const std::string& out_dir, const PlotConfig& config = {});
+
 /// True when `gnuplot` runs; fills *terminal with "pngcairo" or "png" when given.
 bool GnuplotAvailable(const std::string& gnuplot, std::string* terminal = nullptr);
 

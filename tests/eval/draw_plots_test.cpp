@@ -165,6 +165,50 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
   EXPECT_FALSE(cv::imread((dir / "kld.png").string()).empty());
 }
 
+// A run's figures come from one gnuplot process, each script still standing alone; when
+// gnuplot fails (here a stand-in that exits 1) no figure is written, not even a partial one.
+TEST(PlotsTest, ARunsFiguresInOneProcessAllOrNothing) {
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path dir = fs::temp_directory_path() / "lifelong_eval_plot_run";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const ModeTimelines timelines{{"standard", Timeline(50, 10)}, {"pruned", Timeline(50, 3)}};
+  const std::map<std::string, std::vector<double>> kl{{"pruned", {0.1, 0.3}}};
+  const std::map<std::string, std::vector<LoopCurvePoint>> curves{
+      {"pruned", {{10.0, 1.0, 0.5, 1, 2}, {20.0, 1.0, 0.6, 2, 3}}}};
+  const PlotResult r = PlotRun(timelines, kl, curves, dir.string());
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.files.size(), 8u);
+  for (const char* name : {"gamma.png", "kld.png", "loop_closing.png", "memory.png"})
+    EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
+  // The loop figure's script after the memory one's: no multiplot or log axis carried over.
+  fs::remove(dir / "loop_closing.png");
+  const std::string alone = "cd '" + dir.string() +
+                            "' && gnuplot plot_data/memory.gp plot_data/loop_closing.gp "
+                            "2>/dev/null && mv loop_closing.tmp.png loop_closing.png";
+  EXPECT_EQ(std::system(alone.c_str()), 0);
+  EXPECT_FALSE(cv::imread((dir / "loop_closing.png").string()).empty());
+
+  const fs::path failing = dir / "failing-gnuplot";
+  {
+    std::ofstream script(failing);
+    // Draws one figure, then fails.
+    script << "#!/bin/sh\ncase \"$1\" in -e) echo 'png pngcairo';; "
+              "*) echo x > time_per_obs.tmp.png; exit 1;; esac\n";
+  }
+  fs::permissions(failing, fs::perms::owner_all);
+  const fs::path other = dir / "other";
+  fs::create_directories(other);
+  PlotConfig config;
+  config.gnuplot = failing.string();
+  const PlotResult failed = PlotRun(timelines, kl, {}, other.string(), config);
+  EXPECT_FALSE(failed.ok);
+  EXPECT_NE(failed.error.find("gnuplot.log"), std::string::npos) << failed.error;
+  EXPECT_TRUE(failed.files.empty());
+  for (const auto& entry : fs::directory_iterator(other))
+    EXPECT_NE(entry.path().extension(), ".png") << entry.path();
+}
+
 /// Pixels of the image within 30 per channel of the colour.
 int CountColour(const cv::Mat& img, const render::Rgb& c) {
   int n = 0;

@@ -145,7 +145,8 @@ void GridMap::RemoveScan(const LaserScan& scan, const Pose2& T_world_robot) {
 }
 
 void GridMap::MoveScan(const LaserScan& scan, const Pose2& T_world_old, const Pose2& T_world_new) {
-  Move(TouchedCells(scan, T_world_old), TouchedCells(scan, T_world_new));
+  RemoveScan(scan, T_world_old);
+  AddScan(scan, T_world_new);
 }
 
 CellCounts GridMap::Counts(CellIndex c) const {

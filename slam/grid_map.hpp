@@ -126,7 +126,10 @@ class GridMap {
   /// (y, x), each cell once (TouchedCells); std::invalid_argument otherwise. With `after`,
   /// the state each cell of `to` is left in, in its order; with `changed`, the cells whose
   /// state changed, ordered by (y, x). Throws std::logic_error, leaving the map's counts
-  /// unchanged, when a count would go negative (`from` was never added).
+  /// unchanged, when a count would go negative (`from` was never added). It pays where the
+  /// changed cells are wanted (the gain index: one update of the other scans' gains instead
+  /// of two); a bare move is faster as Remove then Add (MoveScan): on Intel standard's map
+  /// update took 275-285 ms through Move against 205-215 ms.
   void Move(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to,
             std::vector<CellState>* after = nullptr, std::vector<CellChange>* changed = nullptr);
 
@@ -171,6 +174,7 @@ class GridMap {
   Cell* FindOrCreate(CellIndex c, Cursor* cursor);
 
   GridMapConfig config_;
+  std::vector<CellChange> move_scratch_;  ///< Move's undo log when the caller wants none
   std::unordered_map<std::uint64_t, std::unique_ptr<Chunk>> chunks_;
 };
 

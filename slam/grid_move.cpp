@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "slam/cell_chunk.hpp"
 #include "slam/grid_map.hpp"
 
 namespace lifelong::slam {
@@ -21,11 +22,26 @@ void CheckOrdered(const std::vector<CellUpdate>& list, std::size_t i) {
 
 void GridMap::Move(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to,
                    std::vector<CellState>* after, std::vector<CellChange>* changed) {
-  std::vector<CellChange> own;
-  std::vector<CellChange>& changes = changed ? *changed : own;
+  // The changes are also the undo log: kept in the map's scratch when nobody asked.
+  std::vector<CellChange>& changes = changed ? *changed : move_scratch_;
   changes.clear();
   if (after) after->resize(to.size());
   Cursor cursor;
+  // The cells come in row order: those in one row of one chunk are contiguous, so a run of
+  // them looks its chunk up once (as ForEachInRuns does for Add and Remove).
+  int run_y = 0, run_x0 = 0;
+  Cell* run = nullptr;
+  bool have_run = false;
+  const auto cell_at = [&](CellIndex c, bool create) {
+    const int x0 = chunk::Of(c.x) * chunk::kSide;
+    if (!have_run || c.y != run_y || x0 != run_x0 || (create && run == nullptr)) {
+      run = create ? FindOrCreate({x0, c.y}, &cursor) : Find({x0, c.y}, &cursor);
+      run_y = c.y;
+      run_x0 = x0;
+      have_run = true;
+    }
+    return run ? run + (c.x - x0) : nullptr;
+  };
   std::size_t i = 0, j = 0;
   try {
     while (i < from.size() || j < to.size()) {
@@ -38,7 +54,7 @@ void GridMap::Move(const std::vector<CellUpdate>& from, const std::vector<CellUp
       const CellIndex c = in_from ? from[i].cell : to[j].cell;
       const CellCounts out = in_from ? from[i].delta : CellCounts{};
       const CellCounts in = in_to ? to[j].delta : CellCounts{};
-      Cell* cell = in_to ? FindOrCreate(c, &cursor) : Find(c, &cursor);
+      Cell* cell = cell_at(c, in_to);
       const std::uint32_t leaving = Touches(out) ? 1 : 0;
       if (in_from && (cell == nullptr || cell->counts.hits < out.hits ||
                       cell->counts.misses < out.misses || cell->lists < leaving)) {

@@ -106,9 +106,9 @@ class GainIndex {
   /// Whether a change of these cells (ordered by row) lies in a chunk of a tracked scan.
   template <typename List>
   bool Reaches(const List& cells) const;
-  /// Keeps a changed cell for ApplyRelevant unless no gain can change in it.
-  void Consider(CellIndex cell, const CellState& before, const CellState& after);
-  /// Updates the tracked gains for the cells Consider kept.
+  /// Keeps a changed cell, one where a gain can change, for ApplyRelevant.
+  void Keep(CellIndex cell, const CellState& before, const CellState& after);
+  /// Updates the tracked gains for the cells kept.
   void ApplyRelevant();
 
   ChunkedCells scratch_;  ///< Track's and Apply's grouping of a list
@@ -119,7 +119,7 @@ class GainIndex {
     std::int64_t q_before, q_after;
   };
   std::vector<Changed> changed_;
-  std::vector<CellUpdate> relevant_;      ///< Consider: the cells of a change that matter...
+  std::vector<CellUpdate> relevant_;      ///< Keep: the cells of a change that matter...
   std::vector<Changed> relevant_states_;  ///< ...and their states
 };
 

@@ -336,16 +336,4 @@ PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_
   return PlotRun(timelines, {}, {}, out_dir, config);
 }
 
-PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode,
-                   const std::string& out_dir, const PlotConfig& config) {
-  if (kl_per_mode.empty()) return {false, "no KL divergences to plot", {}};
-  return PlotRun({}, kl_per_mode, {}, out_dir, config);
-}
-
-PlotResult PlotLoopCurves(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
-                          const std::string& out_dir, const PlotConfig& config) {
-  if (curves.empty()) return {false, "no loop-closure curves to plot", {}};
-  return PlotRun({}, {}, curves, out_dir, config);
-}
-
 }  // namespace lifelong::eval

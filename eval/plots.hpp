@@ -42,17 +42,11 @@ using ModeTimelines = std::map<std::string, std::vector<TimelineRow>>;
 PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
                          const PlotConfig& config = {});
 
-/// Writes kld.png: the KL divergence of each marginalization, per mode, in order.
-PlotResult PlotKld(const std::map<std::string, std::vector<double>>& kl_per_mode,
-                   const std::string& out_dir, const PlotConfig& config = {});
-
-/// Writes loop_closing.png: cumulative loop-closure precision (top) and recall (bottom)
-/// of each mode over robot time; points before the first closure (revisit) are left out.
-PlotResult PlotLoopCurves(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
-                          const std::string& out_dir, const PlotConfig& config = {});
-
 /// Every figure of a run in one gnuplot process (a process per figure cost about 50 ms):
-/// PlotTimelines' figures, kld.png and loop_closing.png, each when its data is not empty.
+/// PlotTimelines' figures; kld.png, the KL divergence of each marginalization per mode in
+/// order; and loop_closing.png, cumulative loop-closure precision (top) and recall (bottom)
+/// of each mode over robot time, points before the first closure (revisit) left out. Each
+/// figure when its data is not empty.
 /// The scripts stay in plot_data/ and each re-makes its figure alone; gnuplot's messages go
 /// to plot_data/gnuplot.log. When gnuplot fails no figure is written.
 PlotResult PlotRun(const ModeTimelines& timelines,

@@ -50,8 +50,7 @@ void ChunkedCells::Assign(const std::vector<CellUpdate>& cells) {
   int x0 = cells.front().cell.x, x1 = x0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const CellIndex c = cells[i].cell;
-    if (i > 0 &&
-        !(c.y > cells[i - 1].cell.y || (c.y == cells[i - 1].cell.y && c.x > cells[i - 1].cell.x))) {
+    if (i > 0 && !RowOrder(cells[i - 1].cell, c)) {
       throw std::invalid_argument("ChunkedCells: cells must be ordered by (y, x), each once");
     }
     x0 = std::min(x0, c.x);

@@ -38,6 +38,9 @@ struct CellUpdate {
   CellCounts delta;
 };
 
+/// The order of TouchedCells' lists: by row (y), then column (x).
+inline bool RowOrder(CellIndex a, CellIndex b) { return a.y < b.y || (a.y == b.y && a.x < b.x); }
+
 /// Whether an increment touches its cell: nonzero (what CellState::lists counts).
 inline bool Touches(CellCounts delta) { return delta.hits != 0 || delta.misses != 0; }
 

@@ -9,7 +9,6 @@
 namespace lifelong::slam {
 namespace {
 
-bool RowOrder(CellIndex a, CellIndex b) { return a.y < b.y || (a.y == b.y && a.x < b.x); }
 bool Same(CellCounts a, CellCounts b) { return a.hits == b.hits && a.misses == b.misses; }
 
 void CheckOrdered(const std::vector<CellUpdate>& list, std::size_t i) {

@@ -145,15 +145,14 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     graph.AddEdge(edge);
   }
   data.T_world_map = values.at(id);
-  std::vector<CellUpdate> cells;
   if (config.pruning.mode == PruningMode::kNone) {
     map.AddScan(data.scan, data.T_world_map);
   } else {
-    cells = map.TouchedCells(data.scan, data.T_world_map);
+    const std::vector<CellUpdate> cells = map.TouchedCells(data.scan, data.T_world_map);
     ChangeMap(cells, true);
+    TrackAdded(id, cells);
   }
   nodes.emplace(id, std::move(data));
-  if (prune_state.active()) TrackAdded(id, cells);
   recent.push_back(id);
 
   // Pending scans go to whichever of the previous and the new node is nearer by odometry.
@@ -257,9 +256,7 @@ void Mapper::State::SyncMap() {
         map.MoveScan(data.scan, data.T_world_map, X);
       } else {
         // The cells at the old pose come from the gain index, which holds them anyway.
-        std::vector<CellUpdate>& from = prune_state.cells;
-        prune_state.tracked.Cells(id, &from);
-        prune_state.tracked.Untrack(id);
+        const std::vector<CellUpdate>& from = Untrack(id);
         const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X);
         MoveInMap(from, to);
         TrackAdded(id, to);

@@ -141,8 +141,10 @@ struct Mapper::State {
   void SyncMap();
   /// Information gain of node `id`'s scan (pruned modes), exact for the map as it is.
   double Gain(NodeId id) const;
-  /// Adds an increment list to the map (or removes it); in the pruned modes the gains
-  /// follow.
+  /// Stops tracking node `id`'s gain (before its cells move or leave the map) and gives its
+  /// cells at its map pose, from the index (valid until the next call).
+  const std::vector<CellUpdate>& Untrack(NodeId id);
+  /// Adds an increment list to the map (or removes it) in a pruned mode; the gains follow.
   void ChangeMap(const std::vector<CellUpdate>& cells, bool add);
   /// Replaces an increment list in the map by another (GridMap::Move: a moved scan's cells
   /// at its old and new pose); the gains of the other scans follow. The moved scan must not

@@ -207,9 +207,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
     Reanchor(scan, keeper);
   }
   scans_of_node.erase(id);
-  prune_state.tracked.Cells(id, &prune_state.cells);
-  prune_state.tracked.Untrack(id);
-  ChangeMap(prune_state.cells, false);
+  ChangeMap(Untrack(id), false);
   ApplyReplacement(&graph, id, replacement);
   prune_state.marginalizations.push_back(
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});

@@ -10,11 +10,13 @@ double Mapper::State::Gain(NodeId id) const {
   return static_cast<double>(prune_state.tracked.Gain(id)) * kEntropyQuantumBits;
 }
 
+const std::vector<CellUpdate>& Mapper::State::Untrack(NodeId id) {
+  prune_state.tracked.Cells(id, &prune_state.cells);
+  prune_state.tracked.Untrack(id);
+  return prune_state.cells;
+}
+
 void Mapper::State::ChangeMap(const std::vector<CellUpdate>& cells, bool add) {
-  if (!prune_state.active()) {
-    add ? map.Add(cells) : map.Remove(cells);
-    return;
-  }
   std::vector<CellState>& after = prune_state.counts_after;
   add ? map.Add(cells, &after) : map.Remove(cells, &after);
   const ScopedMs timer = Stage(&StageTimes::gain_ms);

@@ -160,7 +160,7 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
     EXPECT_FALSE(fs::exists(io::TempPathFor((dir / name).string()))) << name;
   }
   EXPECT_GT(cv::imread((dir / "memory.png").string()).rows, 500);  // two panels
-  const PlotResult k = PlotKld({{"chow_liu", {0.1, 0.3, 0.2}}}, dir.string());
+  const PlotResult k = PlotRun({}, {{"chow_liu", {0.1, 0.3, 0.2}}}, {}, dir.string());
   EXPECT_TRUE(k.ok) << k.error;
   EXPECT_FALSE(cv::imread((dir / "kld.png").string()).empty());
 }

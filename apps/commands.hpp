@@ -1,7 +1,8 @@
-// The commands that need the whole testbed (simulator, mapper, evaluation, OpenCV,
-// offscreen OpenGL): run, replay, simulate and sweep. They live in the module
-// liblifelong_commands.so, which `lifelong` loads only when one of them is asked for, so
-// that `lifelong optimize` and `--help` start without OpenCV, EGL or OSMesa.
+// The commands that need the whole testbed (simulator, mapper, evaluation, OpenCV): run,
+// replay, simulate and sweep. They live in the module liblifelong_commands.so, which
+// `lifelong` loads only when one of them is asked for, so that `lifelong optimize` and
+// `--help` start without OpenCV. Offscreen OpenGL is a module of its own, loaded only for a
+// video (apps/video_module.hpp).
 #pragma once
 
 #include <string>

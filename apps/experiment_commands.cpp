@@ -14,6 +14,7 @@
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/sweep_command.hpp"
+#include "apps/video_module.hpp"
 #include "eval/console_table.hpp"
 #include "eval/experiment.hpp"
 #include "eval/interrupt.hpp"
@@ -133,6 +134,7 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   config.video_path = video.video;
   config.frames_dir = video.frames;
   config.video_stride = video.stride;
+  if (!video.video.empty() || !video.frames.empty()) config.open_video = LoadVideoModule();
   if (!video.video.empty()) CheckWritableFile(video.video);
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";

@@ -3,7 +3,6 @@
 // simulate and sweep (apps/commands.hpp), so that --help and optimize start without OpenCV or GL.
 // Exit codes (apps/exit_codes.hpp): 0 success, 2 bad input or usage, 1 internal failure,
 // 130 interrupted.
-#include <dlfcn.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -16,6 +15,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/module_loader.hpp"
 #include "apps/sparsify_command.hpp"
 #include "io/graph_file.hpp"
 #include "lifelong_build_info.hpp"  // generated: LIFELONG_VERSION, LIFELONG_COMMIT
@@ -39,17 +39,10 @@ std::string CommandLine(int argc, char** argv) {
   return s;
 }
 
-// The module sits beside the program (the build tree and an install alike).
 const CommandTable* LoadCommands() {
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  const fs::path module = (ec ? fs::path(".") : self.parent_path()) / kCommandsModule;
-  void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw std::runtime_error(std::string("cannot load ") + dlerror());
   using Entry = const CommandTable* (*)();
-  auto entry = reinterpret_cast<Entry>(dlsym(handle, lifelong::apps::kCommandTableSymbol));
-  if (!entry) throw std::runtime_error(module.string() + ": no command table: " + dlerror());
-  return entry();
+  return reinterpret_cast<Entry>(
+      lifelong::apps::ModuleEntry(kCommandsModule, lifelong::apps::kCommandTableSymbol))();
 }
 
 int OptimizeGraph(const std::string& in, const std::string& out, const std::string& method,

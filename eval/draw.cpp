@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include <png.h>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "eval/map_figure.hpp"
 #include "eval/map_quality.hpp"
 #include "io/atomic_file.hpp"
+#include "sensor/input_error.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -73,17 +76,30 @@ Image RenderMap(const OccupancyGrid& grid, const GraphOverlay& graph,
 }
 
 void WritePng(const std::string& path, const Image& image) {
-  const cv::Mat rgb(image.height, image.width, CV_8UC3,
-                    const_cast<std::uint8_t*>(image.rgb.data()));
-  cv::Mat bgr;
-  if (!rgb.empty()) cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  io::WriteThroughTempFile(path, [&](const std::string& tmp) {  // ".png" kept for imwrite
-    try {
-      return !bgr.empty() && cv::imwrite(tmp, bgr);
-    } catch (const cv::Exception&) {
-      return false;
-    }
-  });
+  // libpng's simplified API (no setjmp): the size first, then the bytes.
+  const auto fail = [&](const std::string& why) {
+    return InputError(path, 0, "", "cannot encode the image as PNG: " + why);
+  };
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgb.size() != static_cast<std::size_t>(image.width) * image.height * 3) {
+    throw fail("no pixels, or not width x height x 3 bytes");
+  }
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width);
+  png.height = static_cast<png_uint_32>(image.height);
+  png.format = PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;
+  const auto stride = static_cast<png_int_32>(image.width) * 3;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.rgb.data(), stride, nullptr)) {
+    throw fail(png.message);
+  }
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(), stride, nullptr)) {
+    throw fail(png.message);
+  }
+  bytes.resize(size);
+  io::WriteFileAtomically(path, bytes);
 }
 
 void WriteMapPng(const std::string& path, const OccupancyGrid& grid, const GraphOverlay& graph,

@@ -9,6 +9,7 @@
 #include <memory>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "eval/draw.hpp"
 #include "eval/interrupt.hpp"
@@ -41,7 +42,7 @@ void Progress(const ExperimentConfig& c, const std::string& line) {
 }
 
 // Renders one frame with every mode side by side.
-void AddVideoFrame(VideoSink* sink, const Observation& obs, const std::optional<GroundTruth>& truth,
+void AddVideoFrame(FrameSink* sink, const Observation& obs, const std::optional<GroundTruth>& truth,
                    const std::vector<std::unique_ptr<ModeRunner>>& runners) {
   std::vector<render::Panel> panels;
   for (const auto& r : runners) {
@@ -126,13 +127,14 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
                           "# Mapper settings of this run (lifelong --config format)\n" +
                               MapperConfigToYaml(config.mapper));
   const std::vector<Relation>& relations = config.relations;
-  std::unique_ptr<VideoSink> sink;
+  std::unique_ptr<FrameSink> sink;
   if (!config.video_path.empty() || !config.frames_dir.empty()) {
+    if (!config.open_video) throw std::logic_error("RunExperiment: frames asked for, no sink");
     VideoOptions options;
     options.video_path = config.video_path;
     options.frames_dir = config.frames_dir;
     options.stride = config.video_stride;
-    sink = std::make_unique<VideoSink>(options);
+    sink = config.open_video(options);
     Progress(config, "rendering with " + sink->backend_name() + "\n");
   }
   std::vector<std::unique_ptr<ModeRunner>> runners;

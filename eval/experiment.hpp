@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eval/report.hpp"
+#include "eval/video.hpp"
 #include "sensor/observation.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
@@ -41,6 +42,9 @@ struct ExperimentConfig {
   std::string video_path;
   std::string frames_dir;
   int video_stride = 20;  ///< render every this many scans
+  /// Makes the sink for video_path / frames_dir: eval::OpenVideoSink, or the one of the
+  /// module liblifelong_video.so that `lifelong` loads. Needed when either is set.
+  FrameSinkOpener open_video;
 };
 
 /// The mapper's counting grid as an OccupancyGrid (p = hits / (hits + misses)).

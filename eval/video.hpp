@@ -1,13 +1,13 @@
-// Videos of runs (issue #7): eval::VideoSink renders a render::Scene every `stride`
-// observations with render::OffscreenRenderer (EGL, else OSMesa; no display needed) and
-// writes the frames as an mp4 (cv::VideoWriter, fourcc 'mp4v') and/or as PNG files
-// DIR/frame_000000.png, ... . Titles and counters are drawn with cv::putText. Every file is
-// written atomically (io/atomic_file.hpp): the mp4 grows under a temporary name and is
-// renamed into place by Close; a sink destroyed by an exception leaves no video.
-// Nothing here runs unless a VideoSink is made: a run without --video pays nothing.
-// The MakePanel / MakeScene helpers build the scene from the mapper's plain data.
+// Videos of runs (issue #7). A run hands a FrameSink one render::Scene every `stride`
+// observations; the sink renders it offscreen and writes the frames as an mp4 and/or as PNG
+// files DIR/frame_000000.png, ... (eval/video_sink.hpp). The sink lives in its own library,
+// with OpenGL and OpenCV's video writer, so that a run without --video loads neither:
+// `lifelong` loads the module liblifelong_video.so only when a video is asked for
+// (apps/video_module.hpp). The MakePanel / MakeScene helpers build the scene from the
+// mapper's plain data.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,32 +32,22 @@ struct VideoOptions {
   render::BackendChoice backend = render::BackendChoice::kAuto;
 };
 
-class VideoSink {
+/// Where a run's frames go.
+class FrameSink {
  public:
-  /// Creates the renderer, the frames directory and the video file. Throws InputError
-  /// for bad options (no output, stride < 1, size or fps out of range), render::RenderError
-  /// when no GL backend works, std::runtime_error naming the path when a file or directory
-  /// cannot be created.
-  explicit VideoSink(const VideoOptions& options);
-  ~VideoSink();
-  VideoSink(const VideoSink&) = delete;
-  VideoSink& operator=(const VideoSink&) = delete;
-
+  virtual ~FrameSink() = default;
   /// True for the observations to render (index % stride == 0).
-  bool Wants(int observation_index) const;
+  virtual bool Wants(int observation_index) const = 0;
   /// Renders and writes one frame. Throws std::runtime_error naming the file on failure.
-  void AddFrame(const render::Scene& scene);
-  /// Finishes the video and renames it into place; later AddFrame calls throw. Called by
-  /// the destructor, unless that runs for an exception (then the video is discarded).
-  void Close();
-
-  int frames() const;
-  std::string backend_name() const;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  virtual void AddFrame(const render::Scene& scene) = 0;
+  /// Finishes the video and renames it into place; later AddFrame calls throw.
+  virtual void Close() = 0;
+  virtual int frames() const = 0;
+  virtual std::string backend_name() const = 0;
 };
+
+/// Makes a sink for the options (eval::OpenVideoSink, or the module's), throwing as it does.
+using FrameSinkOpener = std::function<std::unique_ptr<FrameSink>(const VideoOptions&)>;
 
 /// One mode's panel: the graph at `values` (a clique is drawn as marginal edges from its
 /// root, as eval::MakeGraphOverlay does), its counts, the map and the pose estimate.
@@ -69,10 +59,5 @@ render::Panel MakePanel(const std::string& title, const OccupancyGrid& map,
 /// (from T_world_robot * scan.T_robot_laser); the caption gives the scan's time.
 render::Scene MakeScene(const std::vector<Segment>& walls, const Pose2& T_world_robot,
                         const LaserScan& scan, std::vector<render::Panel> panels);
-
-/// Renders one scene (e.g. a run's final state) and writes it as a PNG; returns the
-/// backend used. Throws as VideoSink does.
-std::string WriteScenePng(const std::string& path, const render::Scene& scene, int width = 1280,
-                          int height = 720);
 
 }  // namespace lifelong::eval

@@ -1,5 +1,5 @@
-// eval::VideoSink writes PNG frames and an mp4; eval::MakeScene places rays by hand-checked
-// geometry. Skips when no GL backend can be created, and the mp4 part when OpenCV has
+// eval::OpenVideoSink's sink writes PNG frames and an mp4; eval::MakeScene places rays by
+// hand-checked geometry. Skips when no GL backend can be created, and the mp4 part when OpenCV has
 // no 'mp4v' writer.
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "eval/video.hpp"
+#include "eval/video_sink.hpp"
 #include "io/atomic_file.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sensor/input_error.hpp"
@@ -62,10 +63,10 @@ TEST(MakeSceneTest, RaysEndAtTheReturnsInTheWorldFrame) {
 
 TEST(VideoSinkTest, RejectsOptionsWithoutOutputOrWithZeroStride) {
   VideoOptions options;
-  EXPECT_THROW(VideoSink{options}, InputError);
+  EXPECT_THROW(OpenVideoSink(options), InputError);
   options.frames_dir = TempDir("bad").string();
   options.stride = 0;
-  EXPECT_THROW(VideoSink{options}, InputError);
+  EXPECT_THROW(OpenVideoSink(options), InputError);
 }
 
 TEST(VideoSinkTest, WritesThreePngFramesAndAnMp4) {
@@ -76,15 +77,15 @@ TEST(VideoSinkTest, WritesThreePngFramesAndAnMp4) {
   options.stride = 5;
   options.width = 320;
   options.height = 180;
-  std::unique_ptr<VideoSink> sink;
+  std::unique_ptr<FrameSink> sink;
   try {
-    sink = std::make_unique<VideoSink>(options);
+    sink = OpenVideoSink(options);
   } catch (const render::RenderError& e) {
     GTEST_SKIP() << "no GL backend here: " << e.what();
   } catch (const std::runtime_error& e) {
     if (std::string(e.what()).find("mp4v") == std::string::npos) throw;
     options.video_path.clear();  // OpenCV without an mp4 writer: frames only
-    sink = std::make_unique<VideoSink>(options);
+    sink = OpenVideoSink(options);
   }
   const render::Scene scene = SmallScene();
   int added = 0;
@@ -119,9 +120,9 @@ TEST(VideoSinkTest, TheVideoAppearsOnCloseAndNotAfterAFailedRun) {
   options.stride = 1;
   options.width = 64;
   options.height = 48;
-  std::unique_ptr<VideoSink> sink;
+  std::unique_ptr<FrameSink> sink;
   try {
-    sink = std::make_unique<VideoSink>(options);
+    sink = OpenVideoSink(options);
   } catch (const render::RenderError& e) {
     GTEST_SKIP() << "no GL backend here: " << e.what();
   } catch (const std::runtime_error& e) {
@@ -140,8 +141,8 @@ TEST(VideoSinkTest, TheVideoAppearsOnCloseAndNotAfterAFailedRun) {
   options.video_path = failed.string();
   EXPECT_THROW(
       {
-        VideoSink doomed(options);
-        doomed.AddFrame(SmallScene());
+        const std::unique_ptr<FrameSink> doomed = OpenVideoSink(options);
+        doomed->AddFrame(SmallScene());
         throw std::runtime_error("the run failed");
       },
       std::runtime_error);
@@ -156,7 +157,7 @@ TEST(VideoSinkTest, UnwritableFramesDirectoryNamesThePath) {
   VideoOptions options;
   options.frames_dir = (dir / "file" / "frames").string();
   try {
-    VideoSink sink(options);
+    OpenVideoSink(options);
     FAIL() << "expected an exception";
   } catch (const render::RenderError& e) {
     GTEST_SKIP() << "no GL backend here: " << e.what();

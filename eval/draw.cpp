@@ -89,6 +89,8 @@ void WritePng(const std::string& path, const Image& image) {
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;
+  // Speed before size: the adaptive filters and full compression took ~8 % of an Intel run.
+  png.flags = PNG_IMAGE_FLAG_FAST;
   png_alloc_size_t size = 0;
   const auto stride = static_cast<png_int_32>(image.width) * 3;
   if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.rgb.data(), stride, nullptr)) {

@@ -152,12 +152,15 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
   return closed;
 }
 
-std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) const {
+std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) {
   const bool surfaces = config.loops.surfaces && config.incremental.surfaces.JoinsAny();
   if (!surfaces) return ToWorld(nodes.at(id).points, values.at(id));
-  SurfaceRule rule = config.incremental.surfaces;
-  if (!config.loops.surface_lines) rule.line_gap_m = 0.0;
-  return ToWorld(SurfacesOf(id, rule), values.at(id));
+  const auto make = [&] {
+    SurfaceRule rule = config.incremental.surfaces;
+    if (!config.loops.surface_lines) rule.line_gap_m = 0.0;
+    return SurfacesOf(id, rule);
+  };
+  return ToWorld(loop_surfaces.Get(id, make), values.at(id));
 }
 
 MatchResult Mapper::State::RefineAgainstNode(NodeId old, const std::vector<Eigen::Vector2d>& points,

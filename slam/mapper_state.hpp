@@ -21,6 +21,7 @@
 #include "slam/removal_policy.hpp"
 #include "slam/scan_matcher.hpp"
 #include "slam/sparsifier.hpp"
+#include "slam/surface_cache.hpp"
 
 namespace lifelong::slam {
 
@@ -99,6 +100,9 @@ struct Mapper::State {
   /// The surface points (robot frame) of the nodes in the last local map, kept while they
   /// stay in it (SurfaceRule::JoinsAny).
   std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces;
+  /// The loop closer's surface points (robot frame) of the nodes its recent submaps used
+  /// (64 nodes: 80 % of the lookups on Intel hit, against 83 % with 256 and 57 % with 32).
+  SurfaceCache loop_surfaces{64};
 
   /// Times its scope as the stage `field` of the observation being processed (none when
   /// there is none).
@@ -113,7 +117,7 @@ struct Mapper::State {
   std::vector<Eigen::Vector2d> LocalMap();
   /// Node id's points for a loop-closing reference, in the world frame: its surfaces when
   /// loops.surfaces is set (and the incremental rule makes any), its return points otherwise.
-  std::vector<Eigen::Vector2d> LoopReference(NodeId id) const;
+  std::vector<Eigen::Vector2d> LoopReference(NodeId id);
   /// Node id's surfaces in the robot frame, by `rule` (SurfacePoints), sampled
   /// at the thinning spacing (the likelihood field's resolution without thinning).
   std::vector<Eigen::Vector2d> SurfacesOf(NodeId id, const SurfaceRule& rule) const;

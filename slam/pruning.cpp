@@ -213,6 +213,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
   nodes.erase(id);
   values.erase(id);
+  loop_surfaces.Erase(id);
   recent.erase(std::find(recent.begin(), recent.end(), id));
   if (last_node == id) last_node = recent.back();
 }

@@ -106,33 +106,52 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
   scratch_.Assign(cells);
   Scan& scan = scans_[slot];
   scan.gain = gain;
-  constexpr std::uint32_t kNarrowMax = 0xffff;
-  const bool wide = std::any_of(cells.begin(), cells.end(), [](const CellUpdate& u) {
-    return u.delta.hits > kNarrowMax || u.delta.misses > kNarrowMax;
-  });
+  scan.cells = static_cast<std::uint32_t>(cells.size());
+  // Each piece's increments in the narrowest width that holds them, aligned for it.
+  const std::uint32_t* order = scratch_.order.data();
+  piece_widths_.clear();
+  piece_offsets_.clear();
+  std::size_t size = 0;
+  for (const ChunkedCells::Chunk& chunk : scratch_.chunks) {
+    std::uint32_t most = 0;
+    for (std::uint32_t k = chunk.first; k < chunk.first + chunk.count; ++k) {
+      const CellCounts d = cells[order[k]].delta;
+      most = std::max({most, d.hits, d.misses});
+    }
+    const std::uint8_t width = most <= 15 ? 1 : most <= 0xffff ? 4 : 8;
+    const std::size_t align = width == 1   ? 1
+                              : width == 4 ? alignof(NarrowCounts)
+                                           : alignof(CellCounts);
+    size = (size + align - 1) / align * align;
+    piece_widths_.push_back(width);
+    piece_offsets_.push_back(size);
+    size += std::size_t{chunk.count} * width;
+  }
+  scan.deltas.resize(size);
+  scan.keys.clear();
   // Filled through plain pointers: push_back kept reloading the vector's end (the loop took
   // 86 % of Track's time in BM_GainIndexTrackScan).
-  const std::uint32_t* order = scratch_.order.data();
-  const std::size_t n = cells.size();
-  scan.narrow.clear();
-  scan.wide.clear();
-  if (wide) {
-    scan.wide.resize(n);
-    CellCounts* out = scan.wide.data();
-    for (std::size_t k = 0; k < n; ++k) out[k] = cells[order[k]].delta;
-  } else {
-    scan.narrow.resize(n);
-    NarrowCounts* out = scan.narrow.data();
-    for (std::size_t k = 0; k < n; ++k) {
-      const CellCounts d = cells[order[k]].delta;
-      out[k] = {static_cast<std::uint16_t>(d.hits), static_cast<std::uint16_t>(d.misses)};
+  for (std::size_t c = 0; c < scratch_.chunks.size(); ++c) {
+    const ChunkedCells::Chunk& chunk = scratch_.chunks[c];
+    std::uint8_t* at = scan.deltas.data() + piece_offsets_[c];
+    const std::uint32_t* from = order + chunk.first;
+    const std::uint8_t width = piece_widths_[c];
+    if (width == 1) {
+      for (std::uint32_t k = 0; k < chunk.count; ++k) {
+        const CellCounts d = cells[from[k]].delta;
+        at[k] = static_cast<std::uint8_t>(d.hits << 4 | d.misses);
+      }
+    } else if (width == 4) {
+      auto* out = reinterpret_cast<NarrowCounts*>(at);
+      for (std::uint32_t k = 0; k < chunk.count; ++k) {
+        const CellCounts d = cells[from[k]].delta;
+        out[k] = {static_cast<std::uint16_t>(d.hits), static_cast<std::uint16_t>(d.misses)};
+      }
+    } else {
+      auto* out = reinterpret_cast<CellCounts*>(at);
+      for (std::uint32_t k = 0; k < chunk.count; ++k) out[k] = cells[from[k]].delta;
     }
-  }
-  scan.keys.clear();
-  for (const ChunkedCells::Chunk& chunk : scratch_.chunks) {
-    const void* deltas = wide ? static_cast<const void*>(scan.wide.data() + chunk.first)
-                              : static_cast<const void*>(scan.narrow.data() + chunk.first);
-    chunks_[chunk.key].push_back({chunk.bits, deltas, slot, wide});
+    chunks_[chunk.key].push_back({chunk.bits, at, slot, width});
     scan.keys.push_back(chunk.key);
   }
   slots_.emplace(id, slot);
@@ -156,8 +175,7 @@ std::int64_t GainIndex::Untrack(NodeId id) {
   }
   slots_.erase(it);
   free_slots_.push_back(slot);
-  std::vector<NarrowCounts>().swap(scan.narrow);
-  std::vector<CellCounts>().swap(scan.wide);
+  std::vector<std::uint8_t>().swap(scan.deltas);
   return scan.gain;
 }
 
@@ -170,9 +188,9 @@ std::int64_t GainIndex::Gain(NodeId id) const {
 }
 
 CellCounts GainIndex::DeltaOf(const Piece& piece, std::size_t i) {
-  if (piece.wide) return static_cast<const CellCounts*>(piece.deltas)[i];
-  const NarrowCounts d = static_cast<const NarrowCounts*>(piece.deltas)[i];
-  return {d.hits, d.misses};
+  if (piece.width == 1) return Unpacked(static_cast<const TinyCounts*>(piece.deltas)[i]);
+  if (piece.width == 4) return Unpacked(static_cast<const NarrowCounts*>(piece.deltas)[i]);
+  return static_cast<const CellCounts*>(piece.deltas)[i];
 }
 
 void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
@@ -183,7 +201,7 @@ void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
   const std::uint32_t slot = it->second;
   const Scan& scan = scans_[slot];
   cells->clear();
-  cells->reserve(scan.narrow.size() + scan.wide.size());
+  cells->reserve(scan.cells);
   static_assert(chunk::kSide == 32, "two chunk rows per 64-bit word");
   // The scan's chunks in Track's order, which is by chunk row, then column; each with its
   // bitmap and the next of its increments to emit (bit order is row order within a chunk).
@@ -309,8 +327,7 @@ __attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevan
         if (shared != 0) {
           const std::size_t i =
               skipped + static_cast<std::size_t>(Rank(piece.bits[w], __builtin_ctzll(shared)));
-          __builtin_prefetch(static_cast<const char*>(piece.deltas) +
-                             i * (piece.wide ? sizeof(CellCounts) : sizeof(NarrowCounts)));
+          __builtin_prefetch(static_cast<const char*>(piece.deltas) + i * piece.width);
           break;
         }
         skipped += static_cast<std::size_t>(__builtin_popcountll(piece.bits[w]));
@@ -325,8 +342,7 @@ __attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevan
           const int b = __builtin_ctzll(shared);
           shared &= shared - 1;
           const Changed& c = changed[w * 64 + static_cast<std::size_t>(b)];
-          const auto narrow_or_wide = deltas[Rank(piece.bits[w], b)];
-          const CellCounts d{narrow_or_wide.hits, narrow_or_wide.misses};
+          const CellCounts d = Unpacked(deltas[Rank(piece.bits[w], b)]);
           delta += (QuantizedEntropy(Minus(c.after, d)) - c.q_after) -
                    (QuantizedEntropy(Minus(c.before, d)) - c.q_before);
         }
@@ -336,8 +352,9 @@ __attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevan
     };
     for (const Piece& piece : pieces) {
       const std::int64_t delta =
-          piece.wide ? change_of(piece, static_cast<const CellCounts*>(piece.deltas))
-                     : change_of(piece, static_cast<const NarrowCounts*>(piece.deltas));
+          piece.width == 1   ? change_of(piece, static_cast<const TinyCounts*>(piece.deltas))
+          : piece.width == 4 ? change_of(piece, static_cast<const NarrowCounts*>(piece.deltas))
+                             : change_of(piece, static_cast<const CellCounts*>(piece.deltas));
       scans_[piece.slot].gain += delta;
     }
   }

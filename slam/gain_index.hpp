@@ -78,24 +78,35 @@ class GainIndex {
   /// their increments, by bit. Kept small (144 bytes): Apply walks every piece of a chunk.
   struct Piece {
     std::array<std::uint64_t, ChunkedCells::kWords> bits;
-    /// The increments, inside Scan::narrow (or Scan::wide when `wide`), which keeps its
-    /// buffer while the scan is tracked; held here so Apply reads them without first loading
-    /// the scan's record.
+    /// The increments, inside Scan::deltas, which keeps its buffer while the scan is
+    /// tracked; held here so Apply reads them without first loading the scan's record.
     const void* deltas;
     std::uint32_t slot;
-    bool wide;
+    /// Bytes an increment: 1 (TinyCounts), 4 (NarrowCounts) or 8 (CellCounts), the least
+    /// that holds every count of the piece.
+    std::uint8_t width;
   };
-  /// An increment in 16 bits a count: any scan of fewer than 65 536 beams fits, in half the
-  /// memory (and cache) of CellCounts.
+  /// An increment in 4 bits a count: a cell crossed by at most 15 beams of the scan, which
+  /// is every cell of most pieces (those away from the scan's origin), in a quarter of the
+  /// memory (and cache) of NarrowCounts.
+  struct TinyCounts {
+    std::uint8_t packed;  ///< hits in the high 4 bits, misses in the low 4
+  };
+  /// An increment in 16 bits a count: any scan of fewer than 65 536 beams fits.
   struct NarrowCounts {
     std::uint16_t hits, misses;
   };
   struct Scan {
     std::int64_t gain = 0;
-    std::vector<NarrowCounts> narrow;  ///< its increments, chunk by chunk, by bit...
-    std::vector<CellCounts> wide;      ///< ...or these, when a count needs more than 16 bits
+    std::uint32_t cells = 0;           ///< in its list
+    std::vector<std::uint8_t> deltas;  ///< its increments, piece by piece, by bit
     std::vector<std::uint64_t> keys;   ///< of its chunks
   };
+  static CellCounts Unpacked(TinyCounts d) {
+    return {static_cast<std::uint32_t>(d.packed >> 4), static_cast<std::uint32_t>(d.packed & 15)};
+  }
+  static CellCounts Unpacked(NarrowCounts d) { return {d.hits, d.misses}; }
+  static CellCounts Unpacked(CellCounts d) { return d; }
   /// Increment i of a piece (its cells' increments in bit order).
   static CellCounts DeltaOf(const Piece& piece, std::size_t i);
 
@@ -111,7 +122,9 @@ class GainIndex {
   /// Updates the tracked gains for the cells kept.
   void ApplyRelevant();
 
-  ChunkedCells scratch_;  ///< Track's and Apply's grouping of a list
+  ChunkedCells scratch_;                    ///< Track's and Apply's grouping of a list
+  std::vector<std::uint8_t> piece_widths_;  ///< Track's: each piece's width...
+  std::vector<std::size_t> piece_offsets_;  ///< ...and place in Scan::deltas
   /// Apply's table for the chunk at hand, by bit: the counts before and after the change,
   /// and their entropies.
   struct Changed {

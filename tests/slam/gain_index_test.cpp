@@ -161,6 +161,36 @@ TEST(GainIndex, ListsWithCountsBeyondSixteenBitsAreHeldWide) {
   EXPECT_EQ(f.index.Gain(0), f.map.QuantizedGain(wide));
 }
 
+// Each piece is held in the narrowest width its counts fit: 4 bits a count up to 15, 16 bits
+// up to 65 535, 32 beyond. At the boundaries the gains stay exact through changes of the map
+// (a piece of each width beside the others), and the cells come back as tracked.
+TEST(GainIndex, EachPieceIsHeldInTheNarrowestWidthItsCountsFit) {
+  Fixture f;
+  // One piece per 32-cell chunk: counts of 15 (4 bits), 16 (16 bits) and 65 536 (32 bits).
+  const std::vector<CellUpdate> mixed{{{0, 0}, {15, 15}},    {{1, 0}, {0, 3}},
+                                      {{40, 0}, {16, 0}},    {{41, 0}, {1, 1}},
+                                      {{80, 0}, {2, 65536}}, {{81, 0}, {0, 15}}};
+  const std::vector<CellUpdate> other{{{0, 0}, {0, 1}},  {{1, 0}, {2, 0}},  {{40, 0}, {0, 4}},
+                                      {{41, 0}, {3, 0}}, {{80, 0}, {1, 0}}, {{81, 0}, {7, 0}}};
+  f.Change(mixed, true);
+  f.index.Track(0, mixed, GainOfAdded(mixed, f.after));
+  ASSERT_EQ(f.index.Gain(0), f.map.QuantizedGain(mixed));
+  for (int round = 0; round < 3; ++round) {
+    f.Change(other, true);
+    EXPECT_EQ(f.index.Gain(0), f.map.QuantizedGain(mixed)) << "round " << round;
+  }
+  f.Change(other, false);
+  EXPECT_EQ(f.index.Gain(0), f.map.QuantizedGain(mixed));
+  std::vector<CellUpdate> cells;
+  f.index.Cells(0, &cells);
+  ASSERT_EQ(cells.size(), mixed.size());
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    EXPECT_EQ(cells[k].cell, mixed[k].cell);
+    EXPECT_EQ(cells[k].delta.hits, mixed[k].delta.hits);
+    EXPECT_EQ(cells[k].delta.misses, mixed[k].delta.misses);
+  }
+}
+
 // The gain of a scan just added, from the states its cells were left in, is the gain
 // computed from the map.
 TEST(GainIndex, TheGainOfAnAddedScanComesFromTheStatesItLeft) {

@@ -16,18 +16,20 @@ namespace {
 constexpr int kShift = 4;  // sub-pixel bits for cv drawing
 constexpr double kSub = 16.0;
 
-cv::Scalar Bgr(const render::Rgb& c) {
-  return {static_cast<double>(c.b), static_cast<double>(c.g), static_cast<double>(c.r)};
+// The figure is drawn straight into the RGB bytes of a lifelong::Image: OpenCV's drawing
+// treats the channels alike, so a colour is given in the image's (RGB) order.
+cv::Scalar Colour(const render::Rgb& c) {
+  return {static_cast<double>(c.r), static_cast<double>(c.g), static_cast<double>(c.b)};
 }
 
 cv::Scalar TrajectoryColour(TrajectoryKind k) {
   switch (k) {
     case TrajectoryKind::kTrue:
-      return Bgr(render::kTrueTrajectory);
+      return Colour(render::kTrueTrajectory);
     case TrajectoryKind::kOdometry:
-      return Bgr(render::kOdometryTrajectory);
+      return Colour(render::kOdometryTrajectory);
     default:
-      return Bgr(render::kEstimateTrajectory);
+      return Colour(render::kEstimateTrajectory);
   }
 }
 
@@ -129,7 +131,9 @@ Canvas CanvasOfKnownCells(const OccupancyGrid& g, const Pose2& T_frame_grid, dou
 Image RenderFigure(const Canvas& c, const FigureLayers& layers) {
   Image out;
   if (c.width_px <= 0 || c.height_px <= 0) return out;
-  cv::Mat img(c.height_px, c.width_px, CV_8UC3, cv::Scalar(255, 255, 255));
+  out.width = c.width_px, out.height = c.height_px;
+  out.rgb.assign(static_cast<std::size_t>(c.width_px) * c.height_px * 3, 255);
+  cv::Mat img(c.height_px, c.width_px, CV_8UC3, out.rgb.data());  // a view: no copy
   if (layers.grid && layers.grid->width > 0 && layers.grid->height > 0) {
     DrawCells(c, *layers.grid, layers.T_frame_grid, img);
   }
@@ -141,18 +145,15 @@ Image RenderFigure(const Canvas& c, const FigureLayers& layers) {
   }
   for (const GraphEdge& e : layers.graph.edges) {
     const Segment& s = e.segment;
-    cv::line(img, Px(c, s.x0, s.y0), Px(c, s.x1, s.y1), Bgr(render::EdgeColour(e.kind)), 1,
+    cv::line(img, Px(c, s.x0, s.y0), Px(c, s.x1, s.y1), Colour(render::EdgeColour(e.kind)), 1,
              cv::LINE_AA, kShift);
   }
   const int radius = static_cast<int>(std::lround(layers.node_radius_px * kSub));
   for (const Pose2& n : layers.graph.nodes) {
-    cv::circle(img, Px(c, n.x, n.y), radius, Bgr(render::kGraphNode), cv::FILLED, cv::LINE_AA,
+    cv::circle(img, Px(c, n.x, n.y), radius, Colour(render::kGraphNode), cv::FILLED, cv::LINE_AA,
                kShift);
   }
   if (layers.scale_bar) DrawScaleBar(img, c.m_per_px);
-  cv::cvtColor(img, img, cv::COLOR_BGR2RGB);  // lifelong::Image is RGB
-  out.width = img.cols, out.height = img.rows;
-  out.rgb.assign(img.data, img.data + img.total() * img.elemSize());
   return out;
 }
 

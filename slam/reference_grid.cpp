@@ -140,8 +140,12 @@ void ReferenceGrid::Build(const std::vector<Eigen::Vector2d>& points_in_ref,
   BuildLevels();
 }
 
+// Computed at each lookup rather than tabled: a match reads a few thousand cells (its points
+// at the poses it evaluates), a table cost a log pass over every cell of the grid.
 float ReferenceGrid::LogLikelihood(int x, int y) const {
-  return Contains(x, y) ? log_fine_[Index(x, y)] : kLogFloor;
+  if (!Contains(x, y)) return kLogFloor;
+  const float v = levels_[0][Index(x, y)];
+  return v > 0.0f ? std::max(std::log(v), kLogFloor) : kLogFloor;
 }
 
 namespace {
@@ -237,10 +241,6 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
         v = std::max(v, static_cast<float>(gx[ki] * gy[kj]));
       }
     }
-  }
-  ResizeTable(&log_fine_, fine.size());
-  for (std::size_t i = 0; i < fine.size(); ++i) {
-    log_fine_[i] = fine[i] > 0.0f ? std::max(std::log(fine[i]), kLogFloor) : kLogFloor;
   }
 }
 

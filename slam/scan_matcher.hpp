@@ -93,7 +93,6 @@ class ReferenceGrid {
   int num_levels_ = 1;
   /// levels_[0]: v per cell; levels past num_levels_ are spare capacity.
   std::vector<std::vector<float>> levels_ = {{}};
-  std::vector<float> log_fine_;
 };
 
 struct MatchResult {

@@ -288,5 +288,28 @@ TEST(ScanMatcherTest, RebuildingInPlaceEqualsBuildingAfresh) {
   }
 }
 
+// ln v of the field, floored (the Olson covariance's log-likelihoods): the floor where v is 0
+// and outside the table, ln v where that is above it.
+TEST(ReferenceGridTest, LogLikelihoodIsTheFlooredLogOfTheField) {
+  MatcherConfig config;
+  config.resolution_m = 0.05;
+  config.sigma_m = 0.05;
+  const ReferenceGrid grid({{0.0, 0.0}, {1.0, 0.3}}, config);
+  int above_floor = 0, at_floor = 0;
+  for (int y = -2; y <= grid.height() + 1; ++y) {
+    for (int x = -2; x <= grid.width() + 1; ++x) {
+      const float v = grid.Likelihood(x, y);
+      const float expected =
+          v > 0.0f ? std::max(std::log(v), ReferenceGrid::kLogFloor) : ReferenceGrid::kLogFloor;
+      ASSERT_EQ(grid.LogLikelihood(x, y), expected) << x << " " << y;
+      (expected > ReferenceGrid::kLogFloor ? above_floor : at_floor) += 1;
+    }
+  }
+  EXPECT_GT(above_floor, 10);  // the peaks, within ~3 sigma of each point
+  EXPECT_GT(at_floor, 100);    // the rest of the table, and past its edges
+  const Eigen::Vector2i peak = grid.CellOf({0.0, 0.0});
+  EXPECT_GT(grid.LogLikelihood(peak.x(), peak.y()), -0.5f);
+}
+
 }  // namespace
 }  // namespace lifelong::slam

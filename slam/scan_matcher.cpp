@@ -61,7 +61,17 @@ class Searcher {
  public:
   Searcher(const ReferenceGrid& ref, std::vector<std::vector<Eigen::Vector2i>> cells,
            const Lattice& l)
-      : ref_(ref), cells_(std::move(cells)), l_(l) {}
+      : ref_(ref), cells_(std::move(cells)), l_(l) {
+    for (const auto& rotated : cells_) {
+      Box box{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
+              std::numeric_limits<int>::min(), std::numeric_limits<int>::min()};
+      for (const Eigen::Vector2i& c : rotated) {
+        box.x0 = std::min(box.x0, c.x()), box.y0 = std::min(box.y0, c.y());
+        box.x1 = std::max(box.x1, c.x()), box.y1 = std::max(box.y1, c.y());
+      }
+      boxes_.push_back(box);
+    }
+  }
 
   /// accept(e): a fine pose may win; reach(n, level): the block may hold such a pose.
   template <typename Accept, typename Reach>
@@ -91,7 +101,19 @@ class Searcher {
   Node MakeNode(int k, int i, int j, int level) {
     ++bound_evaluations_;
     float sum = 0.0f;
-    for (const Eigen::Vector2i& c : Cells(k)) sum += ref_.Bound(level, c.x() + i, c.y() + j);
+    const Box& box = boxes_[static_cast<std::size_t>(k + l_.K)];
+    if (!Cells(k).empty() && ref_.Contains(box.x0 + i, box.y0 + j) &&
+        ref_.Contains(box.x1 + i, box.y1 + j)) {
+      // Every point lands in the table: no bounds check per point (the same sum, in the
+      // same order, as below).
+      const float* table = ref_.BoundTable(level);
+      const auto width = static_cast<std::ptrdiff_t>(ref_.width());
+      for (const Eigen::Vector2i& c : Cells(k)) {
+        sum += table[static_cast<std::ptrdiff_t>(c.y() + j) * width + (c.x() + i)];
+      }
+    } else {
+      for (const Eigen::Vector2i& c : Cells(k)) sum += ref_.Bound(level, c.x() + i, c.y() + j);
+    }
     return {k, i, j, sum / static_cast<float>(Cells(k).size())};
   }
   static void SortByBound(std::vector<Node>* nodes) {
@@ -124,8 +146,13 @@ class Searcher {
     return cells_[static_cast<std::size_t>(k + l_.K)];
   }
 
+  // The cells' bounding box at one rotation.
+  struct Box {
+    int x0, y0, x1, y1;
+  };
   const ReferenceGrid& ref_;
   std::vector<std::vector<Eigen::Vector2i>> cells_;
+  std::vector<Box> boxes_;  // of cells_, by rotation
   Lattice l_;
   std::unordered_map<std::int64_t, std::size_t> index_;  // (k, i, j) -> evals_
   std::vector<Eval> evals_;

@@ -74,6 +74,11 @@ class ReferenceGrid {
   float Bound(int level, int x, int y) const {
     return Contains(x, y) ? levels_[static_cast<std::size_t>(level)][Index(x, y)] : 0.0f;
   }
+  /// Level `level`'s table, row-major (width() x height()): Bound without the bounds check,
+  /// for callers that know their cells lie inside.
+  const float* BoundTable(int level) const {
+    return levels_[static_cast<std::size_t>(level)].data();
+  }
 
   static constexpr float kLogFloor = -4.5f;
 

@@ -2,6 +2,7 @@
 #include "slam/scan_matcher.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -128,18 +129,25 @@ class Searcher {
       return;
     }
     const int half = 1 << (level - 1);
-    std::vector<Node> children;
+    // At most four children, on the stack, in the order a stable sort by bound would give
+    // (insertion sort: a child goes after those with a bound at least its own).
+    std::array<Node, 4> children;
+    std::size_t count = 0;
     for (int di : {0, half}) {
       for (int dj : {0, half}) {
         if (n.i + di <= l_.W && n.j + dj <= l_.W &&
             reach(Node{n.k, n.i + di, n.j + dj, 0.0f}, level - 1)) {
-          children.push_back(MakeNode(n.k, n.i + di, n.j + dj, level - 1));
+          const Node child = MakeNode(n.k, n.i + di, n.j + dj, level - 1);
+          std::size_t at = count++;
+          for (; at > 0 && children[at - 1].bound < child.bound; --at) {
+            children[at] = children[at - 1];
+          }
+          children[at] = child;
         }
       }
     }
-    SortByBound(&children);
-    for (const Node& c : children) {
-      if (c.bound > best->score) Descend(c, level - 1, accept, reach, best);
+    for (std::size_t c = 0; c < count; ++c) {
+      if (children[c].bound > best->score) Descend(children[c], level - 1, accept, reach, best);
     }
   }
   const std::vector<Eigen::Vector2i>& Cells(int k) const {

@@ -136,20 +136,15 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
     std::uint8_t* at = scan.deltas.data() + piece_offsets_[c];
     const std::uint32_t* from = order + chunk.first;
     const std::uint8_t width = piece_widths_[c];
+    const auto fill = [&](auto* out) {
+      for (std::uint32_t k = 0; k < chunk.count; ++k) Pack(cells[from[k]].delta, out + k);
+    };
     if (width == 1) {
-      for (std::uint32_t k = 0; k < chunk.count; ++k) {
-        const CellCounts d = cells[from[k]].delta;
-        at[k] = static_cast<std::uint8_t>(d.hits << 4 | d.misses);
-      }
+      fill(reinterpret_cast<TinyCounts*>(at));
     } else if (width == 4) {
-      auto* out = reinterpret_cast<NarrowCounts*>(at);
-      for (std::uint32_t k = 0; k < chunk.count; ++k) {
-        const CellCounts d = cells[from[k]].delta;
-        out[k] = {static_cast<std::uint16_t>(d.hits), static_cast<std::uint16_t>(d.misses)};
-      }
+      fill(reinterpret_cast<NarrowCounts*>(at));
     } else {
-      auto* out = reinterpret_cast<CellCounts*>(at);
-      for (std::uint32_t k = 0; k < chunk.count; ++k) out[k] = cells[from[k]].delta;
+      fill(reinterpret_cast<CellCounts*>(at));
     }
     chunks_[chunk.key].push_back({chunk.bits, at, slot, width});
     scan.keys.push_back(chunk.key);
@@ -188,9 +183,7 @@ std::int64_t GainIndex::Gain(NodeId id) const {
 }
 
 CellCounts GainIndex::DeltaOf(const Piece& piece, std::size_t i) {
-  if (piece.width == 1) return Unpacked(static_cast<const TinyCounts*>(piece.deltas)[i]);
-  if (piece.width == 4) return Unpacked(static_cast<const NarrowCounts*>(piece.deltas)[i]);
-  return static_cast<const CellCounts*>(piece.deltas)[i];
+  return WithDeltas(piece, [i](const auto* deltas) { return Unpacked(deltas[i]); });
 }
 
 void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
@@ -352,9 +345,7 @@ __attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevan
     };
     for (const Piece& piece : pieces) {
       const std::int64_t delta =
-          piece.width == 1   ? change_of(piece, static_cast<const TinyCounts*>(piece.deltas))
-          : piece.width == 4 ? change_of(piece, static_cast<const NarrowCounts*>(piece.deltas))
-                             : change_of(piece, static_cast<const CellCounts*>(piece.deltas));
+          WithDeltas(piece, [&](const auto* deltas) { return change_of(piece, deltas); });
       scans_[piece.slot].gain += delta;
     }
   }

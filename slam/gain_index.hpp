@@ -102,11 +102,26 @@ class GainIndex {
     std::vector<std::uint8_t> deltas;  ///< its increments, piece by piece, by bit
     std::vector<std::uint64_t> keys;   ///< of its chunks
   };
+  /// An increment into and out of each width (Pack's counts must fit it).
+  static void Pack(CellCounts d, TinyCounts* out) {
+    out->packed = static_cast<std::uint8_t>(d.hits << 4 | d.misses);
+  }
+  static void Pack(CellCounts d, NarrowCounts* out) {
+    *out = {static_cast<std::uint16_t>(d.hits), static_cast<std::uint16_t>(d.misses)};
+  }
+  static void Pack(CellCounts d, CellCounts* out) { *out = d; }
   static CellCounts Unpacked(TinyCounts d) {
     return {static_cast<std::uint32_t>(d.packed >> 4), static_cast<std::uint32_t>(d.packed & 15)};
   }
   static CellCounts Unpacked(NarrowCounts d) { return {d.hits, d.misses}; }
   static CellCounts Unpacked(CellCounts d) { return d; }
+  /// Calls f with the piece's increments, typed for its width.
+  template <typename F>
+  static decltype(auto) WithDeltas(const Piece& piece, F&& f) {
+    if (piece.width == 1) return f(static_cast<const TinyCounts*>(piece.deltas));
+    if (piece.width == 4) return f(static_cast<const NarrowCounts*>(piece.deltas));
+    return f(static_cast<const CellCounts*>(piece.deltas));
+  }
   /// Increment i of a piece (its cells' increments in bit order).
   static CellCounts DeltaOf(const Piece& piece, std::size_t i);
 

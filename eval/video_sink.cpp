@@ -149,12 +149,4 @@ std::unique_ptr<FrameSink> OpenVideoSink(const VideoOptions& options) {
   return std::make_unique<VideoFileSink>(options);
 }
 
-std::string WriteScenePng(const std::string& path, const render::Scene& scene, int width,
-                          int height) {
-  auto renderer = render::OffscreenRenderer::Create(width, height);
-  CreateDirectories(fs::path(path).parent_path(), "directory");
-  WritePng(path, WithLabels(renderer.Render(scene)));
-  return renderer.backend_name();
-}
-
 }  // namespace lifelong::eval

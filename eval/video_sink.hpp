@@ -20,9 +20,4 @@ namespace lifelong::eval {
 /// exception: then the video is discarded.
 std::unique_ptr<FrameSink> OpenVideoSink(const VideoOptions& options);
 
-/// Renders one scene (e.g. a run's final state) and writes it as a PNG; returns the
-/// backend used. Throws as OpenVideoSink does.
-std::string WriteScenePng(const std::string& path, const render::Scene& scene, int width = 1280,
-                          int height = 720);
-
 }  // namespace lifelong::eval

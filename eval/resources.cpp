@@ -1,7 +1,11 @@
 #include "eval/resources.hpp"
 
+#include <fcntl.h>
 #include <malloc.h>
+#include <unistd.h>
 
+#include <charconv>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -33,7 +37,25 @@ std::optional<double> StatusMb(const std::string& key) {
 
 }  // namespace
 
-std::optional<double> CurrentRssMb() { return StatusMb("VmRSS"); }
+// /proc/self/statm ("size resident shared ...", in pages) holds the same count as VmRSS in
+// /proc/self/status, and costs the kernel far less to produce: a run reads it once per
+// observation, and the status file cost about 1 % of an office_5min run.
+std::optional<double> CurrentRssMb() {
+  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  char text[128];
+  const ssize_t n = ::read(fd, text, sizeof text);
+  ::close(fd);
+  if (n <= 0) return std::nullopt;
+  const char* const end = text + n;
+  std::uint64_t size = 0, resident = 0;
+  auto [next, error] = std::from_chars(text, end, size);
+  if (error != std::errc() || next == end || *next != ' ') return std::nullopt;
+  if (std::from_chars(next + 1, end, resident).ec != std::errc()) return std::nullopt;
+  const long page = ::sysconf(_SC_PAGESIZE);
+  if (page <= 0) return std::nullopt;
+  return static_cast<double>(resident) * static_cast<double>(page) / (1024.0 * 1024.0);
+}
 
 std::optional<double> PeakRssMb() { return StatusMb("VmHWM"); }
 

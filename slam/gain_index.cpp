@@ -298,8 +298,9 @@ void GainIndex::Apply(const std::vector<CellChange>& changes) {
 }
 
 // (Cloned for CPUs with and without the POPCNT instruction: the rank of a bit in a piece
-// is a population count, a library call on the x86-64 baseline.)
-__attribute__((target_clones("popcnt", "default"))) void GainIndex::ApplyRelevant() {
+// is a population count, a library call on the x86-64 baseline. Flattened, so that the
+// per-piece lambdas are compiled into each clone rather than once for the baseline.)
+__attribute__((target_clones("popcnt", "default"), flatten)) void GainIndex::ApplyRelevant() {
   scratch_.Assign(relevant_);
   changed_.resize(std::size_t{1} << (2 * kBits));
   Changed* changed = changed_.data();

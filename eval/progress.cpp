@@ -9,6 +9,21 @@
 
 namespace lifelong::eval {
 
+namespace {
+
+// printf into a string, whole however long the text (a fixed buffer cut it short, and its
+// length was taken from snprintf's count of what would have been written).
+template <typename... Args>
+std::string Printf(const char* format, Args... args) {
+  const int n = std::snprintf(nullptr, 0, format, args...);
+  if (n <= 0) return {};
+  std::string text(static_cast<std::size_t>(n), '\0');
+  std::snprintf(text.data(), text.size() + 1, format, args...);
+  return text;
+}
+
+}  // namespace
+
 std::string FormatDuration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0.0) return "?";
   const long s = std::lround(seconds);
@@ -35,18 +50,11 @@ std::string ProgressMeter::Line(double done, double covered_s, const std::string
                              ? elapsed_override_s_
                              : std::chrono::duration<double>(Clock::now() - start_).count();
   const double fraction = total_ > 0.0 ? std::min(1.0, done / total_) : 1.0;
-  char buf[256];
-  int n =
-      std::snprintf(buf, sizeof(buf), "  %-13s %5.1f %%", options_.label.c_str(), 100.0 * fraction);
-  std::string line(buf, static_cast<std::size_t>(n));
+  std::string line = Printf("  %-13s %5.1f %%", options_.label.c_str(), 100.0 * fraction);
   if (elapsed > 0.0 && done > 0.0) {
     const double rate = done / elapsed;
-    n = std::snprintf(buf, sizeof(buf), "  %.1f %s/s", rate, options_.unit.c_str());
-    line.append(buf, static_cast<std::size_t>(n));
-    if (covered_s > 0.0) {
-      n = std::snprintf(buf, sizeof(buf), "  %.1fx real time", covered_s / elapsed);
-      line.append(buf, static_cast<std::size_t>(n));
-    }
+    line += Printf("  %.1f %s/s", rate, options_.unit.c_str());
+    if (covered_s > 0.0) line += Printf("  %.1fx real time", covered_s / elapsed);
     line += "  elapsed " + FormatDuration(elapsed);
     if (fraction < 1.0) line += "  ETA " + FormatDuration((total_ - done) / rate);
   }

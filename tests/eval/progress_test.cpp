@@ -28,6 +28,18 @@ TEST(Progress, LineGivesRateRealTimeFactorAndEta) {
   EXPECT_NE(line.find("nodes 7"), std::string::npos) << line;
 }
 
+// A factor too long for a fixed buffer (robot time of 1e300 s) is printed whole, and the
+// line holds only what was printed: it read past its buffer before.
+TEST(Progress, AnyLengthOfNumberIsPrintedWhole) {
+  ProgressMeter meter(nullptr, 1000.0, {"standard", "obs", false});
+  meter.SetElapsedForTest(1.0);
+  const std::string line = meter.Line(100.0, 1e300, "nodes 7");
+  EXPECT_EQ(line.find('\0'), std::string::npos);
+  EXPECT_NE(line.find("x real time  elapsed 1 s"), std::string::npos) << line;
+  EXPECT_NE(line.find("nodes 7"), std::string::npos) << line;
+  EXPECT_GT(line.size(), 300u);
+}
+
 TEST(Progress, NotATerminalGivesOnePlainLinePerTenPercent) {
   std::ostringstream out;
   ProgressMeter meter(&out, 1000.0, {"standard", "obs", false});

@@ -19,16 +19,19 @@ constexpr double kMaxRouteLegs = 1e6;
 constexpr double kMaxDurationS = 1e7;
 constexpr double kMaxPhysicsRateHz = 1e4;
 constexpr int kMaxBeams = 100000;
+// Speed limits a ground robot scenario can sensibly ask for (the Pioneer 2-DX drives
+// 0.5 m/s and turns 1 rad/s): 10 m/s (36 km/h) forward, 2 pi rad/s (a turn a second).
+constexpr double kMaxSpeedMps = 10.0;
+constexpr double kMaxTurnRateRadps = 2.0 * 3.14159265358979323846;
 
+// Every check below blames the key it checks (Fields::FailAt: that key's line and dotted
+// name), never the section map or a neighbouring key.
 void Positive(Fields* f, const std::string& key, double value) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    Fail(f->file(), f->node()[key], f->Name(key), "must be positive and finite");
-  }
+  if (!(value > 0.0) || !std::isfinite(value)) f->FailAt(key, "must be positive and finite");
 }
 
 void AtMost(Fields* f, const std::string& key, double value, double limit, const char* text) {
-  if (value > limit)
-    Fail(f->file(), f->node()[key], f->Name(key), std::string("must be <= ") + text);
+  if (value > limit) f->FailAt(key, std::string("must be <= ") + text);
 }
 
 RobotConfig ParseRobot(Fields f) {
@@ -44,6 +47,10 @@ RobotConfig ParseRobot(Fields f) {
     *v = f.Double(key, *v);
     Positive(&f, key, *v);
   }
+  if (r.max_speed_mps > kMaxSpeedMps)
+    f.FailAt("max_speed_mps", "must be in (0, 10] m/s for a ground robot");
+  if (r.max_turn_rate_radps > kMaxTurnRateRadps)
+    f.FailAt("max_turn_rate_radps", "must be in (0, 2 pi] rad/s (one turn a second)");
   f.Finish();
   return r;
 }
@@ -53,18 +60,17 @@ LaserConfig ParseLaser(Fields f) {
   l.rate_hz = f.Double("rate_hz", l.rate_hz);
   Positive(&f, "rate_hz", l.rate_hz);
   l.beams = f.Int("beams", l.beams);
-  if (l.beams < 2 || l.beams > kMaxBeams)
-    Fail(f.file(), f.node()["beams"], f.Name("beams"), "needs 2 to 100000 beams");
+  if (l.beams < 2 || l.beams > kMaxBeams) f.FailAt("beams", "needs 2 to 100000 beams");
   l.fov_deg = f.Double("fov_deg", l.fov_deg);
-  Positive(&f, "fov_deg", l.fov_deg);
+  if (!(l.fov_deg > 0.0 && l.fov_deg <= 360.0)) f.FailAt("fov_deg", "must be in (0, 360] deg");
   l.range_max_m = f.Double("range_max_m", l.range_max_m);
   Positive(&f, "range_max_m", l.range_max_m);
   l.range_noise_m = f.Double("range_noise_m", l.range_noise_m);
+  if (!(l.range_noise_m >= 0.0) || !std::isfinite(l.range_noise_m))
+    f.FailAt("range_noise_m", "must be finite and >= 0 m");
   l.dropout_prob = f.Double("dropout_prob", l.dropout_prob);
-  if (!(l.range_noise_m >= 0.0) || !std::isfinite(l.range_noise_m) || !(l.dropout_prob >= 0.0) ||
-      l.dropout_prob > 1.0) {
-    Fail(f.file(), f.node(), f.Name("range_noise_m"), "noise must be >= 0, dropout in [0, 1]");
-  }
+  if (!(l.dropout_prob >= 0.0 && l.dropout_prob <= 1.0))
+    f.FailAt("dropout_prob", "must be in [0, 1]");
   if (f.Has("mount")) {
     const YAML::Node m = f.Required("mount");
     if (!m.IsSequence() || m.size() != 3)
@@ -86,9 +92,8 @@ OdometryConfig ParseOdometry(Fields f) {
   o.rate_hz = f.Double("rate_hz", o.rate_hz);
   Positive(&f, "rate_hz", o.rate_hz);
   o.slip_variance_m2_per_m = f.Double("slip_variance_m2_per_m", o.slip_variance_m2_per_m);
-  if (!(o.slip_variance_m2_per_m >= 0.0) || !std::isfinite(o.slip_variance_m2_per_m)) {
-    Fail(f.file(), f.node(), f.Name("slip_variance_m2_per_m"), "must be >= 0");
-  }
+  if (!(o.slip_variance_m2_per_m >= 0.0) || !std::isfinite(o.slip_variance_m2_per_m))
+    f.FailAt("slip_variance_m2_per_m", "must be finite and >= 0");
   for (auto [key, v] : {std::pair{"left_scale", &o.left_scale},
                         {"right_scale", &o.right_scale},
                         {"track_scale", &o.track_scale}}) {
@@ -136,12 +141,9 @@ void ParseBackAndForth(Fields* f, const World& world, const RobotConfig& robot, 
     r->waypoints.push_back(p);
   }
   r->repetitions = f->Int("repetitions", 1);
-  if (r->repetitions < 1)
-    Fail(f->file(), f->node()["repetitions"], f->Name("repetitions"), "must be >= 1");
-  if (static_cast<double>(r->repetitions) * static_cast<double>(wps.size()) > kMaxRouteLegs) {
-    Fail(f->file(), f->node()["repetitions"], f->Name("repetitions"),
-         "repetitions x waypoints must be at most 1e6 route legs");
-  }
+  if (r->repetitions < 1) f->FailAt("repetitions", "must be >= 1");
+  if (static_cast<double>(r->repetitions) * static_cast<double>(wps.size()) > kMaxRouteLegs)
+    f->FailAt("repetitions", "repetitions x waypoints must be at most 1e6 route legs");
 }
 
 void ParseTour(Fields* f, const World& world, const RobotConfig& robot, RouteConfig* r) {
@@ -161,12 +163,11 @@ void ParseTour(Fields* f, const World& world, const RobotConfig& robot, RouteCon
     if (!why.empty()) Fail(f->file(), node, name, "place '" + world.places[p].name + "' " + why);
     if (p != r->start_place || list) r->tour_places.push_back(p);
   }
-  if (r->tour_places.size() < 2)
-    Fail(f->file(), f->node(), f->Name("places"), "needs 2 or more places");
+  if (r->tour_places.size() < 2) f->FailAt("places", "needs 2 or more places");
   // A tour that can never leave its start would spin AppendTourLeg without moving.
   if (std::all_of(r->tour_places.begin(), r->tour_places.end(),
                   [&](int p) { return p == r->start_place; })) {
-    Fail(f->file(), f->node(), f->Name("places"), "needs a place other than the start");
+    f->FailAt("places", "needs a place other than the start");
   }
 }
 
@@ -174,8 +175,7 @@ RouteConfig ParseRoute(Fields f, const World& world, const RobotConfig& robot) {
   RouteConfig r;
   const std::string type = f.String("type");
   r.stop_s = f.Double("stop_s", 0.0);
-  if (!(r.stop_s >= 0.0) || r.stop_s > kMaxDurationS)
-    Fail(f.file(), f.node()["stop_s"], f.Name("stop_s"), "must be in [0, 1e7] s");
+  if (!(r.stop_s >= 0.0) || r.stop_s > kMaxDurationS) f.FailAt("stop_s", "must be in [0, 1e7] s");
   if (type == "back_and_forth" || type == "path") {
     r.kind = RouteConfig::Kind::kBackAndForth;
     r.one_way = type == "path";
@@ -184,7 +184,7 @@ RouteConfig ParseRoute(Fields f, const World& world, const RobotConfig& robot) {
     r.kind = RouteConfig::Kind::kTour;
     ParseTour(&f, world, robot, &r);
   } else {
-    Fail(f.file(), f.node()["type"], f.Name("type"), "expected back_and_forth, path or tour");
+    f.FailAt("type", "expected back_and_forth, path or tour");
   }
   f.Finish();
   return r;

@@ -4,7 +4,8 @@
 //
 // YAML (see scenarios/*.yaml): name, world (relative to the scenario file), seed,
 // optional physics_rate_hz and sections robot / laser (mount: [x, y, yaw_deg]) / odometry
-// whose keys are the fields below, and route, one of
+// whose keys are the fields below (each key at most once; numbers in the ranges given
+// there, else an InputError naming that key's own line), and route, one of
 //   {type: back_and_forth, waypoints: [place or [x, y], ...], repetitions: N, stop_s: 0}
 //   {type: path, waypoints: [...]}                      # driven once, no way back
 //   {type: tour, start: place, places: [...], duration_s: 3600, stop_s: 2}
@@ -34,9 +35,9 @@ struct RobotConfig {
   double length_m = 0.44;              ///< footprint along the robot x axis
   double width_m = 0.38;               ///< footprint across
   double track_width_m = 0.33;         ///< distance between the wheel contact points
-  double max_speed_mps = 0.5;          ///< forward speed limit
+  double max_speed_mps = 0.5;          ///< forward speed limit, (0, 10] m/s
   double max_accel_mps2 = 0.5;         ///< forward acceleration limit
-  double max_turn_rate_radps = 1.0;    ///< yaw rate limit
+  double max_turn_rate_radps = 1.0;    ///< yaw rate limit, (0, 2 pi] rad/s
   double max_turn_accel_radps2 = 2.0;  ///< yaw acceleration limit
   double waypoint_tolerance_m = 0.1;   ///< a waypoint counts as reached within this
   /// Radius of the circle around the footprint, m.
@@ -47,10 +48,10 @@ struct RobotConfig {
 struct LaserConfig {
   double rate_hz = 5.0;                ///< scans per second (rounded to whole physics steps)
   int beams = 181;                     ///< 181 (1 deg) or 361 (0.5 deg) over the field of view
-  double fov_deg = 180.0;              ///< field of view, centred on the laser x axis
+  double fov_deg = 180.0;              ///< field of view, (0, 360], centred on the laser x axis
   double range_max_m = 30.0;           ///< no return reads exactly this
-  double range_noise_m = 0.01;         ///< Gaussian range noise, standard deviation
-  double dropout_prob = 0.0;           ///< probability a beam reads range_max_m
+  double range_noise_m = 0.01;         ///< Gaussian range noise, standard deviation, >= 0
+  double dropout_prob = 0.0;           ///< probability a beam reads range_max_m, [0, 1]
   Pose2 T_robot_laser{0.1, 0.0, 0.0};  ///< mount on the robot (inside the footprint)
 };
 
@@ -92,7 +93,8 @@ struct Scenario {
 };
 
 /// Throws lifelong::InputError (file, 1-based line, dotted field) on bad input: missing
-/// field, wrong type, unknown key, waypoint or place inside or too close to a wall.
+/// field, wrong type, unknown or duplicate key, a number out of its range, waypoint or place
+/// inside or too close to a wall.
 Scenario LoadScenario(const std::string& path);
 /// The same from YAML text; the world path is resolved against `base_dir`.
 Scenario LoadScenarioFromString(const std::string& yaml, const std::string& name,

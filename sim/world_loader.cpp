@@ -19,6 +19,29 @@ void RequireFinite(const std::string& file, const YAML::Node& n, const std::stri
   }
 }
 
+/// The same for the value of one key of `f`, blamed on that key's line and name.
+void RequireFinite(const Fields& f, const std::string& key, std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) f.FailAt(key, "must be a finite number");
+  }
+}
+
+/// Polygons thinner than this (twice the area over the perimeter, the width of a thin
+/// rectangle) are degenerate: the same 1e-6 m as a repeated point.
+constexpr double kMinPolygonWidthM = 1e-6;
+
+/// True when the closed polygon `ring` has (near-)zero area, e.g. collinear points.
+bool ZeroArea(const std::vector<Point>& ring) {
+  double twice_area = 0.0, perimeter = 0.0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point& a = ring[i];
+    const Point& b = ring[(i + 1) % ring.size()];
+    twice_area += a.x * b.y - b.x * a.y;
+    perimeter += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  return !(std::abs(twice_area) >= kMinPolygonWidthM * perimeter);
+}
+
 template <typename F>
 void ForEachItem(Fields* f, const std::string& key, F&& fn) {
   const YAML::Node list = f->Optional(key);
@@ -45,6 +68,9 @@ Wall ParseWall(const std::string& file, const YAML::Node& n, const std::string& 
       Fail(file, pts, f.Name(key), "zero-length segment (repeated point)");
     }
   }
+  if (w.closed && ZeroArea(w.points)) {
+    Fail(file, pts, f.Name(key), "polygon has zero area (collinear points)");
+  }
   if (w.closed && PolygonSelfIntersects(w.points)) {
     Fail(file, pts, f.Name(key), "polygon is self-intersecting");
   }
@@ -55,9 +81,11 @@ Door ParseDoor(const std::string& file, const YAML::Node& n, const std::string& 
   Fields f(file, n, field);
   Door d;
   d.name = f.String("name");
-  const Point a = f.GetPoint("from"), b = f.GetPoint("to");
+  const Point a = f.GetPoint("from");
+  RequireFinite(f, "from", {a.x, a.y});
+  const Point b = f.GetPoint("to");
+  RequireFinite(f, "to", {b.x, b.y});
   d.segment = {a.x, a.y, b.x, b.y};
-  RequireFinite(file, n, field, {a.x, a.y, b.x, b.y});
   if (std::hypot(b.x - a.x, b.y - a.y) < 1e-6) Fail(file, n, field, "door has zero width");
   const YAML::Node iv = f.Optional("closed_s");
   if (iv) {
@@ -78,17 +106,21 @@ Box ParseBox(const std::string& file, const YAML::Node& n, const std::string& fi
   Box b;
   b.name = f.String("name");
   b.center = f.GetPoint("center");
+  RequireFinite(f, "center", {b.center.x, b.center.y});
   const Point size = f.GetPoint("size");
-  if (size.x <= 0.0 || size.y <= 0.0) Fail(file, n, f.Name("size"), "size must be positive");
+  RequireFinite(f, "size", {size.x, size.y});
+  if (size.x <= 0.0 || size.y <= 0.0) f.FailAt("size", "size must be positive");
   b.width_m = size.x;
   b.height_m = size.y;
   b.yaw_rad = f.Double("yaw_deg", 0.0) * kDegToRad;
-  RequireFinite(file, n, field, {b.center.x, b.center.y, size.x, size.y, b.yaw_rad});
+  RequireFinite(f, "yaw_deg", {b.yaw_rad});
   ForEachItem(&f, "moves", [&](const YAML::Node& m, const std::string& name) {
     Fields mf(file, m, name);
     BoxMove mv{mf.Double("t_s"), mf.GetPoint("center"), mf.Double("yaw_deg", 0.0) * kDegToRad};
     mf.Finish();
-    RequireFinite(file, m, name, {mv.t_s, mv.center.x, mv.center.y, mv.yaw_rad});
+    RequireFinite(mf, "t_s", {mv.t_s});
+    RequireFinite(mf, "center", {mv.center.x, mv.center.y});
+    RequireFinite(mf, "yaw_deg", {mv.yaw_rad});
     if (!b.moves.empty() && mv.t_s < b.moves.back().t_s) Fail(file, m, name, "moves not sorted");
     b.moves.push_back(mv);
   });
@@ -105,7 +137,7 @@ void ParsePlaces(Fields* f, World* w) {
     Fields pf(f->file(), n, name);
     Place p{pf.String("name"), pf.GetPoint("at")};
     pf.Finish();
-    RequireFinite(pf.file(), n, name, {p.at.x, p.at.y});
+    RequireFinite(pf, "at", {p.at.x, p.at.y});
     if (w->FindPlace(p.name) >= 0) Fail(f->file(), n, name, "duplicate place '" + p.name + "'");
     const std::string why = CheckFree(*w, p.at, w->clearance_m);
     if (!why.empty()) Fail(f->file(), n, name, "place '" + p.name + "' " + why);
@@ -135,7 +167,7 @@ World ParseWorld(const YAML::Node& root, const std::string& file) {
   w.source = file;
   w.clearance_m = f.Double("clearance_m", w.clearance_m);
   if (!(w.clearance_m >= 0.0) || !std::isfinite(w.clearance_m))
-    Fail(file, root["clearance_m"], "clearance_m", "must be finite and >= 0");
+    f.FailAt("clearance_m", "must be finite and >= 0");
   const YAML::Node walls = f.Required("walls");
   if (!walls.IsSequence() || walls.size() == 0)
     Fail(file, walls, "walls", "expected a non-empty list");
@@ -170,6 +202,9 @@ void ValidateWorld(const World& world) {
     const std::string field = "walls[" + std::to_string(i) + "]";
     if (wall.points.size() < (wall.closed ? 3u : 2u))
       throw InputError(file, 0, field, "too few points");
+    if (wall.closed && ZeroArea(wall.points)) {
+      throw InputError(file, 0, field, "polygon has zero area (collinear points)");
+    }
     if (wall.closed && PolygonSelfIntersects(wall.points)) {
       throw InputError(file, 0, field, "polygon is self-intersecting");
     }

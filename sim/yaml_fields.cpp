@@ -68,11 +68,23 @@ std::vector<Point> AsPoints(const std::string& file, const YAML::Node& n,
   return out;
 }
 
+void RejectDuplicateKeys(const std::string& file, const YAML::Node& map, const std::string& field) {
+  std::set<std::string> seen;
+  for (auto it = map.begin(); it != map.end(); ++it) {
+    if (!it->first.IsScalar()) continue;  // never a known key: Finish() rejects it
+    const std::string key = it->first.Scalar();
+    if (!seen.insert(key).second) {
+      Fail(file, it->first, field.empty() ? key : field + "." + key, "duplicate key");
+    }
+  }
+}
+
 Fields::Fields(std::string file, const YAML::Node& node, std::string field)
     : file_(std::move(file)), node_(node), field_(std::move(field)) {
   if (!node_.IsMap()) {
     Fail(file_, node_, field_, "expected a map of key: value");
   }
+  RejectDuplicateKeys(file_, node_, field_);
 }
 
 bool Fields::Has(const std::string& key) const { return static_cast<bool>(node_[key]); }
@@ -109,6 +121,11 @@ Point Fields::GetPoint(const std::string& key) { return AsPoint(file_, Required(
 
 std::string Fields::Name(const std::string& key) const {
   return field_.empty() ? key : field_ + "." + key;
+}
+
+void Fields::FailAt(const std::string& key, const std::string& message) const {
+  const YAML::Node n = node_[key];  // const access: never inserts the key
+  Fail(file_, n ? n : node_, Name(key), message);
 }
 
 void Fields::Finish() const {

@@ -27,7 +27,12 @@ std::string AsString(const std::string& file, const YAML::Node& n, const std::st
 Point AsPoint(const std::string& file, const YAML::Node& n, const std::string& field);
 std::vector<Point> AsPoints(const std::string& file, const YAML::Node& n, const std::string& field);
 
-/// A YAML map read key by key; Finish() rejects keys that were never asked for.
+/// Rejects a map that gives a key twice (yaml-cpp would silently keep the first value):
+/// InputError at the repeated key's line naming the dotted field ("" for the document root).
+void RejectDuplicateKeys(const std::string& file, const YAML::Node& map, const std::string& field);
+
+/// A YAML map read key by key. Construction rejects duplicate keys (RejectDuplicateKeys);
+/// Finish() rejects keys that were never asked for.
 class Fields {
  public:
   Fields(std::string file, const YAML::Node& node, std::string field);
@@ -42,6 +47,10 @@ class Fields {
   Point GetPoint(const std::string& key);
   /// Dotted name of a child field, e.g. "laser.rate_hz".
   std::string Name(const std::string& key) const;
+  /// Throws InputError for the value of `key`: its own line (the map's line when the key is
+  /// absent, i.e. a default is wrong) and its dotted name. Checks of a read value use this,
+  /// so an error never names a neighbouring key or the section.
+  [[noreturn]] void FailAt(const std::string& key, const std::string& message) const;
   const std::string& file() const { return file_; }
   const YAML::Node& node() const { return node_; }
   void Finish() const;

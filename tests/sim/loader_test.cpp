@@ -214,5 +214,91 @@ TEST(LoadScenario, ErrorsNameFileLineField) {
   EXPECT_EQ(e.field(), "route.start");
 }
 
+bool Says(const InputError& e, const std::string& text) {
+  return std::string(e.what()).find(text) != std::string::npos;
+}
+
+// A value check names the key it checks and that key's line, not the section's first key
+// or a neighbouring key (dropout_prob > 1 used to be reported as laser.range_noise_m).
+TEST(LoadScenario, ValueChecksNameTheirOwnKeyAndLine) {
+  const std::string head = "name: t\nworld: corridor.yaml\nseed: 1\n";  // lines 1-3
+  InputError e = ScenarioError(head + "laser:\n  rate_hz: 5\n  range_noise_m: 0.01\n" +
+                               "  dropout_prob: 1.5\n");
+  EXPECT_EQ(e.line(), 7);
+  EXPECT_EQ(e.field(), "laser.dropout_prob");
+  e = ScenarioError(head + "laser:\n  rate_hz: 5\n  range_noise_m: .nan\n  dropout_prob: 0\n");
+  EXPECT_EQ(e.line(), 6);
+  EXPECT_EQ(e.field(), "laser.range_noise_m");
+  e = ScenarioError(head + "odometry:\n  rate_hz: 20\n  slip_variance_m2_per_m: -1\n");
+  EXPECT_EQ(e.line(), 6);
+  EXPECT_EQ(e.field(), "odometry.slip_variance_m2_per_m");
+  const InputError w = WorldError(
+      Room("boxes:\n  - name: b\n    center: [2, 1]\n" + std::string("    size: [0, 1]\n")));
+  EXPECT_EQ(w.line(), 11);
+  EXPECT_EQ(w.field(), "boxes[0].size");
+}
+
+// yaml-cpp keeps the first of two equal keys; the loaders reject the second at its line.
+TEST(LoadScenario, DuplicateKeysAreRejected) {
+  const std::string head = "name: t\nworld: corridor.yaml\nseed: 1\n";  // lines 1-3
+  InputError e = ScenarioError(head + "seed: 2\n");
+  EXPECT_EQ(e.line(), 4);
+  EXPECT_EQ(e.field(), "seed");
+  EXPECT_TRUE(Says(e, "duplicate key")) << e.what();
+  e = ScenarioError(head + "laser:\n  beams: 181\n  fov_deg: 180\n  beams: 361\n");
+  EXPECT_EQ(e.line(), 7);
+  EXPECT_EQ(e.field(), "laser.beams");
+  EXPECT_TRUE(Says(e, "duplicate key")) << e.what();
+}
+
+TEST(LoadWorld, DuplicateKeysAreRejected) {
+  InputError e = WorldError(Room("clearance_m: 0.3\nclearance_m: 5\n"));
+  EXPECT_EQ(e.line(), 9);
+  EXPECT_EQ(e.field(), "clearance_m");
+  EXPECT_TRUE(Says(e, "duplicate key")) << e.what();
+  e = WorldError(Room("boxes:\n  - {name: b, center: [2, 1], size: [1, 1], name: c}\n"));
+  EXPECT_EQ(e.line(), 9);
+  EXPECT_EQ(e.field(), "boxes[0].name");
+  EXPECT_TRUE(Says(e, "duplicate key")) << e.what();
+}
+
+TEST(LoadScenario, FieldOfViewAndSpeedsHaveRanges) {
+  const std::string head = "name: t\nworld: corridor.yaml\nseed: 1\n";  // lines 1-3
+  const std::string route = "route: {type: back_and_forth, waypoints: [west, east]}\n";
+  InputError e = ScenarioError(head + "laser:\n  fov_deg: 720\n" + route);
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_EQ(e.field(), "laser.fov_deg");
+  EXPECT_TRUE(Says(e, "(0, 360]")) << e.what();
+  e = ScenarioError(head + "robot:\n  max_speed_mps: 1e9\n" + route);
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_EQ(e.field(), "robot.max_speed_mps");
+  EXPECT_TRUE(Says(e, "(0, 10] m/s")) << e.what();
+  e = ScenarioError(head + "robot: {max_turn_rate_radps: 100}\n" + route);
+  EXPECT_EQ(e.field(), "robot.max_turn_rate_radps");
+  // The ends of the ranges load.
+  const Scenario s = LoadScenarioFromString(
+      head + "laser: {fov_deg: 360}\nrobot: {max_speed_mps: 10, max_turn_rate_radps: 6.28}\n" +
+          route,
+      "s.yaml", kDir + "/worlds");
+  EXPECT_EQ(s.laser.fov_deg, 360.0);
+  EXPECT_EQ(s.robot.max_speed_mps, 10.0);
+}
+
+// Three collinear points pass the repeated-point and self-intersection checks but enclose
+// nothing: rejected like a two-point polygon.
+TEST(LoadWorld, RejectsZeroAreaPolygons) {
+  for (const char* ring : {"[[0, 1], [1, 1], [3, 1]]", "[[0, 1], [1, 1], [3, 1.0000000001]]"}) {
+    const InputError e = WorldError(
+        "walls:\n  - polyline: [[0, 0], [4, 0]]\n  - polygon: " + std::string(ring) + "\n");
+    EXPECT_EQ(e.line(), 3) << ring;
+    EXPECT_EQ(e.field(), "walls[1].polygon") << ring;
+    EXPECT_TRUE(Says(e, "zero area")) << e.what();
+  }
+  // A small but real polygon (a 1 mm square) loads.
+  const World w = LoadWorldFromString(
+      "walls:\n  - polygon: [[0, 0], [1e-3, 0], [1e-3, 1e-3], [0, 1e-3]]\n", "w.yaml");
+  EXPECT_EQ(w.walls.size(), 1u);
+}
+
 }  // namespace
 }  // namespace lifelong::sim

@@ -62,18 +62,35 @@ std::vector<lifelong::slam::PruningMode> ParseModes(const std::string& list) {
 
 // Fails early (exit 2) when a file cannot be written at `path`: checked before a long
 // simulation, not after it.
-void CheckWritableFile(const std::string& path) {
+// `flag` names the option the path came from.
+void CheckWritableFile(const std::string& path, const std::string& flag = "-o") {
   const fs::path p(path);
-  if (p.filename().empty()) throw InputError(path, 0, "-o", "names a directory, not a file");
+  if (p.filename().empty()) throw InputError(path, 0, flag, "names a directory, not a file");
   std::error_code ec;
-  if (fs::is_directory(p, ec)) throw InputError(path, 0, "-o", "is a directory");
+  if (fs::is_directory(p, ec)) throw InputError(path, 0, flag, "is a directory");
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   fs::create_directories(dir, ec);
   const fs::path probe = dir / (".lifelong-write-test-" + std::to_string(::getpid()));
   std::FILE* f = ec ? nullptr : std::fopen(probe.c_str(), "w");
-  if (!f) throw InputError(path, 0, "-o", "cannot write in " + dir.string());
+  if (!f) throw InputError(path, 0, flag, "cannot write in " + dir.string());
   std::fclose(f);
   fs::remove(probe, ec);
+}
+
+// A directory that can be made or written in: itself when it exists, else its nearest
+// existing ancestor, which must be a directory one may write in.
+void CheckWritableDirectory(const std::string& path, const std::string& flag) {
+  std::error_code ec;
+  fs::path p = fs::absolute(path, ec);
+  while (!ec && !fs::exists(p, ec) && p.has_parent_path() && p != p.parent_path()) {
+    p = p.parent_path();
+  }
+  if (ec || !fs::is_directory(p, ec)) {
+    throw InputError(path, 0, flag, p.string() + " exists and is not a directory");
+  }
+  if (::access(p.c_str(), W_OK | X_OK) != 0) {
+    throw InputError(path, 0, flag, "cannot write in " + p.string());
+  }
 }
 
 bool StderrIsTerminal() { return ::isatty(STDERR_FILENO) == 1; }
@@ -135,7 +152,8 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   config.frames_dir = video.frames;
   config.video_stride = video.stride;
   if (!video.video.empty() || !video.frames.empty()) config.open_video = LoadVideoModule();
-  if (!video.video.empty()) CheckWritableFile(video.video);
+  if (!video.video.empty()) CheckWritableFile(video.video, "--video");
+  if (!video.frames.empty()) CheckWritableDirectory(video.frames, "--frames");
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, config.progress_terminal);
@@ -200,6 +218,11 @@ int Replay(const std::string& log, const std::string& out, const std::string& mo
   std::cerr << "read " << data.observations.size() << " scans from " << log
             << (data.odometry_recovered ? " (raw odometry recovered from a corrected log)" : "")
             << "\n";
+  if (!data.skipped.empty()) {
+    std::cerr << "note: lines of other message types were skipped:";
+    for (const auto& [type, count] : data.skipped) std::cerr << " " << type << " " << count;
+    std::cerr << "\n";
+  }
   if (data.observations.empty()) throw InputError(log, 0, "", "the log holds no laser scans");
   lifelong::eval::LogInfo info;
   info.scans = static_cast<std::int64_t>(data.observations.size());

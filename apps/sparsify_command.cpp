@@ -22,6 +22,34 @@ namespace {
 
 using slam::NodeId;
 
+// The global KL compares marginals of the whole graph with one vertex held, which a graph in
+// several pieces does not have: each piece floats free of the others.
+void CheckConnected(const slam::PoseGraph& graph, const std::string& path) {
+  const std::vector<NodeId> ids = graph.NodeIds();
+  std::set<NodeId> reached{ids.front()};
+  std::vector<NodeId> stack{ids.front()};
+  while (!stack.empty()) {
+    const NodeId u = stack.back();
+    stack.pop_back();
+    for (NodeId w : graph.Neighbours(u)) {
+      if (reached.insert(w).second) stack.push_back(w);
+    }
+  }
+  if (reached.size() == ids.size()) return;
+  NodeId first = ids.front();
+  for (NodeId id : ids) {
+    if (!reached.count(id)) {
+      first = id;
+      break;
+    }
+  }
+  throw InputError(path, 0, "",
+                   "the graph is not connected: " + std::to_string(ids.size() - reached.size()) +
+                       " vertices (the first " + std::to_string(first) +
+                       ") cannot be reached from vertex " + std::to_string(ids.front()) +
+                       " through its edges; sparsify needs one connected graph");
+}
+
 std::string Join(const std::vector<std::string>& names) {
   std::string s;
   for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -103,6 +131,7 @@ int Sparsify(const SparsifyArgs& args) {
   }
   io::GraphFile file = io::ReadGraphFile(args.graph);
   if (file.graph.NumNodes() == 0) throw InputError(args.graph, 0, "", "the graph has no vertices");
+  CheckConnected(file.graph, args.graph);
   const std::vector<NodeId> remove =
       args.keep_share ? slam::RemovalForKeepShare(file.graph.NodeIds(), *args.keep_share)
                       : ReadRemoveFile(args.remove, file.graph);

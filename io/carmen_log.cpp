@@ -7,9 +7,11 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string_view>
 
+#include "sensor/input_bounds.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
@@ -72,6 +74,13 @@ std::vector<std::string_view> Split(std::string_view s) {
   return out;
 }
 
+/// A number in an error message: short, whatever its size.
+std::string Show(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
 /// Walks the fields of one message, throwing line-numbered InputErrors.
 class Fields {
  public:
@@ -102,9 +111,18 @@ class Fields {
     if (v < 0.0 || v != std::floor(v) || v > 1e6) Fail(field, "not a valid count");
     return static_cast<int>(v);
   }
+  /// A number within [lo, hi].
+  double Within(const std::string& field, double lo, double hi, const char* what) {
+    const double v = Number(field);
+    if (v < lo || v > hi) Fail(field, Show(v) + " is out of range: " + what);
+    return v;
+  }
+  double Coordinate(const std::string& field) {
+    return Within(field, -kMaxCoordinateM, kMaxCoordinateM, "beyond 1e7 m of the origin");
+  }
   Pose2 Pose(const std::string& field) {
     const std::string p = field.empty() ? "" : field + "_";
-    const double x = Number(p + "x"), y = Number(p + "y");
+    const double x = Coordinate(p + "x"), y = Coordinate(p + "y");
     return {x, y, Number(p + "theta")};
   }
   std::string Word(const std::string& field) {
@@ -113,9 +131,10 @@ class Fields {
   }
   /// `ipc_timestamp ipc_hostname logger_timestamp`, which must end the line.
   double Stamp() {
-    const double ipc = Number("ipc_timestamp");
+    const char* what = "beyond 1e10 s (the year 2286 as Unix time)";
+    const double ipc = Within("ipc_timestamp", -kMaxStampS, kMaxStampS, what);
     Word("ipc_hostname");
-    Number("logger_timestamp");
+    Within("logger_timestamp", -kMaxStampS, kMaxStampS, what);
     if (i_ != tokens_.size()) {
       Fail(std::string(tokens_[0]),
            "line has " + std::to_string(tokens_.size() - i_) + " extra fields (beam count wrong?)");
@@ -125,7 +144,14 @@ class Fields {
   std::vector<float> Ranges(int n) {
     Need(static_cast<std::size_t>(n), "range_readings");
     std::vector<float> r(static_cast<std::size_t>(n));
-    for (auto& v : r) v = static_cast<float>(Number("range_readings"));
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const double v = Number("range_readings");
+      if (v < 0.0 || v > kMaxCoordinateM) {
+        Fail("range_readings", "beam " + std::to_string(i) + " has range " + Show(v) +
+                                   " m (ranges are >= 0; 0 is no return)");
+      }
+      r[i] = static_cast<float>(v);
+    }
     return r;
   }
   std::size_t size() const { return tokens_.size(); }
@@ -168,10 +194,12 @@ Observation ParseRobotLaser(Fields& f) {
   Observation o;
   LaserScan& scan = o.scan;
   f.Number("laser_type");
-  scan.angle_min_rad = f.Number("start_angle");
-  const double fov = f.Number("fov");
-  const double res = f.Number("angular_res");
-  scan.range_max_m = f.Number("max_range");
+  scan.angle_min_rad = f.Within("start_angle", -2.0 * kPi, 2.0 * kPi, "beyond a full turn");
+  const double fov = f.Within("fov", 0.0, 2.0 * kPi + 1e-6, "a field of view is in (0, 2 pi]");
+  if (!(fov > 0.0)) f.Fail("fov", "a field of view is in (0, 2 pi]");
+  const double res = f.Within("angular_res", 0.0, kPi, "the angle between beams is in [0, pi]");
+  scan.range_max_m = f.Within("max_range", 0.0, kMaxCoordinateM, "not a sensor range");
+  if (!(scan.range_max_m > 0.0)) f.Fail("max_range", "a sensor's maximum range is > 0");
   f.Number("accuracy");
   f.Number("remission_mode");
   const int n = f.Count("num_readings");
@@ -180,6 +208,10 @@ Observation ParseRobotLaser(Fields& f) {
   const int n_rem = f.Count("num_remissions");
   for (int i = 0; i < n_rem; ++i) f.Number("remissions");
   scan.angle_increment_rad = res > 0.0 ? res : (n > 1 ? fov / (n - 1) : 0.0);
+  if (scan.angle_increment_rad * (n - 1) > 2.0 * kPi + 1e-6) {
+    f.Fail("angular_res",
+           std::to_string(n) + " beams " + Show(res) + " rad apart span more than a full turn");
+  }
   const Pose2 laser = f.Pose("laser");
   o.T_odom_robot = f.Pose("robot");
   scan.T_robot_laser = Between(o.T_odom_robot, laser);

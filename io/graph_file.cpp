@@ -16,6 +16,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "io/atomic_file.hpp"
+#include "sensor/input_bounds.hpp"
 #include "sensor/input_error.hpp"
 #include "slam/dense_lapack.hpp"
 
@@ -44,6 +45,16 @@ class LineReader {
     const double v = std::strtod(token.c_str(), &end);
     if (*end != '\0' || errno == ERANGE || !std::isfinite(v))
       Fail(field, "not a finite number: '" + token + "'");
+    return v;
+  }
+  /// A number of magnitude at most `bound` (sensor/input_bounds.hpp).
+  double Bounded(const std::string& field, double bound) {
+    const double v = Number(field);
+    if (std::abs(v) > bound) {
+      std::ostringstream what;
+      what << v << " is beyond " << bound << ": corrupt, not data";
+      Fail(field, what.str());
+    }
     return v;
   }
   slam::NodeId Id(const std::string& field) {
@@ -84,7 +95,7 @@ Eigen::Matrix3d ReadInformation(LineReader* r, GraphFormat format) {
   Eigen::Matrix3d info;
   for (const auto& rc : order) {
     const std::string field = "I" + std::to_string(rc[0] + 1) + std::to_string(rc[1] + 1);
-    info(rc[0], rc[1]) = info(rc[1], rc[0]) = r->Number(field);
+    info(rc[0], rc[1]) = info(rc[1], rc[0]) = r->Bounded(field, kMaxInformation);
   }
   if (info.llt().info() != Eigen::Success) {
     r->Fail("information", "information matrix is not positive definite");
@@ -93,8 +104,8 @@ Eigen::Matrix3d ReadInformation(LineReader* r, GraphFormat format) {
 }
 
 Pose2 ReadPose(LineReader* r, const std::string& prefix) {
-  const double x = r->Number(prefix + "x");
-  const double y = r->Number(prefix + "y");
+  const double x = r->Bounded(prefix + "x", kMaxCoordinateM);
+  const double y = r->Bounded(prefix + "y", kMaxCoordinateM);
   return {x, y, r->Number(prefix + "theta")};
 }
 
@@ -163,7 +174,9 @@ void ReadClique(Parsed* p, LineReader* r) {
   const Eigen::Index d = 3 * (m - 1);
   c.information.resize(d, d);
   for (Eigen::Index i = 0; i < d; ++i) {
-    for (Eigen::Index j = i; j < d; ++j) c.information(i, j) = c.information(j, i) = r->Number("I");
+    for (Eigen::Index j = i; j < d; ++j) {
+      c.information(i, j) = c.information(j, i) = r->Bounded("I", kMaxInformation);
+    }
   }
   r->ExpectEnd();
   const Eigen::VectorXd ev = slam::SymmetricEigenvalues(c.information);

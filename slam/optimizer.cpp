@@ -191,7 +191,10 @@ OptimizerSummary Optimize(const PoseGraph& graph, Values* values, const Optimize
   }
   const double start_chi2 = system.Linearize(params);
   summary.final_chi2 = start_chi2;
-  if (layout.num_blocks == 0 || start_chi2 < params.absolute_tolerance) {
+  if (!std::isfinite(start_chi2)) {
+    // Nothing can be decreased from here; the values are left as they came.
+    summary.message = "chi2 is not finite at the start (measurements or information overflow)";
+  } else if (layout.num_blocks == 0 || start_chi2 < params.absolute_tolerance) {
     summary.converged = true;
     summary.message =
         layout.num_blocks == 0 ? "nothing to optimize" : "chi2 below absolute tolerance";

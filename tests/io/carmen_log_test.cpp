@@ -150,6 +150,36 @@ TEST(CarmenRead, CorruptLinesThrowWithLineAndField) {
   }
 }
 
+// Values no robot log holds are errors on their line, not data: negative ranges, fields of
+// view and maximum ranges that are not positive, positions past 1e7 m and stamps past 1e10 s
+// (they overflowed the map's cell indices and the outputs' columns).
+TEST(CarmenRead, ValuesNoRobotLogHoldsThrowWithLineAndField) {
+  const std::string odom = "ODOM 0 0 0 0 0 0 1 h 1\n";
+  ExpectLogError(odom + "FLASER 2 1 -3.5 0 0 0 0 0 0 1 h 1\n", 2, "range_readings");
+  const std::string rl_tail = " 0 0 0 0 0 0 0 0 0 0 0 1 h 1\n";
+  //            ROBOTLASER1 type start fov res max_range acc mode n r r n_rem
+  ExpectLogError("ROBOTLASER1 0 -1.5 0 0.75 30.0 0.01 0 2 1 1 0" + rl_tail, 1, "fov");
+  ExpectLogError("ROBOTLASER1 0 -1.5 -3 0.75 30.0 0.01 0 2 1 1 0" + rl_tail, 1, "fov");
+  ExpectLogError("ROBOTLASER1 0 -1.5 3.0 0.75 -5 0.01 0 2 1 1 0" + rl_tail, 1, "max_range");
+  ExpectLogError("ROBOTLASER1 0 -1.5 3.0 -0.1 30 0.01 0 2 1 1 0" + rl_tail, 1, "angular_res");
+  ExpectLogError("ROBOTLASER1 0 -1.5 3.0 3.0 30 0.01 0 4 1 1 1 1 0" + rl_tail, 1,
+                 "angular_res");  // 4 beams 3 rad apart: 9 rad
+  ExpectLogError("ROBOTLASER1 0 -1.5 3.0 0.75 30 0.01 0 2 1 -1 0" + rl_tail, 1, "range_readings");
+  ExpectLogError("ODOM 1e308 0 0 0 0 0 1 h 1\n", 1, "x");
+  ExpectLogError(odom + "FLASER 1 1 0 0 0 0 -2e7 0 1 h 1\n", 2, "odom_y");
+  ExpectLogError(odom + "FLASER 1 1 0 0 0 0 0 0 1e300 h 1\n", 2, "ipc_timestamp");
+  ExpectLogError(odom + "FLASER 1 1 0 0 0 0 0 0 1 h -2e10\n", 2, "logger_timestamp");
+  // Within the bounds: a Unix stamp, a UTM northing, 0 (no return), a 360 degree field of view.
+  const std::string path = WriteText("edge.clf",
+                                     "FLASER 2 0 5 0 0 0 500000 5500000 0 1764000000 h 1\n"
+                                     "ROBOTLASER1 0 -3.14159 6.2831853 0 30 0.01 0 2 1 1 0" +
+                                         rl_tail);
+  const CarmenLog log = ReadCarmenLog(path);
+  ASSERT_EQ(log.observations.size(), 2u);
+  EXPECT_EQ(log.observations[0].T_odom_robot.y, 5500000.0);
+  EXPECT_NEAR(log.observations[1].scan.angle_increment_rad, 6.2831853, 1e-9);  // fov / (n - 1)
+}
+
 std::vector<Observation> SampleScans() {
   std::vector<Observation> scans(2);
   scans[0].stamp_s = scans[0].scan.stamp_s = 1000000000.25;

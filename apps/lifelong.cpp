@@ -5,10 +5,12 @@
 // 130 interrupted.
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -62,6 +64,12 @@ int OptimizeGraph(const std::string& in, const std::string& out, const std::stri
   lifelong::io::GraphFile file = lifelong::io::ReadGraphFile(in);
   if (file.graph.NumNodes() == 0) throw InputError(in, 0, "", "the graph has no vertices");
   const auto summary = lifelong::slam::Optimize(file.graph, &file.values, params);
+  if (!std::isfinite(summary.initial_chi2) || !std::isfinite(summary.final_chi2)) {
+    std::ostringstream what;
+    what << "the graph's chi2 is not finite (initial " << summary.initial_chi2 << ", final "
+         << summary.final_chi2 << "): its measurements or information overflow";
+    throw InputError(in, 0, "", what.str());
+  }
   std::cout << std::setprecision(10) << "vertices " << file.graph.NumNodes() << "\nedges "
             << file.graph.edges().size() << "\ninitial_chi2 " << summary.initial_chi2
             << "\nfinal_chi2 " << summary.final_chi2 << "\niterations " << summary.iterations
@@ -96,6 +104,16 @@ CLI::Validator IntRange(int lo, int hi) {
       "INT in [" + std::to_string(lo) + ".." + std::to_string(hi) + "]");
 }
 
+// An input file that is a directory is named as such before any work (the readers' streams
+// failed on it with a library message, as an internal error).
+const CLI::Validator kNotADirectory(
+    [](std::string& path) {
+      std::error_code ec;
+      return std::filesystem::is_directory(path, ec) ? path + " is a directory, not a file"
+                                                     : std::string();
+    },
+    "FILE");
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -111,13 +129,14 @@ int main(int argc, char** argv) {
   run_args.modes = "standard,pruned";
   run_args.command_line = command_line;
   auto* run = app.add_subcommand("run", "simulate a scenario, map it with every mode, evaluate");
-  run->add_option("scenario", run_args.scenario, "scenario YAML");
+  run->add_option("scenario", run_args.scenario, "scenario YAML")->check(kNotADirectory);
   run->add_option("-o,--out", run_args.out,
                   "output directory (replaced only when the run is complete)");
   run->add_option(
       "--modes", run_args.modes,
       "comma-separated, of " + lifelong::slam::PruningModeList() + "; the first is the baseline");
-  run->add_option("--config", run_args.config, "mapper settings, YAML (see configs/default.yaml)");
+  run->add_option("--config", run_args.config, "mapper settings, YAML (see configs/default.yaml)")
+      ->check(kNotADirectory);
   run->add_option("--video", run_args.video, "write a video of the run (mp4)");
   run->add_option("--frames", run_args.frames, "write PNG frames of the run into this directory");
   run->add_option("--stride", run_args.stride, "render every this many scans")
@@ -125,7 +144,9 @@ int main(int argc, char** argv) {
 
   lifelong::apps::SimulateArgs sim_args;
   auto* simulate = app.add_subcommand("simulate", "simulate a scenario into a CARMEN log");
-  simulate->add_option("scenario", sim_args.scenario, "scenario YAML")->required();
+  simulate->add_option("scenario", sim_args.scenario, "scenario YAML")
+      ->required()
+      ->check(kNotADirectory);
   simulate->add_option("-o,--out", sim_args.out, "output log (.clf or .clf.gz)")->required();
 
   lifelong::apps::ReplayArgs replay_args;
@@ -133,15 +154,19 @@ int main(int argc, char** argv) {
   replay_args.modes = "standard,pruned";
   replay_args.command_line = command_line;
   auto* replay = app.add_subcommand("replay", "run the mapper on a CARMEN log");
-  replay->add_option("log", replay_args.log, "CARMEN log, plain or gzipped")->required();
+  replay->add_option("log", replay_args.log, "CARMEN log, plain or gzipped")
+      ->required()
+      ->check(kNotADirectory);
   replay->add_option("-o,--out", replay_args.out,
                      "output directory (replaced only when the run is complete)");
   replay->add_option("--modes", replay_args.modes,
                      "comma-separated modes; the first is the baseline");
-  replay->add_option("--config", replay_args.config,
-                     "mapper settings, YAML (see configs/default.yaml)");
-  replay->add_option("--relations", replay_args.relations,
-                     "relations file (Kuemmerle et al. 2009)");
+  replay
+      ->add_option("--config", replay_args.config,
+                   "mapper settings, YAML (see configs/default.yaml)")
+      ->check(kNotADirectory);
+  replay->add_option("--relations", replay_args.relations, "relations file (Kuemmerle et al. 2009)")
+      ->check(kNotADirectory);
   auto* offset_option = replay
                             ->add_option("--relations-offset", replay_args.offset_s,
                                          "s, relation time = log time + this (default: detected, "
@@ -153,7 +178,8 @@ int main(int argc, char** argv) {
   std::string collect_dir;
   auto* sweep = app.add_subcommand(
       "sweep", "map scenarios/logs x seeds x settings, one run per cell, then collect");
-  sweep->add_option("spec", sweep_args.spec, "sweep SPEC, YAML (README \"Sweeps\")");
+  sweep->add_option("spec", sweep_args.spec, "sweep SPEC, YAML (README \"Sweeps\")")
+      ->check(kNotADirectory);
   sweep->add_option("-o,--out", sweep_args.out,
                     "sweep directory (cells, runs.csv, aggregate.csv, paired.csv, report.html)");
   sweep->add_option("-j,--jobs", sweep_args.jobs, "cells run at once")
@@ -182,7 +208,7 @@ int main(int argc, char** argv) {
 
   std::string graph_in, graph_out;
   auto* optimize = app.add_subcommand("optimize", "optimize a g2o or TORO pose graph");
-  optimize->add_option("graph", graph_in, "g2o or TORO file")->required();
+  optimize->add_option("graph", graph_in, "g2o or TORO file")->required()->check(kNotADirectory);
   optimize->add_option("-o,--out", graph_out, "write the optimized graph (g2o)");
   std::string method = "lm";
   std::string solver = "auto";
@@ -195,7 +221,9 @@ int main(int argc, char** argv) {
   sparsify_args.method = "chow-liu";
   auto* sparsify = app.add_subcommand(
       "sparsify", "remove nodes from an optimized pose graph and report the global KL divergence");
-  sparsify->add_option("graph", sparsify_args.graph, "g2o or TORO file")->required();
+  sparsify->add_option("graph", sparsify_args.graph, "g2o or TORO file")
+      ->required()
+      ->check(kNotADirectory);
   sparsify->add_option("-o,--out", sparsify_args.out, "write the sparsified graph (g2o)");
   std::string sparsifier_names;  // the registry's, so a new method shows up by itself
   for (const std::string& name : lifelong::slam::SparsifierNames()) {
@@ -206,7 +234,8 @@ int main(int argc, char** argv) {
   auto* keep_option = sparsify->add_option("--keep-share", sparsify_args.keep_share,
                                            "keep this share of the nodes, evenly by id");
   sparsify->add_option("--remove", sparsify_args.remove, "file of node ids to remove")
-      ->excludes(keep_option);
+      ->excludes(keep_option)
+      ->check(kNotADirectory);
   sparsify
       ->add_option("--nfr-chords", sparsify_args.nfr_chords,
                    "nfr-subgraph's edges beyond the tree: joined (pairs joined by edges "

@@ -34,6 +34,9 @@ inline constexpr Range kAnyNumber{-kInf, kInf, false, "a finite number"};
 inline constexpr Range kNonNegative{0.0, kInf, false, ">= 0"};
 inline constexpr Range kPositive{0.0, kInf, true, "> 0"};
 inline constexpr Range kUnit{0.0, 1.0, false, "in [0, 1]"};
+/// Cell sides: a finer cell than 5 mm resolves nothing a laser measures, and costs memory and
+/// time by the square (1e-6 m filled 24 GB in one scan).
+inline constexpr Range kCellSide{0.005, 10.0, false, "in [0.005, 10] m"};
 
 template <class E>
 struct EnumName {
@@ -68,7 +71,7 @@ void VisitMatcher(V& v, slam::MatcherConfig& m, bool with_windows) {
     v.Number("linear_window_m", m.linear_window_m, kPositive);
     v.Number("angular_window_rad", m.angular_window_rad, kPositive);
   }
-  v.Number("resolution_m", m.resolution_m, kPositive);
+  v.Number("resolution_m", m.resolution_m, kCellSide);
   v.Number("angular_step_rad", m.angular_step_rad, kNonNegative);
   v.PowerOfTwo("coarse_factor", m.coarse_factor);
   v.Number("sigma_m", m.sigma_m, kPositive);
@@ -182,7 +185,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Bool("robust_marginal", c.pruning.robust_marginal);
   });
   v.Section("grid", [&](auto& s) {
-    s.Number("resolution_m", c.grid.resolution_m, kPositive);
+    s.Number("resolution_m", c.grid.resolution_m, kCellSide);
     s.Number("max_free_range_m", c.grid.max_free_range_m, kNonNegative);
     s.Number("max_hit_range_m", c.grid.max_hit_range_m, kPositive);
     s.Int("max_dropout_beams", c.grid.max_dropout_beams, 0);

@@ -17,11 +17,17 @@
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
+#include "sensor/input_error.hpp"
 
 namespace lifelong::eval {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The most cells a map may span: the dense grid written as map.pgm and drawn in the figures
+// takes 4 bytes a cell (512 MiB here; 580 m square at 5 cm). A run that outgrows it is
+// stopped at the observation that did, not at the end with the memory exhausted.
+constexpr double kMaxMapCells = double{1 << 27};
 
 }  // namespace
 
@@ -36,6 +42,19 @@ void ModeRunner::Step(const Observation& obs) {
   const auto start = Clock::now();
   mapper_->AddObservation(obs);
   seconds_ += Seconds(start);
+  const slam::CellBounds& box = mapper_->map().Extent();
+  if (box.empty) return;
+  const double w = box.max.x - box.min.x + 1.0, h = box.max.y - box.min.y + 1.0;
+  if (w * h <= kMaxMapCells) return;
+  const double r = mapper_->map().resolution_m();
+  char what[320];
+  std::snprintf(what, sizeof what,
+                "the scan stamped %.3f s (observation %zu) takes the map to %.0f x %.0f m, "
+                "more than the %.0f cells a map may hold at %g m: does the odometry jump? "
+                "(a larger area needs a coarser grid.resolution_m)",
+                obs.stamp_s, static_cast<std::size_t>(timeline_.back().obs), w * r, h * r,
+                kMaxMapCells, r);
+  throw InputError(config_.source, 0, "", what);
 }
 
 std::string ModeRunner::ProgressDetail() const {

@@ -64,7 +64,16 @@ GridMap::Cell* GridMap::FindOrCreate(CellIndex c, Cursor* cursor) {
   const std::size_t slot = SlotOf(key);
   if (!cursor->valid[slot] || cursor->keys[slot] != key || cursor->chunks[slot] == nullptr) {
     std::unique_ptr<Chunk>& chunk = chunks_[key];
-    if (!chunk) chunk = std::make_unique<Chunk>();
+    if (!chunk) {
+      chunk = std::make_unique<Chunk>();
+      const CellIndex lo{Of(c.x) * kChunkSide, Of(c.y) * kChunkSide};
+      const CellIndex hi{lo.x + kChunkSide - 1, lo.y + kChunkSide - 1};
+      extent_ = extent_.empty
+                    ? CellBounds{lo, hi, false}
+                    : CellBounds{{std::min(extent_.min.x, lo.x), std::min(extent_.min.y, lo.y)},
+                                 {std::max(extent_.max.x, hi.x), std::max(extent_.max.y, hi.y)},
+                                 false};
+    }
     cursor->valid[slot] = true;
     cursor->keys[slot] = key;
     cursor->chunks[slot] = chunk.get();

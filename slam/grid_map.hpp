@@ -146,6 +146,9 @@ class GridMap {
   bool IsKnown(CellIndex c) const;
   /// Box of the cells with any count (recomputed by a scan over the allocated chunks).
   CellBounds Bounds() const;
+  /// Box of every chunk (32 x 32 cells) the map ever allocated: a bound on Bounds(), kept
+  /// as the map grows, for a check per scan.
+  const CellBounds& Extent() const { return extent_; }
   /// Calls f for every cell with any count, chunk by chunk (order unspecified).
   void ForEachKnownCell(const std::function<void(CellIndex, CellCounts)>& f) const;
   std::size_t NumKnownCells() const;
@@ -179,6 +182,7 @@ class GridMap {
   GridMapConfig config_;
   std::vector<CellChange> move_scratch_;  ///< Move's undo log when the caller wants none
   std::unordered_map<std::uint64_t, std::unique_ptr<Chunk>> chunks_;
+  CellBounds extent_;
 };
 
 }  // namespace lifelong::slam

@@ -320,7 +320,7 @@ TEST(MapperConfigFile, WrongTypesAreRejected) {
 TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
   ExpectError("pruning:\n  radius_m: -1\n", 2, "pruning.radius_m", ">= 0");
   ExpectError("pruning:\n  node_budget: -1\n", 2, "pruning.node_budget", ">= 0");
-  ExpectError("grid:\n  resolution_m: 0\n", 2, "grid.resolution_m", "> 0");
+  ExpectError("grid:\n  resolution_m: 0\n", 2, "grid.resolution_m", "in [0.005, 10] m");
   ExpectError("incremental:\n  matcher:\n    coarse_factor: 12\n", 3,
               "incremental.matcher.coarse_factor", "power of 2");
   ExpectError("incremental:\n  matcher:\n    coarse_factor: 0\n", 3,

@@ -63,7 +63,7 @@ TEST(SweepSpec, EachKindOfBadInputNamesFileLineAndField) {
               kScenario + "modes: [standard]\nsettings:\n  pruning.gain_bits: [0, 5]\n", 4,
               "settings.pruning.gain_bits", "unknown key");
   ExpectError("bad_value", kScenario + "modes: [standard]\nsettings:\n  grid.resolution_m: [-1]\n",
-              4, "settings.grid.resolution_m", "must be > 0");
+              4, "settings.grid.resolution_m", "must be in [0.005, 10] m");
   ExpectError("empty_setting",
               kScenario + "modes: [standard]\nsettings:\n  grid.resolution_m: []\n", 4,
               "settings.grid.resolution_m", "empty");

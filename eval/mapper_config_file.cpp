@@ -12,6 +12,7 @@
 
 #include "eval/mapper_config_fields.hpp"
 #include "sensor/input_error.hpp"
+#include "sim/yaml_fields.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -31,10 +32,7 @@ const std::map<std::string, std::string>& Hints() {
 
 // ---- Reading: strict, every error an InputError with file, 1-based line and field. ----
 
-int LineOf(const YAML::Node& node) {
-  const int line = node.Mark().line;
-  return line >= 0 ? line + 1 : 0;
-}
+using sim::LineOf;
 
 class Reader {
  public:
@@ -138,10 +136,9 @@ class Reader {
 
   /// Every key must be a known one, given once (yaml-cpp would silently keep the first).
   void RejectUnknown() const {
-    std::set<std::string> seen;
+    sim::RejectDuplicateKeys(file_, node_, field_);
     for (auto it = node_.begin(); it != node_.end(); ++it) {
       const std::string key = it->first.Scalar();
-      if (!seen.insert(key).second) Fail(it->first, Name(key), "duplicate key");
       if (used_.count(key) != 0) continue;
       const auto hint = Hints().find(Name(key));
       Fail(it->first, Name(key),

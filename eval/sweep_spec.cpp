@@ -9,6 +9,7 @@
 
 #include "eval/mapper_config_file.hpp"
 #include "sensor/input_error.hpp"
+#include "sim/yaml_fields.hpp"
 #include "slam/mapper_config.hpp"
 
 namespace lifelong::eval {
@@ -16,10 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int LineOf(const YAML::Node& node) {
-  const int line = node.Mark().line;
-  return line >= 0 ? line + 1 : 0;
-}
+using sim::LineOf;
 
 class SpecReader {
  public:
@@ -55,10 +53,10 @@ class SpecReader {
 
   void RejectUnknown(const YAML::Node& map, const std::set<std::string>& known,
                      const std::string& prefix) const {
-    std::set<std::string> seen;
+    sim::RejectDuplicateKeys(file_, map,
+                             prefix.empty() ? prefix : prefix.substr(0, prefix.size() - 1));
     for (auto it = map.begin(); it != map.end(); ++it) {
       const std::string key = it->first.Scalar();
-      if (!seen.insert(key).second) Fail(it->first, prefix + key, "duplicate key");
       if (known.count(key) == 0) Fail(it->first, prefix + key, "unknown key");
     }
   }
@@ -190,12 +188,7 @@ class SpecReader {
   }
 
   void RejectDuplicates(const YAML::Node& map) const {
-    std::set<std::string> seen;
-    for (auto it = map.begin(); it != map.end(); ++it) {
-      if (!seen.insert(it->first.Scalar()).second) {
-        Fail(it->first, "settings." + it->first.Scalar(), "duplicate key");
-      }
-    }
+    sim::RejectDuplicateKeys(file_, map, "settings");
   }
 
   /// The real config reader decides: a config holding just this key and value must load.

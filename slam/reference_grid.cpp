@@ -212,10 +212,9 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
   origin_m_ = (lo / r).array().floor().matrix() * r - Eigen::Vector2d::Constant(margin * r);
   width_ = static_cast<int>(std::ceil((hi.x() - origin_m_.x()) / r)) + margin + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - origin_m_.y()) / r)) + margin + 1;
-  std::vector<float>& fine = levels_[0];
-  const bool zeroed =
-      ResizeTable(&fine, static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
-  if (!zeroed) std::fill(fine.begin(), fine.end(), 0.0f);
+  Table& fine = levels_[0];
+  ResizeTable(&fine, static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+  std::fill(fine.begin(), fine.end(), 0.0f);
   const double max_d2 = 9.0 * sigma_m * sigma_m, inv_2s2 = 1.0 / (2.0 * sigma_m * sigma_m);
   // The Gaussian is separable: exp(-(dx^2 + dy^2) / 2s^2) = gx(dx) * gy(dy), so each point
   // costs 2 (2k + 1) exponentials instead of (2k + 1)^2.
@@ -254,8 +253,8 @@ void ReferenceGrid::BuildLevels() {
   const std::size_t cells = levels_[0].size();
   for (int half = 1; half < coarse_factor_; half *= 2) {
     if (levels_.size() <= static_cast<std::size_t>(num_levels_)) levels_.emplace_back();
-    std::vector<float>& next = levels_[static_cast<std::size_t>(num_levels_)];
-    const std::vector<float>& prev = levels_[static_cast<std::size_t>(num_levels_ - 1)];
+    Table& next = levels_[static_cast<std::size_t>(num_levels_)];
+    const Table& prev = levels_[static_cast<std::size_t>(num_levels_ - 1)];
     ResizeTable(&next, cells);  // every cell is written below
     const auto h = static_cast<std::size_t>(std::min(half, width_));
     for (std::size_t y = 0; y < rows; ++y) {

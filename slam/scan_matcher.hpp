@@ -23,6 +23,7 @@
 
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
+#include "slam/scratch_table.hpp"
 
 namespace lifelong::slam {
 
@@ -96,8 +97,10 @@ class ReferenceGrid {
   int width_ = 0;
   int height_ = 0;
   int num_levels_ = 1;
-  /// levels_[0]: v per cell; levels past num_levels_ are spare capacity.
-  std::vector<std::vector<float>> levels_ = {{}};
+  /// levels_[0]: v per cell; levels past num_levels_ are spare capacity. Rebuilt per scan
+  /// with every cell written, so never zeroed by a resize (scratch_table.hpp).
+  using Table = std::vector<float, UninitializedAllocator<float>>;
+  std::vector<Table> levels_ = {{}};
 };
 
 struct MatchResult {

@@ -88,7 +88,13 @@ json ModeJson(const ModeSummary& m) {
                       {"rot_mean_deg", r.rot_mean_deg},
                       {"rot_std_deg", r.rot_std_deg}};
   }
-  if (m.kld) j["kld"] = {{"count", m.kld->count}, {"mean", m.kld->mean}, {"max", m.kld->max}};
+  if (m.kld) {
+    j["kld"] = {{"count", m.kld->count},
+                {"mean", m.kld->mean},
+                {"max", m.kld->max},
+                {"infinite", m.kld->infinite},
+                {"mean_finite", m.kld->mean_finite}};
+  }
   if (!m.stage_ms.empty()) j["stage_ms"] = m.stage_ms;
   Put(j, "map_entropy_bits", m.map_entropy_bits);
   Put(j, "occupied_share", m.occupied_share);
@@ -176,6 +182,15 @@ std::optional<KldSummary> SummarizeKld(const std::vector<double>& kl_values) {
   k.count = static_cast<std::int64_t>(kl_values.size());
   k.mean = Mean(kl_values);
   k.max = *std::max_element(kl_values.begin(), kl_values.end());
+  std::vector<double> finite;
+  for (double v : kl_values) {
+    if (std::isfinite(v)) {
+      finite.push_back(v);
+    } else {
+      ++k.infinite;
+    }
+  }
+  if (!finite.empty()) k.mean_finite = Mean(finite);
   return k;
 }
 

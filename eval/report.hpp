@@ -43,7 +43,9 @@ struct LoopVerificationSummary {
 };
 struct KldSummary {
   std::int64_t count = 0;
-  double mean = 0.0, max = 0.0;
+  double mean = 0.0, max = 0.0;  ///< +inf (null in JSON) when any removal's KL is infinite
+  std::int64_t infinite = 0;     ///< removals whose approximation lost a direction outright
+  double mean_finite = 0.0;      ///< mean over the others (0 when there are none)
 };
 
 /// One entry of "modes" in summary.json; the names match the JSON keys.

@@ -150,6 +150,11 @@ const std::vector<TableRow>& SummaryTableRows() {
        "KL divergence of each approximate clique from the exact marginal, mean (0: exact)"},
       {kAccuracy, "/kld/max", "KL divergence, maximum", "nats", 1, false,
        "the largest KL divergence of one marginalization"},
+      {kAccuracy, "/kld/infinite", "KL divergence infinite", "", 1, false,
+       "marginalizations whose approximation lost an informative direction outright (mean and "
+       "maximum are then infinite)"},
+      {kAccuracy, "/kld/mean_finite", "KL divergence, mean of the finite", "nats", 1, false,
+       "the mean over the other marginalizations"},
       {kMap, "/blur/mean_cm", "blur, mean", "cm", 1, true,
        "distance of the aligned map's occupied cells (p >= 0.65) to the nearest true wall"},
       {kMap, "/blur/p95_cm", "blur, 95th percentile", "cm", 1, true,

@@ -2,6 +2,7 @@
 // (report.html: report_html_test.cpp).
 #include "eval/report.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -118,12 +119,30 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
   EXPECT_EQ(Keys(m["blur"]), (std::set<std::string>{"mean_cm", "p95_cm", "thickness", "recall"}));
   EXPECT_EQ(Keys(m["relations"]), (std::set<std::string>{"count", "trans_mean_m", "trans_std_m",
                                                          "rot_mean_deg", "rot_std_deg"}));
-  EXPECT_EQ(Keys(m["kld"]), (std::set<std::string>{"count", "mean", "max"}));
+  EXPECT_EQ(Keys(m["kld"]),
+            (std::set<std::string>{"count", "mean", "max", "infinite", "mean_finite"}));
+  EXPECT_EQ(m["kld"]["infinite"], 0);
   EXPECT_EQ(m["kld"]["count"], 2);
   EXPECT_DOUBLE_EQ(m["kld"]["mean"].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(m["time_per_obs_ms"]["p95"].get<double>(), 19.05);
   // figures that do not apply are absent, not zero
   EXPECT_EQ(Keys(j["modes"]["standard"]), (std::set<std::string>{"observations"}));
+}
+
+// An approximation that loses a direction outright has an infinite KL: the mean and the
+// maximum are then infinite (null in JSON), and how many there were, and the mean of the
+// rest, are said beside them instead of leaving a bare null.
+TEST(SummarizeKldTest, InfiniteDivergencesAreCountedBesideTheFiniteMean) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const KldSummary k = *SummarizeKld({0.5, inf, 1.5, inf});
+  EXPECT_EQ(k.count, 4);
+  EXPECT_EQ(k.infinite, 2);
+  EXPECT_DOUBLE_EQ(k.mean_finite, 1.0);
+  EXPECT_TRUE(std::isinf(k.mean));
+  EXPECT_TRUE(std::isinf(k.max));
+  const KldSummary all = *SummarizeKld({inf});
+  EXPECT_EQ(all.infinite, 1);
+  EXPECT_EQ(all.mean_finite, 0.0);
 }
 
 TEST(EdgesByKindTest, CountsEachFactorByOriginAndCliquesAsPairs) {

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "io/text_fields.hpp"
+#include "sensor/input_bounds.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
@@ -21,7 +22,8 @@ std::vector<Relation> ParseRelations(std::istream& in, const std::string& name,
       in, name, {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"},
       [&](int, const std::vector<double>& v) {
         relations.push_back({v[0] - time_offset_s, v[1] - time_offset_s, Pose2(v[2], v[3], v[7])});
-      });
+      },
+      {kMaxStampS, kMaxStampS, kMaxCoordinateM, kMaxCoordinateM, kMaxCoordinateM});
   return relations;
 }
 

@@ -39,7 +39,8 @@ void ForEachNumericRow(const std::string& path, const std::vector<std::string>& 
 
 void ForEachNumericRow(std::istream& in, const std::string& name,
                        const std::vector<std::string>& fields,
-                       const std::function<void(int, const std::vector<double>&)>& row) {
+                       const std::function<void(int, const std::vector<double>&)>& row,
+                       const std::vector<double>& max_abs) {
   const std::size_t n_fields = fields.size();
   std::vector<double> values;
   std::string text;
@@ -55,7 +56,14 @@ void ForEachNumericRow(std::istream& in, const std::string& name,
       if (values.size() == n_fields) {
         throw InputError(name, line, "", "more than " + std::to_string(n_fields) + " fields");
       }
-      values.push_back(ParseFiniteNumber(token, name, line, fields[values.size()]));
+      const std::size_t i = values.size();
+      const double v = ParseFiniteNumber(token, name, line, fields[i]);
+      if (i < max_abs.size() && std::abs(v) > max_abs[i]) {
+        std::ostringstream what;
+        what << "'" << token << "' is beyond " << max_abs[i] << ": corrupt, not data";
+        throw InputError(name, line, fields[i], what.str());
+      }
+      values.push_back(v);
     }
     if (values.empty()) continue;
     if (values.size() < n_fields) {

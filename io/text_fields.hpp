@@ -23,9 +23,12 @@ void AppendFixed(std::string* s, double v, int decimals);
 /// or extra field, or a token that is not a finite number.
 void ForEachNumericRow(const std::string& path, const std::vector<std::string>& fields,
                        const std::function<void(int, const std::vector<double>&)>& row);
-/// Same, from a stream; `name` stands for the file in error messages.
+/// Same, from a stream; `name` stands for the file in error messages. A value whose
+/// magnitude exceeds its field's entry of `max_abs` (when given; sensor/input_bounds.hpp) is
+/// an InputError too: corruption, not data.
 void ForEachNumericRow(std::istream& in, const std::string& name,
                        const std::vector<std::string>& fields,
-                       const std::function<void(int, const std::vector<double>&)>& row);
+                       const std::function<void(int, const std::vector<double>&)>& row,
+                       const std::vector<double>& max_abs = {});
 
 }  // namespace lifelong::io

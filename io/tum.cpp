@@ -8,6 +8,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/text_fields.hpp"
+#include "sensor/input_bounds.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::io {
@@ -53,10 +54,12 @@ std::vector<StampedPose> ReadTum(const std::string& path) {
 
 std::vector<StampedPose> ParseTum(std::istream& in, const std::string& name) {
   std::vector<StampedPose> poses;
+  // A quaternion of any norm gives its yaw (YawOf), so only stamps and positions are bounded.
   ForEachNumericRow(in, name, {"timestamp", "tx", "ty", "tz", "qx", "qy", "qz", "qw"},
                     [&](int line, const std::vector<double>& v) {
                       poses.push_back({v[0], Pose2(v[1], v[2], YawOf(v, name, line))});
-                    });
+                    },
+                    {kMaxStampS, kMaxCoordinateM, kMaxCoordinateM, kMaxCoordinateM});
   return poses;
 }
 

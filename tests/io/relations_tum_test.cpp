@@ -83,6 +83,24 @@ TEST(Tum, ParsesAStreamAndNamesItInErrors) {
 }
 
 // Found by fuzz_tum: squaring components near 1e200 gave inf - inf = NaN yaw.
+// Stamps and positions past sensor/input_bounds.hpp are corruption, refused at their field.
+TEST(Tum, StampsAndPositionsPastAnyRobotsAreRefusedAtTheirField) {
+  const auto field_of = [](const std::string& line, bool tum) {
+    std::istringstream in(line);
+    try {
+      tum ? (void)ParseTum(in, "b") : (void)ParseRelations(in, "b", 0.0);
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(field_of("1e300 0 0 0 0 0 0 1\n", true), "timestamp");
+  EXPECT_EQ(field_of("1 0 -2e7 0 0 0 0 1\n", true), "ty");
+  EXPECT_EQ(field_of("1764000000 500000 5500000 0 0 0 0 1\n", true), "accepted");
+  EXPECT_EQ(field_of("1 1e11 0 0 0 0 0 0\n", false), "t2");
+  EXPECT_EQ(field_of("1 2 3e7 0 0 0 0 0\n", false), "x");
+}
+
 TEST(Tum, QuaternionOfAnyNormGivesItsYaw) {
   const auto yaw = [](const std::string& q) {
     std::istringstream in("0 0 0 0 " + q + "\n");

@@ -25,9 +25,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // The most cells a map may span: the dense grid written as map.pgm and drawn in the figures
-// takes 4 bytes a cell (512 MiB here; 580 m square at 5 cm). A run that outgrows it is
+// takes 4 bytes a cell (1 GiB here; 820 m square at 5 cm). A run that outgrows it is
 // stopped at the observation that did, not at the end with the memory exhausted.
-constexpr double kMaxMapCells = double{1 << 27};
+constexpr double kMaxMapCells = double{1 << 28};
 
 }  // namespace
 

@@ -93,6 +93,9 @@ void CheckWritableDirectory(const std::string& path, const std::string& flag) {
   }
 }
 
+// The cell side of the truth map `simulate` writes beside its log.
+constexpr double kSimulateTruthResolutionM = 0.05;
+
 bool StderrIsTerminal() { return ::isatty(STDERR_FILENO) == 1; }
 
 void PrintResult(const lifelong::eval::RunSummary& summary, const std::string& out) {
@@ -102,10 +105,11 @@ void PrintResult(const lifelong::eval::RunSummary& summary, const std::string& o
 
 int Simulate(const std::string& scenario_path, const std::string& out) {
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  lifelong::eval::CheckWorldRaster(scenario, kSimulateTruthResolutionM);
   CheckWritableFile(out);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, StderrIsTerminal());
-  lifelong::eval::WriteSimulation(out, scenario, run, 0.05);
+  lifelong::eval::WriteSimulation(out, scenario, run, kSimulateTruthResolutionM);
   std::cout << "scans " << run.observations.size() << "  odometry " << run.odometry.size()
             << "  simulated " << run.duration_s << " s  collisions " << run.collisions.size()
             << (run.timed_out ? "  (timed out)" : "") << "\n";
@@ -155,6 +159,7 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   if (!video.video.empty()) CheckWritableFile(video.video, "--video");
   if (!video.frames.empty()) CheckWritableDirectory(video.frames, "--frames");
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  lifelong::eval::CheckWorldRaster(scenario, config.mapper.grid.resolution_m);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, config.progress_terminal);
   for (const auto& c : run.collisions) {

@@ -10,6 +10,7 @@
 
 #include "eval/map_quality.hpp"
 #include "eval/mode_csv.hpp"
+#include "eval/raster_limit.hpp"
 #include "eval/resources.hpp"
 #include "eval/run_maps.hpp"
 #include "eval/stopwatch.hpp"
@@ -24,10 +25,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The most cells a map may span: the dense grid written as map.pgm and drawn in the figures
-// takes 4 bytes a cell (1 GiB here; 820 m square at 5 cm). A run that outgrows it is
-// stopped at the observation that did, not at the end with the memory exhausted.
-constexpr double kMaxMapCells = double{1 << 28};
+// A run whose map outgrows kMaxRasterCells is stopped at the observation that did, not at
+// the end with the memory exhausted.
+constexpr double kMaxMapCells = kMaxRasterCells;
 
 }  // namespace
 

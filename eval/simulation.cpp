@@ -6,14 +6,17 @@
 #include <iomanip>
 #include <ostream>
 #include <set>
+#include <sstream>
 
 #include "eval/draw.hpp"
 #include "eval/interrupt.hpp"
 #include "eval/map_quality.hpp"
 #include "eval/progress.hpp"
+#include "eval/raster_limit.hpp"
 #include "io/carmen_log.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
+#include "sensor/input_error.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -106,6 +109,38 @@ std::optional<double> FirstPassEnd(const sim::Scenario& scenario, const Simulate
     if (pending.empty()) return o.stamp_s;
   }
   return std::nullopt;  // some destination never visited: no first pass
+}
+
+void CheckWorldRaster(const sim::Scenario& scenario, double resolution_m) {
+  const sim::World& w = scenario.world;
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  bool any = false;
+  const auto add = [&](double x, double y, double r) {
+    x0 = any ? std::min(x0, x - r) : x - r, x1 = any ? std::max(x1, x + r) : x + r;
+    y0 = any ? std::min(y0, y - r) : y - r, y1 = any ? std::max(y1, y + r) : y + r;
+    any = true;
+  };
+  for (const sim::Wall& wall : w.walls) {
+    for (const sim::Point& p : wall.points) add(p.x, p.y, 0.0);
+  }
+  for (const sim::Door& d : w.doors) {
+    add(d.segment.x0, d.segment.y0, 0.0);
+    add(d.segment.x1, d.segment.y1, 0.0);
+  }
+  for (const sim::Box& b : w.boxes) {
+    const double r = std::hypot(b.width_m, b.height_m);
+    add(b.center.x, b.center.y, r);
+    for (const sim::BoxMove& m : b.moves) add(m.center.x, m.center.y, r);
+  }
+  for (const sim::Place& p : w.places) add(p.at.x, p.at.y, 0.0);
+  if (!any) return;
+  const double cells = ((x1 - x0) / resolution_m + 1.0) * ((y1 - y0) / resolution_m + 1.0);
+  if (cells <= kMaxRasterCells) return;
+  std::ostringstream what;
+  what << "the world spans " << std::lround(x1 - x0) << " x " << std::lround(y1 - y0)
+       << " m: a map of it at " << resolution_m << " m needs " << cells << " cells, more than "
+       << kMaxRasterCells << " (a larger world needs a coarser grid.resolution_m)";
+  throw InputError(scenario.world_path, 0, "", what.str());
 }
 
 void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,

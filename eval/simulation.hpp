@@ -38,6 +38,10 @@ std::vector<Segment> TrueWalls(const sim::World& world, double end_s);
 /// no first pass, and nodes_after_first_pass / first_pass_mean are left out of the summary.
 std::optional<double> FirstPassEnd(const sim::Scenario& scenario, const SimulatedRun& run);
 
+/// Throws InputError naming the world file when a raster of the world at resolution_m (the
+/// truth map, the figures) would exceed kMaxRasterCells: before the simulation, not after.
+void CheckWorldRaster(const sim::Scenario& scenario, double resolution_m);
+
 /// Writes LOG (CARMEN, ODOM + ROBOTLASER1 + TRUEPOS), LOG-stem.truth.tum, LOG-stem.truth.pgm/.yaml
 /// and LOG-stem.png (the world with the true and odometry trajectories).
 void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,

@@ -12,17 +12,23 @@ namespace {
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 /// YAML reads .inf and .nan as numbers; no coordinate, size, angle or time may be one.
+// Coordinates, sizes, angles and times of a world beyond this are corruption: Box2D works in
+// floats, which a larger double overflows (its assertions abort the process), and 1e7 is
+// also the longest scenario (s).
+constexpr double kMaxWorldValue = 1e7;
+constexpr const char* kNotFinite = "must be a finite number of magnitude at most 1e7";
+
 void RequireFinite(const std::string& file, const YAML::Node& n, const std::string& field,
                    std::initializer_list<double> values) {
   for (double v : values) {
-    if (!std::isfinite(v)) Fail(file, n, field, "must be a finite number");
+    if (!(std::abs(v) <= kMaxWorldValue)) Fail(file, n, field, kNotFinite);
   }
 }
 
 /// The same for the value of one key of `f`, blamed on that key's line and name.
 void RequireFinite(const Fields& f, const std::string& key, std::initializer_list<double> values) {
   for (double v : values) {
-    if (!std::isfinite(v)) f.FailAt(key, "must be a finite number");
+    if (!(std::abs(v) <= kMaxWorldValue)) f.FailAt(key, kNotFinite);
   }
 }
 

@@ -2,7 +2,10 @@
 // time of the run, and a tour that never visits every destination has no first pass.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "eval/simulation.hpp"
+#include "sensor/input_error.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -74,6 +77,25 @@ TEST(FirstPassEnd, ATourEndsItsFirstPassAtTheLastNewDestination) {
   run.observations = {At(0.0, 0.0), At(5.0, 10.0), At(9.0, 20.0), At(12.0, 10.0)};
   ASSERT_TRUE(FirstPassEnd(Tour(), run).has_value());
   EXPECT_EQ(*FirstPassEnd(Tour(), run), 9.0);
+}
+
+// A world whose truth map would not fit in memory is refused, naming the world file, before
+// anything is simulated (a 10 km wall asked OpenCV for 40 GB after the simulation).
+TEST(CheckWorldRaster, AWorldPastTheRasterLimitIsAnInputError) {
+  sim::Scenario scenario;
+  scenario.world_path = "far.yaml";
+  scenario.world.walls.push_back({{{0.0, 0.0}, {10000.0, 10000.0}}, false});
+  try {
+    CheckWorldRaster(scenario, 0.05);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "far.yaml");
+    EXPECT_NE(std::string(e.what()).find("the world spans 10000 x 10000 m"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(CheckWorldRaster(scenario, 1.0));  // 10 000 x 10 000 cells fit
+  scenario.world = OneWallOneDoor({});
+  EXPECT_NO_THROW(CheckWorldRaster(scenario, 0.05));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sensor/input_error.hpp"
@@ -298,6 +299,21 @@ TEST(LoadWorld, RejectsZeroAreaPolygons) {
   const World w = LoadWorldFromString(
       "walls:\n  - polygon: [[0, 0], [1e-3, 0], [1e-3, 1e-3], [0, 1e-3]]\n", "w.yaml");
   EXPECT_EQ(w.walls.size(), 1u);
+}
+
+// Values a float overflows aborted the process in Box2D's assertions; they are refused at
+// their key instead.
+TEST(LoadWorld, ValuesPastAFloatAreRefusedAtTheirKey) {
+  const std::string wall = "walls:\n  - polyline: [[0, 0], [4, 0]]\n";
+  for (const auto& [text, field] : std::vector<std::pair<std::string, std::string>>{
+           {"boxes:\n  - {name: b, center: [1, 1], size: [1, 1], yaw_deg: 1e300}\n",
+            "boxes[0].yaw_deg"},
+           {"boxes:\n  - {name: b, center: [1e39, 1], size: [1, 1]}\n", "boxes[0].center"},
+           {"doors:\n  - {name: d, from: [0, 0], to: [1e8, 0]}\n", "doors[0].to"}}) {
+    const InputError e = WorldError(wall + text);
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_TRUE(Says(e, "magnitude at most 1e7")) << e.what();
+  }
 }
 
 }  // namespace

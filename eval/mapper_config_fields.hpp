@@ -23,12 +23,14 @@ using slam::RobustKernel;
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Allowed values of a number: [min, max], or (min, max] when min_open.
+/// Allowed values of a number: [min, max], or (min, max] when min_open; when zero_or_from is
+/// set, 0 or [zero_or_from, max] (0 meaning "automatic").
 struct Range {
   double min;
   double max;
   bool min_open;
   const char* text;
+  double zero_or_from = 0.0;
 };
 inline constexpr Range kAnyNumber{-kInf, kInf, false, "a finite number"};
 inline constexpr Range kNonNegative{0.0, kInf, false, ">= 0"};
@@ -37,6 +39,11 @@ inline constexpr Range kUnit{0.0, 1.0, false, "in [0, 1]"};
 /// Cell sides: a finer cell than 5 mm resolves nothing a laser measures, and costs memory and
 /// time by the square (1e-6 m filled 24 GB in one scan).
 inline constexpr Range kCellSide{0.005, 10.0, false, "in [0.005, 10] m"};
+/// Search windows and steps: a matcher's table and its list of headings grow with them, and
+/// past these they exhausted memory (a window of 1e6 m, a heading step of 1e-9 rad).
+inline constexpr Range kWindowM{0.0, 50.0, true, "in (0, 50] m"};
+inline constexpr Range kWindowRad{0.0, 3.14159265358979323846, true, "in (0, pi] rad"};
+inline constexpr Range kAngularStep{0.0, 0.5, false, "0 (automatic) or in [1e-4, 0.5] rad", 1e-4};
 
 template <class E>
 struct EnumName {
@@ -68,11 +75,11 @@ inline constexpr EnumName<slam::BlanketPolicy> kBlankets[] = {
 template <class V>
 void VisitMatcher(V& v, slam::MatcherConfig& m, bool with_windows) {
   if (with_windows) {
-    v.Number("linear_window_m", m.linear_window_m, kPositive);
-    v.Number("angular_window_rad", m.angular_window_rad, kPositive);
+    v.Number("linear_window_m", m.linear_window_m, kWindowM);
+    v.Number("angular_window_rad", m.angular_window_rad, kWindowRad);
   }
   v.Number("resolution_m", m.resolution_m, kCellSide);
-  v.Number("angular_step_rad", m.angular_step_rad, kNonNegative);
+  v.Number("angular_step_rad", m.angular_step_rad, kAngularStep);
   v.PowerOfTwo("coarse_factor", m.coarse_factor);
   v.Number("sigma_m", m.sigma_m, kPositive);
   v.Number("min_score", m.min_score, kUnit);
@@ -117,11 +124,11 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("overlap_radius_m", c.overlap_radius_m, kNonNegative);
   v.Number("gate_chi2", c.gate_chi2, kPositive);
   v.Number("max_position_sigma_m", c.max_position_sigma_m, kPositive);
-  v.Number("min_window_m", c.min_window_m, kPositive);
-  v.Number("max_window_m", c.max_window_m, kPositive);
+  v.Number("min_window_m", c.min_window_m, kWindowM);
+  v.Number("max_window_m", c.max_window_m, kWindowM);
   v.Ordered("min_window_m", c.min_window_m, "max_window_m", c.max_window_m);
-  v.Number("min_window_rad", c.min_window_rad, kPositive);
-  v.Number("max_window_rad", c.max_window_rad, kPositive);
+  v.Number("min_window_rad", c.min_window_rad, kWindowRad);
+  v.Number("max_window_rad", c.max_window_rad, kWindowRad);
   v.Ordered("min_window_rad", c.min_window_rad, "max_window_rad", c.max_window_rad);
   v.Int("neighbours_per_candidate", c.neighbours_per_candidate, 0);
   v.Int("submap_span", c.submap_span, 0);
@@ -129,8 +136,8 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
   v.Number("max_flatness", c.max_flatness, kUnit);
   v.Number("uniqueness_radius_m", c.uniqueness_radius_m, kPositive);
-  v.Number("refine_window_m", c.refine_window_m, kNonNegative);
-  v.Number("refine_window_rad", c.refine_window_rad, kPositive);
+  v.Number("refine_window_m", c.refine_window_m, Range{0.0, 50.0, false, "in [0, 50] m"});
+  v.Number("refine_window_rad", c.refine_window_rad, kWindowRad);
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);
   v.Int("min_reference_points", c.min_reference_points, 0);
   v.Bool("surfaces", c.surfaces);

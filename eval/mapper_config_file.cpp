@@ -56,7 +56,8 @@ class Reader {
     if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) {
       Fail(n, Name(key), "expected a number, got '" + Text(n) + "'");
     }
-    const bool below = range.min_open ? v <= range.min : v < range.min;
+    const bool below = (range.min_open ? v <= range.min : v < range.min) ||
+                       (range.zero_or_from > 0.0 && v != 0.0 && v < range.zero_or_from);
     if (!std::isfinite(v) || below || v > range.max) {
       Fail(n, Name(key), std::string("must be ") + range.text + ", got " + Text(n));
     }
@@ -78,7 +79,10 @@ class Reader {
     int v = value;
     Int(key, v, 1);
     const YAML::Node n = Node()[key];
-    if (n && (v & (v - 1)) != 0) Fail(n, Name(key), "must be a power of 2, got " + Text(n));
+    // A matcher's top level has coarse_factor^2 cells per block: past 1024 it exhausted memory.
+    if (n && ((v & (v - 1)) != 0 || v > 1024)) {
+      Fail(n, Name(key), "must be a power of 2 up to 1024, got " + Text(n));
+    }
     value = v;
   }
 

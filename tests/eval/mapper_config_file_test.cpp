@@ -327,7 +327,17 @@ TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
               "incremental.matcher.coarse_factor", ">= 1");
   ExpectError("loops:\n  min_score: 1.5\n", 2, "loops.min_score", "in [0, 1]");
   ExpectError("incremental:\n  matcher: {linear_window_m: 0}\n", 2,
-              "incremental.matcher.linear_window_m", "> 0");
+              "incremental.matcher.linear_window_m", "in (0, 50] m");
+  // Windows, heading steps and block sizes that exhausted memory (bad_alloc) are refused.
+  ExpectError("incremental:\n  matcher: {linear_window_m: 1e6}\n", 2,
+              "incremental.matcher.linear_window_m", "in (0, 50] m");
+  ExpectError("incremental:\n  matcher: {angular_window_rad: 1e6}\n", 2,
+              "incremental.matcher.angular_window_rad", "in (0, pi] rad");
+  ExpectError("incremental:\n  matcher: {angular_step_rad: 1e-9}\n", 2,
+              "incremental.matcher.angular_step_rad", "0 (automatic) or in [1e-4, 0.5] rad");
+  ExpectError("incremental:\n  matcher: {coarse_factor: 1048576}\n", 2,
+              "incremental.matcher.coarse_factor", "up to 1024");
+  ExpectError("loops:\n  max_window_m: 1e6\n", 2, "loops.max_window_m", "in (0, 50] m");
   ExpectError("optimizer:\n  max_iterations: 0\n", 2, "optimizer.max_iterations", ">= 1");
   ExpectError("keyframes:\n  min_translation_m: .nan\n", 2, "keyframes.min_translation_m",
               "got .nan");

@@ -93,7 +93,9 @@ void VisitMatcher(V& v, slam::MatcherConfig& m, bool with_windows) {
 template <class V>
 void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Int("local_map_nodes", c.local_map_nodes, 1);
-  v.Number("point_spacing_m", c.point_spacing_m, kNonNegative);
+  // Finer thinning than a matcher cell only multiplies the points (1e-9 m exhausted memory).
+  v.Number("point_spacing_m", c.point_spacing_m,
+           Range{0.0, 1.0, false, "0 (no thinning) or in [0.005, 1] m", 0.005});
   v.Number("surface_gap_m", c.surfaces.gap_m, kNonNegative);
   v.Number("surface_line_gap_m", c.surfaces.line_gap_m, kNonNegative);
   v.Number("surface_line_tol_m", c.surfaces.line_tol_m, kPositive);

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <utility>
@@ -96,8 +97,8 @@ class SpecReader {
       }
       if (const YAML::Node off = n["relations_offset_s"]) {
         double v = 0.0;
-        if (!off.IsScalar() || !YAML::convert<double>::decode(off, v)) {
-          Fail(off, field + ".relations_offset_s", "expected a number of seconds");
+        if (!off.IsScalar() || !YAML::convert<double>::decode(off, v) || !std::isfinite(v)) {
+          Fail(off, field + ".relations_offset_s", "expected a finite number of seconds");
         }
         s.relations_offset_s = v;
       }

@@ -57,6 +57,10 @@ TEST(SweepSpec, EachKindOfBadInputNamesFileLineAndField) {
               "logs[0].log", "no such log");
   ExpectError("log_key", kScenario + "modes: [standard]\nlogs:\n  - {log: a.clf, offset: 1}\n", 4,
               "logs[0].offset", "unknown key");
+  // A NaN offset failed each cell at run time; it is refused with the spec.
+  ExpectError("nan_offset",
+              kScenario + "modes: [standard]\nlogs:\n  - {log: a.clf, relations_offset_s: .nan}\n",
+              4, "logs[0].relations_offset_s", "finite number");
   ExpectError("unknown_mode", kScenario + "modes:\n  - standard\n  - prunned\n", 4, "modes[1]",
               "unknown mode 'prunned'");
   ExpectError("unknown_setting",

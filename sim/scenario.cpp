@@ -111,7 +111,12 @@ Point ParseWaypoint(const std::string& file, const YAML::Node& n, const std::str
     if (i < 0) Fail(file, n, field, "unknown place '" + n.Scalar() + "'");
     return world.places[i].at;
   }
-  return AsPoint(file, n, field);
+  const Point p = AsPoint(file, n, field);
+  // NaN aborted Box2D and a point far outside the world made a route of months.
+  if (!(std::abs(p.x) <= 1e7 && std::abs(p.y) <= 1e7)) {
+    Fail(file, n, field, "must be finite numbers of magnitude at most 1e7");
+  }
+  return p;
 }
 
 int ParsePlace(const std::string& file, const YAML::Node& n, const std::string& field,
@@ -223,6 +228,10 @@ Scenario ParseScenario(const YAML::Node& root, const std::string& file,
   s.route = ParseRoute(Fields(file, f.Required("route"), "route"), s.world, s.robot);
   f.Finish();
   EstimateDuration(&s);
+  if (!(s.duration_s <= kMaxDurationS)) {
+    Fail(file, f.Required("route"), "route",
+         "the route takes " + std::to_string(s.duration_s) + " s, more than 1e7 s");
+  }
   return s;
 }
 

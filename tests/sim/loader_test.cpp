@@ -263,6 +263,18 @@ TEST(LoadWorld, DuplicateKeysAreRejected) {
   EXPECT_TRUE(Says(e, "duplicate key")) << e.what();
 }
 
+// A NaN waypoint aborted the process in Box2D, and one far away made a route of months.
+TEST(LoadScenario, WaypointsMustBeFiniteAndRoutesAtMost1e7Seconds) {
+  const std::string head = "name: t\nworld: corridor.yaml\nseed: 1\n";  // lines 1-3
+  InputError e = ScenarioError(head + "route: {type: path, waypoints: [west, [.nan, 0]]}\n");
+  EXPECT_EQ(e.field(), "route.waypoints[1]") << e.what();
+  EXPECT_TRUE(Says(e, "finite")) << e.what();
+  e = ScenarioError(
+      head + "route: {type: back_and_forth, waypoints: [west, east], repetitions: 400000}\n");
+  EXPECT_EQ(e.field(), "route") << e.what();
+  EXPECT_TRUE(Says(e, "more than 1e7 s")) << e.what();
+}
+
 TEST(LoadScenario, FieldOfViewAndSpeedsHaveRanges) {
   const std::string head = "name: t\nworld: corridor.yaml\nseed: 1\n";  // lines 1-3
   const std::string route = "route: {type: back_and_forth, waypoints: [west, east]}\n";

@@ -48,9 +48,7 @@ std::vector<Column> Columns() {
       {"last 10 % / base", 2, Last10, true},
       {"ATE [m]", 3, [](const ModeSummary& m) { return m.ate_rmse_m; }},
       {"blur [cm]", 2,
-       [](const ModeSummary& m) {
-         return m.blur ? std::optional<double>(m.blur->mean_cm) : std::nullopt;
-       }},
+       [](const ModeSummary& m) { return m.blur ? m.blur->mean_cm : std::nullopt; }},
       {"rel. [m]", 4,
        [](const ModeSummary& m) {
          return m.relations ? std::optional<double>(m.relations->trans_mean_m) : std::nullopt;

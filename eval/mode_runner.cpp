@@ -160,8 +160,10 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   const Pose2 T_truth_est = AlignSE2(estimate, true_poses);
   const BlurResult blur = ComputeBlur(grid, truth.walls, T_truth_est, true_poses);
   BlurSummary bs;
-  bs.mean_cm = blur.mean_cm;
-  bs.p95_cm = blur.p95_cm;
+  if (blur.occupied_cells > 0) {
+    bs.mean_cm = blur.mean_cm;
+    bs.p95_cm = blur.p95_cm;
+  }
   bs.thickness = blur.thickness;
   if (blur.wall_cells > 0) bs.recall = blur.recall;
   summary->blur = bs;

@@ -57,8 +57,9 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "peak_rss_mb", m.peak_rss_mb);
   Put(j, "graph_bytes_final", m.graph_bytes_final);
   if (m.blur) {
-    json b = {
-        {"mean_cm", m.blur->mean_cm}, {"p95_cm", m.blur->p95_cm}, {"thickness", m.blur->thickness}};
+    json b = {{"thickness", m.blur->thickness}};
+    Put(b, "mean_cm", m.blur->mean_cm);
+    Put(b, "p95_cm", m.blur->p95_cm);
     Put(b, "recall", m.blur->recall);
     j["blur"] = b;
   }

@@ -25,7 +25,10 @@ struct TimeStats {
 };
 
 struct BlurSummary {
-  double mean_cm = 0.0, p95_cm = 0.0, thickness = 0.0;
+  /// Absent when the map has no occupied cell: no distance to a wall was measured, and 0
+  /// would read as a perfect map.
+  std::optional<double> mean_cm, p95_cm;
+  double thickness = 0.0;
   std::optional<double> recall;  ///< absent when no true wall was visible
 };
 struct RelationsSummary {

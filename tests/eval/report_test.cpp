@@ -165,6 +165,20 @@ TEST(EdgesByKindTest, CountsEachFactorByOriginAndCliquesAsPairs) {
                                     {"odometry", 2}, {"loop", 1}, {"clique_pairs", 3}}));
 }
 
+// A map with no occupied cell has no distance to a wall: its blur is absent, never a 0.00 cm
+// that reads as a perfect map.
+TEST(SummaryJsonTest, BlurOfAMapWithoutOccupiedCellsIsAbsentNotZero) {
+  RunSummary s;
+  s.source = "x";
+  ModeSummary m;
+  m.blur = BlurSummary{std::nullopt, std::nullopt, 0.0, 0.0};
+  s.modes["standard"] = m;
+  const fs::path dir = TempDir("json_empty_map");
+  WriteSummaryJson((dir / "summary.json").string(), s);
+  const auto j = nlohmann::json::parse(ReadAll(dir / "summary.json"));
+  EXPECT_EQ(Keys(j["modes"]["standard"]["blur"]), (std::set<std::string>{"thickness", "recall"}));
+}
+
 TEST(SummaryJsonTest, SeedAndDurationAbsentWhenUnknown) {
   RunSummary s;
   s.source = "intel.clf";

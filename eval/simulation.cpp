@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -113,12 +114,12 @@ std::optional<double> FirstPassEnd(const sim::Scenario& scenario, const Simulate
 
 void CheckWorldRaster(const sim::Scenario& scenario, double resolution_m) {
   const sim::World& w = scenario.world;
-  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
-  bool any = false;
+  // The box of everything the truth raster draws: walls, doors, boxes where they ever stand.
+  double x0 = std::numeric_limits<double>::max(), y0 = x0;
+  double x1 = std::numeric_limits<double>::lowest(), y1 = x1;
   const auto add = [&](double x, double y, double r) {
-    x0 = any ? std::min(x0, x - r) : x - r, x1 = any ? std::max(x1, x + r) : x + r;
-    y0 = any ? std::min(y0, y - r) : y - r, y1 = any ? std::max(y1, y + r) : y + r;
-    any = true;
+    x0 = std::min(x0, x - r), y0 = std::min(y0, y - r);
+    x1 = std::max(x1, x + r), y1 = std::max(y1, y + r);
   };
   for (const sim::Wall& wall : w.walls) {
     for (const sim::Point& p : wall.points) add(p.x, p.y, 0.0);
@@ -133,7 +134,7 @@ void CheckWorldRaster(const sim::Scenario& scenario, double resolution_m) {
     for (const sim::BoxMove& m : b.moves) add(m.center.x, m.center.y, r);
   }
   for (const sim::Place& p : w.places) add(p.at.x, p.at.y, 0.0);
-  if (!any) return;
+  if (x0 > x1) return;  // nothing to draw
   const double cells = ((x1 - x0) / resolution_m + 1.0) * ((y1 - y0) / resolution_m + 1.0);
   if (cells <= kMaxRasterCells) return;
   std::ostringstream what;

@@ -16,19 +16,19 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 // floats, which a larger double overflows (its assertions abort the process), and 1e7 is
 // also the longest scenario (s).
 constexpr double kMaxWorldValue = 1e7;
-constexpr const char* kNotFinite = "must be a finite number of magnitude at most 1e7";
+constexpr const char* kOutOfBounds = "must be a finite number of magnitude at most 1e7";
 
-void RequireFinite(const std::string& file, const YAML::Node& n, const std::string& field,
-                   std::initializer_list<double> values) {
+void RequireBounded(const std::string& file, const YAML::Node& n, const std::string& field,
+                    std::initializer_list<double> values) {
   for (double v : values) {
-    if (!(std::abs(v) <= kMaxWorldValue)) Fail(file, n, field, kNotFinite);
+    if (!(std::abs(v) <= kMaxWorldValue)) Fail(file, n, field, kOutOfBounds);
   }
 }
 
 /// The same for the value of one key of `f`, blamed on that key's line and name.
-void RequireFinite(const Fields& f, const std::string& key, std::initializer_list<double> values) {
+void RequireBounded(const Fields& f, const std::string& key, std::initializer_list<double> values) {
   for (double v : values) {
-    if (!(std::abs(v) <= kMaxWorldValue)) f.FailAt(key, kNotFinite);
+    if (!(std::abs(v) <= kMaxWorldValue)) f.FailAt(key, kOutOfBounds);
   }
 }
 
@@ -66,7 +66,7 @@ Wall ParseWall(const std::string& file, const YAML::Node& n, const std::string& 
   const std::string key = w.closed ? "polygon" : "polyline";
   const YAML::Node pts = f.Required(key);
   w.points = AsPoints(file, pts, f.Name(key));
-  for (const Point& p : w.points) RequireFinite(file, pts, f.Name(key), {p.x, p.y});
+  for (const Point& p : w.points) RequireBounded(file, pts, f.Name(key), {p.x, p.y});
   f.Finish();
   if (w.points.size() < (w.closed ? 3u : 2u)) Fail(file, pts, f.Name(key), "too few points");
   for (const Segment& s : ToSegments(w.points, w.closed)) {
@@ -88,9 +88,9 @@ Door ParseDoor(const std::string& file, const YAML::Node& n, const std::string& 
   Door d;
   d.name = f.String("name");
   const Point a = f.GetPoint("from");
-  RequireFinite(f, "from", {a.x, a.y});
+  RequireBounded(f, "from", {a.x, a.y});
   const Point b = f.GetPoint("to");
-  RequireFinite(f, "to", {b.x, b.y});
+  RequireBounded(f, "to", {b.x, b.y});
   d.segment = {a.x, a.y, b.x, b.y};
   if (std::hypot(b.x - a.x, b.y - a.y) < 1e-6) Fail(file, n, field, "door has zero width");
   const YAML::Node iv = f.Optional("closed_s");
@@ -98,7 +98,7 @@ Door ParseDoor(const std::string& file, const YAML::Node& n, const std::string& 
     if (!iv.IsSequence()) Fail(file, iv, f.Name("closed_s"), "expected [[t0, t1], ...]");
     for (const YAML::Node& p : iv) {
       const Point t = AsPoint(file, p, f.Name("closed_s"));
-      RequireFinite(file, p, f.Name("closed_s"), {t.x, t.y});
+      RequireBounded(file, p, f.Name("closed_s"), {t.x, t.y});
       if (t.y < t.x) Fail(file, p, f.Name("closed_s"), "interval ends before it begins");
       d.closed_intervals_s.emplace_back(t.x, t.y);
     }
@@ -112,21 +112,21 @@ Box ParseBox(const std::string& file, const YAML::Node& n, const std::string& fi
   Box b;
   b.name = f.String("name");
   b.center = f.GetPoint("center");
-  RequireFinite(f, "center", {b.center.x, b.center.y});
+  RequireBounded(f, "center", {b.center.x, b.center.y});
   const Point size = f.GetPoint("size");
-  RequireFinite(f, "size", {size.x, size.y});
+  RequireBounded(f, "size", {size.x, size.y});
   if (size.x <= 0.0 || size.y <= 0.0) f.FailAt("size", "size must be positive");
   b.width_m = size.x;
   b.height_m = size.y;
   b.yaw_rad = f.Double("yaw_deg", 0.0) * kDegToRad;
-  RequireFinite(f, "yaw_deg", {b.yaw_rad});
+  RequireBounded(f, "yaw_deg", {b.yaw_rad});
   ForEachItem(&f, "moves", [&](const YAML::Node& m, const std::string& name) {
     Fields mf(file, m, name);
     BoxMove mv{mf.Double("t_s"), mf.GetPoint("center"), mf.Double("yaw_deg", 0.0) * kDegToRad};
     mf.Finish();
-    RequireFinite(mf, "t_s", {mv.t_s});
-    RequireFinite(mf, "center", {mv.center.x, mv.center.y});
-    RequireFinite(mf, "yaw_deg", {mv.yaw_rad});
+    RequireBounded(mf, "t_s", {mv.t_s});
+    RequireBounded(mf, "center", {mv.center.x, mv.center.y});
+    RequireBounded(mf, "yaw_deg", {mv.yaw_rad});
     if (!b.moves.empty() && mv.t_s < b.moves.back().t_s) Fail(file, m, name, "moves not sorted");
     b.moves.push_back(mv);
   });
@@ -143,7 +143,7 @@ void ParsePlaces(Fields* f, World* w) {
     Fields pf(f->file(), n, name);
     Place p{pf.String("name"), pf.GetPoint("at")};
     pf.Finish();
-    RequireFinite(pf, "at", {p.at.x, p.at.y});
+    RequireBounded(pf, "at", {p.at.x, p.at.y});
     if (w->FindPlace(p.name) >= 0) Fail(f->file(), n, name, "duplicate place '" + p.name + "'");
     const std::string why = CheckFree(*w, p.at, w->clearance_m);
     if (!why.empty()) Fail(f->file(), n, name, "place '" + p.name + "' " + why);

@@ -17,11 +17,7 @@ using lifelong::test::Result;
 const std::string kSource = LIFELONG_SOURCE_DIR;
 const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";
 
-fs::path Fresh(const std::string& name) {
-  const fs::path p = fs::path(::testing::TempDir()) / ("bad_input_" + name);
-  fs::remove_all(p);
-  return p;
-}
+fs::path Fresh(const std::string& name) { return lifelong::test::FreshPath("bad_input_", name); }
 
 fs::path WriteFile(const std::string& name, const std::string& text) {
   const fs::path p = Fresh(name);

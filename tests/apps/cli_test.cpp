@@ -31,11 +31,7 @@ const std::string kBin = LIFELONG_BIN;
 const std::string kSource = LIFELONG_SOURCE_DIR;
 const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";
 
-fs::path Fresh(const std::string& name) {
-  const fs::path p = fs::path(::testing::TempDir()) / ("cli_" + name);
-  fs::remove_all(p);
-  return p;
-}
+fs::path Fresh(const std::string& name) { return lifelong::test::FreshPath("cli_", name); }
 
 // No DIR.partial-* is left beside DIR.
 bool NoStaging(const fs::path& dir) {

@@ -2,6 +2,7 @@
 // set by tests/apps/CMakeLists.txt).
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -28,6 +29,13 @@ inline Result Lifelong(const std::string& args) {
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
+}
+
+/// A path in the test's temporary directory, `prefix` + `name`, removed if it exists.
+inline std::filesystem::path FreshPath(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path p = std::filesystem::path(::testing::TempDir()) / (prefix + name);
+  std::filesystem::remove_all(p);
+  return p;
 }
 
 /// The whole file (empty when it cannot be read).

@@ -14,11 +14,7 @@ namespace fs = std::filesystem;
 using lifelong::test::Lifelong;
 using lifelong::test::Result;
 
-fs::path Fresh(const std::string& name) {
-  const fs::path p = fs::path(::testing::TempDir()) / ("video_cli_" + name);
-  fs::remove_all(p);
-  return p;
-}
+fs::path Fresh(const std::string& name) { return lifelong::test::FreshPath("video_cli_", name); }
 
 TEST(VideoCli, FramesAreWrittenThroughTheVideoModule) {
   const fs::path dir = Fresh("frames");

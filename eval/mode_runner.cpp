@@ -248,8 +248,11 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     const ReferencePairs pairs = PairWithReference(trajectory, config_.reference);
     summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
     if (!pairs.estimate.empty()) {
-      summary.ate_rmse_m = ComputeAte(pairs.estimate, pairs.reference).rmse_m;
+      const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);
+      summary.ate_rmse_m = ate.rmse_m;
       summary.rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
+      aligned_to_reference_.clear();
+      for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
     }
   }
   if (!relations.empty()) {

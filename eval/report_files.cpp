@@ -50,6 +50,9 @@ std::vector<ReportFigure> Plots(const ReportContext& c) {
        "Loop closing against the truth over the run: cumulative precision of the accepted "
        "closures (by their current node's time; precision is what keeps a map safe) and "
        "recall of the revisits so far. A closure is correct within 0.3 m and 5 deg."},
+      {"trajectories.png",
+       "The log's reference trajectory (black) and each mode's estimate moved onto it by its "
+       "ATE alignment: where the map bends or a loop stays open, the tracks part."},
       {"kld.png",
        "KL divergence of each marginalization's approximate clique from the exact marginal, "
        "in nats, in the order the nodes were removed (exact marginalization: 0)."},

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "run_lifelong.hpp"
@@ -36,6 +37,42 @@ TEST(ReferenceCli, ACorrectedLogIsScoredAgainstItsOwnPoses) {
   EXPECT_TRUE(m.contains("ate_rmse_m"));
   EXPECT_TRUE(fs::exists(out / "trajectories.png"));
   EXPECT_NE(Read(out / "report.html").find("trajectories.png"), std::string::npos);
+}
+
+// Some corrected logs stamp every scan 0 (freiburg-campus): their own poses are paired by
+// scan, not by time (by time every scan met the first pose, and ATE read 83 m).
+TEST(ReferenceCli, ACorrectedLogWithoutStampsIsPairedScanByScan) {
+  std::string text = Read(kSource + "/tests/data/io/corrected.clf");
+  std::string zeroed;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const auto h = line.rfind(" h ");
+    if (line[0] != '#' && h != std::string::npos) {
+      line = line.substr(0, line.rfind(' ', h - 1)) + " 0 h 0";
+    }
+    zeroed += line + "\n";
+  }
+  const fs::path log = Fresh("zero_stamps.clf");
+  std::ofstream(log) << zeroed;
+  const fs::path out = Fresh("zero_out");
+  const fs::path stamped_out = Fresh("stamped_out");
+  ASSERT_EQ(Lifelong("replay " + log.string() + " --modes standard -o " + out.string()).code, 0);
+  ASSERT_EQ(Lifelong("replay " + kSource + "/tests/data/io/corrected.clf --modes standard -o " +
+                     stamped_out.string())
+                .code,
+            0);
+  const auto zero = nlohmann::json::parse(Read(out / "summary.json"))["modes"]["standard"];
+  const auto stamped =
+      nlohmann::json::parse(Read(stamped_out / "summary.json"))["modes"]["standard"];
+  EXPECT_EQ(zero["reference_matched"], 2);
+  EXPECT_NEAR(zero["ate_rmse_m"].get<double>(), stamped["ate_rmse_m"].get<double>(), 1e-9);
+  // A reference file cannot be paired with such a log by time: said, not guessed.
+  const fs::path ref = Fresh("ref0.txt");
+  std::ofstream(ref) << "0 0 0 0\n1 1 0 0\n";
+  const Result r = Lifelong("replay " + log.string() + " --reference " + ref.string() + " -o " +
+                            Fresh("zero_ref").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("share their stamps"), std::string::npos) << r.output;
 }
 
 TEST(ReferenceCli, AGivenReferenceIsUsedAndABadOneIsNamedBeforeTheLog) {

@@ -1,0 +1,17 @@
+// The banners at the top of report.html: what makes a run's figures doubtful, said before
+// any figure is read. A relations replay that used fewer than half the relations of its
+// file (red: the relation error describes a small part of the run), and the figures
+// gnuplot failed on, each with its log (amber: the rest of the report stands).
+#pragma once
+
+#include <string>
+
+#include "eval/report_html.hpp"
+
+namespace lifelong::eval {
+
+/// The banners as HTML (<div class="alert"> red, <div class="notice"> amber); "" when
+/// there is nothing to say.
+std::string ReportAlertsHtml(const ReportPage& page);
+
+}  // namespace lifelong::eval

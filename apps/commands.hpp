@@ -23,6 +23,8 @@ struct SimulateArgs {
 
 struct ReplayArgs {
   std::string log, out, modes, config, relations;
+  /// A reference trajectory (TUM or t x y theta); empty: a corrected log's own poses, if any.
+  std::string reference;
   bool offset_given = false;  ///< --relations-offset was given: use offset_s, detect nothing
   double offset_s = 0.0;
   std::string command_line;

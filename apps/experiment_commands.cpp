@@ -22,8 +22,10 @@
 #include "eval/simulation.hpp"
 #include "eval/staged_output.hpp"
 #include "io/carmen_log.hpp"
+#include "io/output_path.hpp"
 #include "io/relations.hpp"
 #include "io/relations_offset.hpp"
+#include "io/tum.hpp"
 #include "sensor/input_error.hpp"
 #include "sim/scenario.hpp"
 
@@ -60,39 +62,6 @@ std::vector<lifelong::slam::PruningMode> ParseModes(const std::string& list) {
   return modes;
 }
 
-// Fails early (exit 2) when a file cannot be written at `path`: checked before a long
-// simulation, not after it.
-// `flag` names the option the path came from.
-void CheckWritableFile(const std::string& path, const std::string& flag = "-o") {
-  const fs::path p(path);
-  if (p.filename().empty()) throw InputError(path, 0, flag, "names a directory, not a file");
-  std::error_code ec;
-  if (fs::is_directory(p, ec)) throw InputError(path, 0, flag, "is a directory");
-  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  fs::create_directories(dir, ec);
-  const fs::path probe = dir / (".lifelong-write-test-" + std::to_string(::getpid()));
-  std::FILE* f = ec ? nullptr : std::fopen(probe.c_str(), "w");
-  if (!f) throw InputError(path, 0, flag, "cannot write in " + dir.string());
-  std::fclose(f);
-  fs::remove(probe, ec);
-}
-
-// A directory that can be made or written in: itself when it exists, else its nearest
-// existing ancestor, which must be a directory one may write in.
-void CheckWritableDirectory(const std::string& path, const std::string& flag) {
-  std::error_code ec;
-  fs::path p = fs::absolute(path, ec);
-  while (!ec && !fs::exists(p, ec) && p.has_parent_path() && p != p.parent_path()) {
-    p = p.parent_path();
-  }
-  if (ec || !fs::is_directory(p, ec)) {
-    throw InputError(path, 0, flag, p.string() + " exists and is not a directory");
-  }
-  if (::access(p.c_str(), W_OK | X_OK) != 0) {
-    throw InputError(path, 0, flag, "cannot write in " + p.string());
-  }
-}
-
 // The cell side of the truth map `simulate` writes beside its log.
 constexpr double kSimulateTruthResolutionM = 0.05;
 
@@ -106,7 +75,7 @@ void PrintResult(const lifelong::eval::RunSummary& summary, const std::string& o
 int Simulate(const std::string& scenario_path, const std::string& out) {
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
   lifelong::eval::CheckWorldRaster(scenario, kSimulateTruthResolutionM);
-  CheckWritableFile(out);
+  lifelong::io::CheckWritableFile(out);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, StderrIsTerminal());
   lifelong::eval::WriteSimulation(out, scenario, run, kSimulateTruthResolutionM);
@@ -118,7 +87,7 @@ int Simulate(const std::string& scenario_path, const std::string& out) {
               << c.T_world_robot.x << ", " << c.T_world_robot.y << ")\n";
   }
   std::cout << "wrote " << out << " and its .truth.tum, .truth.pgm/.yaml and .png\n";
-  return run.collisions.empty() && !run.timed_out ? 0 : 1;
+  return lifelong::eval::Outcome(scenario, run).Failed() ? 1 : 0;
 }
 
 struct VideoArgs {
@@ -156,15 +125,14 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   config.frames_dir = video.frames;
   config.video_stride = video.stride;
   if (!video.video.empty() || !video.frames.empty()) config.open_video = LoadVideoModule();
-  if (!video.video.empty()) CheckWritableFile(video.video, "--video");
-  if (!video.frames.empty()) CheckWritableDirectory(video.frames, "--frames");
+  if (!video.video.empty()) lifelong::io::CheckWritableFile(video.video, "--video");
+  if (!video.frames.empty()) lifelong::io::CheckWritableDirectory(video.frames, "--frames");
   const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
   lifelong::eval::CheckWorldRaster(scenario, config.mapper.grid.resolution_m);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, config.progress_terminal);
-  for (const auto& c : run.collisions) {
-    std::cerr << "warning: collision at t = " << c.stamp_s << " s with " << c.what << "\n";
-  }
+  const lifelong::eval::SimulationOutcome outcome = lifelong::eval::Outcome(scenario, run);
+  config.simulation = outcome;
   config.source = scenario_path;
   config.seed = static_cast<std::int64_t>(scenario.seed);
   config.first_pass_s = lifelong::eval::FirstPassEnd(scenario, run);
@@ -174,7 +142,12 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   const lifelong::eval::GroundTruth truth{
       lifelong::eval::TrueWalls(scenario.world, run.duration_s)};
   PrintResult(lifelong::eval::RunExperiment(run.observations, truth, config), out);
-  return 0;
+  if (outcome.collided || outcome.timed_out) {
+    std::cerr << (outcome.Failed() ? "error: " : "note: ") << "the robot did not drive "
+              << scenario_path << " as scripted: " << lifelong::eval::OutcomeText(outcome)
+              << (outcome.Failed() ? "the figures in " + out + " are of that run (exit 1)\n" : "");
+  }
+  return outcome.Failed() ? 1 : 0;
 }
 
 // Reads the relations and puts them in log time: with the given offset, or the one that
@@ -205,6 +178,19 @@ std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool give
          << " relations on scans (scans at a regular rate); give --relations-offset";
     throw InputError(path, 0, "--relations-offset", both.str());
   }
+  // Relations that belong to the log land on its scans; an offset or a file that puts few of
+  // those inside the log's span on scans is scored on a handful by chance.
+  const std::size_t inside = lifelong::io::CountRelationsInside(
+      file_time, stamps.front() - lifelong::io::kRelationStampToleranceS,
+      stamps.back() + lifelong::io::kRelationStampToleranceS, d.offset_s);
+  if (2 * d.matched < inside) {
+    std::ostringstream few;
+    few << std::setprecision(16) << "only " << d.matched << " of the " << inside
+        << " relations whose stamps fall inside the log's span land on its scans (offset "
+        << d.offset_s << " s, " << (given ? "given" : "detected") << "; " << file_time.size()
+        << " in the file): the relations do not belong to this log or this clock";
+    throw InputError(path, 0, "--relations-offset", few.str());
+  }
   std::cerr << std::setprecision(16) << "relations: " << d.matched << " of " << file_time.size()
             << " on scans of the log, offset " << d.offset_s << " s ("
             << (given ? "given" : "detected") << ")\n";
@@ -214,11 +200,12 @@ std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool give
   return lifelong::io::ShiftRelations(file_time, d.offset_s);
 }
 
-int Replay(const std::string& log, const std::string& out, const std::string& modes,
-           const std::string& config_path, const std::string& relations, bool offset_given,
-           double offset, const std::string& command_line) {
+int Replay(const ReplayArgs& a) {
+  const std::string& log = a.log;
   lifelong::eval::ExperimentConfig config =
-      ExperimentSettings(out, modes, config_path, command_line);
+      ExperimentSettings(a.out, a.modes, a.config, a.command_line);
+  // Read before the log, so that a bad reference costs no wait.
+  if (!a.reference.empty()) config.reference = lifelong::io::ReadTrajectory(a.reference);
   const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
   std::cerr << "read " << data.observations.size() << " scans from " << log
             << (data.odometry_recovered ? " (raw odometry recovered from a corrected log)" : "")
@@ -237,11 +224,22 @@ int Replay(const std::string& log, const std::string& out, const std::string& mo
               << " scans are stamped earlier than the scan before them (first: " << log << ":"
               << data.first_backward_scan_line << "); they are replayed in file order\n";
   }
-  if (!relations.empty())
-    config.relations = LoadRelations(relations, offset_given, offset, data, &info);
+  if (!a.relations.empty())
+    config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, data, &info);
+  if (!a.reference.empty()) {
+    info.reference = a.reference;
+  } else if (data.odometry_recovered) {
+    config.reference = data.corrected_poses;
+    info.reference = "corrected FLASER poses";
+  }
+  if (!config.reference.empty()) {
+    info.reference_poses = static_cast<std::int64_t>(config.reference.size());
+    std::cerr << "reference: " << config.reference.size() << " poses (" << *info.reference
+              << "); ATE and RPE at 1 m are scored against it\n";
+  }
   config.source = log;
   config.log = info;
-  PrintResult(lifelong::eval::RunExperiment(data.observations, std::nullopt, config), out);
+  PrintResult(lifelong::eval::RunExperiment(data.observations, std::nullopt, config), a.out);
   return 0;
 }
 
@@ -263,10 +261,7 @@ int SimulateCommand(const SimulateArgs& a) {
   return Command([&] { return Simulate(a.scenario, a.out); });
 }
 int ReplayCommand(const ReplayArgs& a) {
-  return Command([&] {
-    return Replay(a.log, a.out, a.modes, a.config, a.relations, a.offset_given, a.offset_s,
-                  a.command_line);
-  });
+  return Command([&] { return Replay(a); });
 }
 
 const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand, SweepCommand};

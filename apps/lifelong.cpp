@@ -20,6 +20,7 @@
 #include "apps/module_loader.hpp"
 #include "apps/sparsify_command.hpp"
 #include "io/graph_file.hpp"
+#include "io/output_path.hpp"
 #include "lifelong_build_info.hpp"  // generated: LIFELONG_VERSION, LIFELONG_COMMIT
 #include "sensor/input_error.hpp"
 #include "slam/mapper_config.hpp"
@@ -114,6 +115,28 @@ const CLI::Validator kNotADirectory(
     },
     "FILE");
 
+// A path option given as "" names nothing: said at the option, not as "." or a missing file.
+const CLI::Validator kNonEmpty(
+    [](std::string& v) { return v.empty() ? std::string("the path is empty") : std::string(); },
+    "");
+
+// A number that must be given as one: "" (which CLI11 reads as 0), "nan" and "inf" are refused.
+const CLI::Validator kFiniteNumber(
+    [](std::string& v) {
+      double x = 0.0;
+      if (v.empty() || !CLI::detail::lexical_cast(v, x) || !std::isfinite(x)) {
+        return "expected a finite number, got '" + v + "'";
+      }
+      return std::string();
+    },
+    "SECONDS");
+
+// An option that only means something beside another is refused alone, not ignored.
+std::optional<std::string> Unused(const CLI::Option* option, const std::string& needs) {
+  if (option->count() == 0) return std::nullopt;
+  return option->get_name() + " does nothing without " + needs;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -131,23 +154,27 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "simulate a scenario, map it with every mode, evaluate");
   run->add_option("scenario", run_args.scenario, "scenario YAML")->check(kNotADirectory);
   run->add_option("-o,--out", run_args.out,
-                  "output directory (replaced only when the run is complete)");
+                  "output directory (replaced only when the run is complete)")
+      ->check(kNonEmpty);
   run->add_option(
       "--modes", run_args.modes,
       "comma-separated, of " + lifelong::slam::PruningModeList() + "; the first is the baseline");
   run->add_option("--config", run_args.config, "mapper settings, YAML (see configs/default.yaml)")
       ->check(kNotADirectory);
-  run->add_option("--video", run_args.video, "write a video of the run (mp4)");
-  run->add_option("--frames", run_args.frames, "write PNG frames of the run into this directory");
-  run->add_option("--stride", run_args.stride, "render every this many scans")
-      ->check(IntRange(1, 1000000));
+  run->add_option("--video", run_args.video, "write a video of the run (mp4)")->check(kNonEmpty);
+  run->add_option("--frames", run_args.frames, "write PNG frames of the run into this directory")
+      ->check(kNonEmpty);
+  auto* stride_option = run->add_option("--stride", run_args.stride, "render every this many scans")
+                            ->check(IntRange(1, 1000000));
 
   lifelong::apps::SimulateArgs sim_args;
   auto* simulate = app.add_subcommand("simulate", "simulate a scenario into a CARMEN log");
   simulate->add_option("scenario", sim_args.scenario, "scenario YAML")
       ->required()
       ->check(kNotADirectory);
-  simulate->add_option("-o,--out", sim_args.out, "output log (.clf or .clf.gz)")->required();
+  simulate->add_option("-o,--out", sim_args.out, "output log (.clf or .clf.gz)")
+      ->required()
+      ->check(kNonEmpty);
 
   lifelong::apps::ReplayArgs replay_args;
   replay_args.out = "runs/replay";
@@ -157,21 +184,31 @@ int main(int argc, char** argv) {
   replay->add_option("log", replay_args.log, "CARMEN log, plain or gzipped")
       ->required()
       ->check(kNotADirectory);
-  replay->add_option("-o,--out", replay_args.out,
-                     "output directory (replaced only when the run is complete)");
+  replay
+      ->add_option("-o,--out", replay_args.out,
+                   "output directory (replaced only when the run is complete)")
+      ->check(kNonEmpty);
   replay->add_option("--modes", replay_args.modes,
                      "comma-separated modes; the first is the baseline");
   replay
       ->add_option("--config", replay_args.config,
                    "mapper settings, YAML (see configs/default.yaml)")
       ->check(kNotADirectory);
-  replay->add_option("--relations", replay_args.relations, "relations file (Kuemmerle et al. 2009)")
-      ->check(kNotADirectory);
+  auto* relations_option = replay
+                               ->add_option("--relations", replay_args.relations,
+                                            "relations file (Kuemmerle et al. 2009)")
+                               ->check(kNonEmpty & kNotADirectory);
+  replay
+      ->add_option("--reference", replay_args.reference,
+                   "reference trajectory for ATE and RPE at 1 m: TUM or `t x y theta` lines")
+      ->check(kNonEmpty & kNotADirectory)
+      ->default_str("a corrected log's own FLASER poses, else none");
   auto* offset_option = replay
                             ->add_option("--relations-offset", replay_args.offset_s,
                                          "s, relation time = log time + this (default: detected, "
                                          "the offset that puts relation "
                                          "stamps on scan stamps)")
+                            ->check(kFiniteNumber)
                             ->default_str("detected");
 
   lifelong::apps::SweepArgs sweep_args;
@@ -209,7 +246,7 @@ int main(int argc, char** argv) {
   std::string graph_in, graph_out;
   auto* optimize = app.add_subcommand("optimize", "optimize a g2o or TORO pose graph");
   optimize->add_option("graph", graph_in, "g2o or TORO file")->required()->check(kNotADirectory);
-  optimize->add_option("-o,--out", graph_out, "write the optimized graph (g2o)");
+  optimize->add_option("-o,--out", graph_out, "write the optimized graph (g2o)")->check(kNonEmpty);
   std::string method = "lm";
   std::string solver = "auto";
   bool no_init = false;
@@ -224,7 +261,8 @@ int main(int argc, char** argv) {
   sparsify->add_option("graph", sparsify_args.graph, "g2o or TORO file")
       ->required()
       ->check(kNotADirectory);
-  sparsify->add_option("-o,--out", sparsify_args.out, "write the sparsified graph (g2o)");
+  sparsify->add_option("-o,--out", sparsify_args.out, "write the sparsified graph (g2o)")
+      ->check(kNonEmpty);
   std::string sparsifier_names;  // the registry's, so a new method shows up by itself
   for (const std::string& name : lifelong::slam::SparsifierNames()) {
     sparsifier_names += (sparsifier_names.empty() ? "" : ", ") + name;
@@ -236,11 +274,12 @@ int main(int argc, char** argv) {
   sparsify->add_option("--remove", sparsify_args.remove, "file of node ids to remove")
       ->excludes(keep_option)
       ->check(kNotADirectory);
-  sparsify
-      ->add_option("--nfr-chords", sparsify_args.nfr_chords,
-                   "nfr-subgraph's edges beyond the tree: joined (pairs joined by edges "
-                   "before the removal) or mi (the strongest pairs by mutual information)")
-      ->capture_default_str();
+  auto* chords_option =
+      sparsify
+          ->add_option("--nfr-chords", sparsify_args.nfr_chords,
+                       "nfr-subgraph's edges beyond the tree: joined (pairs joined by edges "
+                       "before the removal) or mi (the strongest pairs by mutual information)")
+          ->capture_default_str();
   auto* means_option =
       sparsify
           ->add_option("--means", sparsify_args.means,
@@ -267,6 +306,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  std::optional<std::string> unused;
+  if (*run && run_args.video.empty() && run_args.frames.empty()) {
+    unused = Unused(stride_option, "--video or --frames");
+  }
+  if (*replay && relations_option->count() == 0) {
+    unused = Unused(offset_option, "--relations");
+  }
+  if (*sparsify && sparsify_args.method != "nfr-subgraph") {
+    unused = Unused(chords_option, "--method nfr-subgraph");
+  }
+  if (unused) {
+    std::cerr << "error: " << *unused << "\n";
+    return 2;
+  }
   const bool slurm_only = !sweep_args.partition.empty() || !sweep_args.time.empty() ||
                           !sweep_args.sbatch_args.empty() || sweep_args.no_wait;
   if (*sweep && !sweep_args.slurm && slurm_only) {
@@ -285,7 +338,10 @@ int main(int argc, char** argv) {
   const auto never_interrupted = [](const std::exception&) { return false; };
   if (*optimize) {
     return lifelong::apps::Guarded(
-        [&] { return OptimizeGraph(graph_in, graph_out, method, solver, no_init); },
+        [&] {
+          if (!graph_out.empty()) lifelong::io::CheckWritableFile(graph_out, "-o");
+          return OptimizeGraph(graph_in, graph_out, method, solver, no_init);
+        },
         never_interrupted);
   }
   if (*sparsify) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/graph_file.hpp"
+#include "io/output_path.hpp"
 #include "sensor/input_error.hpp"
 #include "slam/global_kl.hpp"
 #include "slam/offline_sparsify.hpp"
@@ -115,6 +116,7 @@ int Sparsify(const SparsifyArgs& args) {
     throw InputError("--nfr-chords", 0, "",
                      "unknown value '" + args.nfr_chords + "' (known: joined, mi)");
   }
+  if (!args.out.empty()) io::CheckWritableFile(args.out, "-o");  // before the work, not after
   const auto sparsifier = slam::MakeSparsifier(args.method, config);
   if (!sparsifier) {
     throw InputError(

@@ -95,7 +95,9 @@ int Sweep(const SweepArgs& a) {
 }  // namespace
 
 int SweepCommand(const SweepArgs& args) {
-  eval::InstallInterruptHandler();
+  // The cells are told to stop at once and answer within their own 1 s grace; the sweep waits
+  // a little longer for them.
+  eval::InstallInterruptHandler(3.0);
   return Guarded([&] { return Sweep(args); },
                  [](const std::exception& e) {
                    return dynamic_cast<const eval::Interrupted*>(&e) != nullptr;

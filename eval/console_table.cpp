@@ -47,6 +47,10 @@ std::vector<Column> Columns() {
       {"wall / base", 2, [](const ModeSummary& m) { return m.wall_time_s; }, true},
       {"last 10 % / base", 2, Last10, true},
       {"ATE [m]", 3, [](const ModeSummary& m) { return m.ate_rmse_m; }},
+      {"RPE 1 m [m]", 3,
+       [](const ModeSummary& m) {
+         return m.rpe_1m ? std::optional<double>(m.rpe_1m->trans_rmse_m) : std::nullopt;
+       }},
       {"blur [cm]", 2,
        [](const ModeSummary& m) { return m.blur ? m.blur->mean_cm : std::nullopt; }},
       {"rel. [m]", 4,

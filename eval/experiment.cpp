@@ -146,6 +146,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   summary.source = config.source;
   summary.seed = config.seed;
   summary.log = config.log;
+  summary.simulation = config.simulation;
   StreamSpan span(stream);
   if (!stream.empty()) summary.log_duration_s = span.Covered(n);
   for (const auto& r : runners) summary.mode_order.push_back(r->name());

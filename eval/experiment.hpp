@@ -15,6 +15,7 @@
 #include "types/occupancy_grid.hpp"
 #include "types/relation.hpp"
 #include "types/segment.hpp"
+#include "types/stamped_pose.hpp"
 
 namespace lifelong::eval {
 
@@ -32,8 +33,11 @@ struct ExperimentConfig {
   /// Relations in log time (io::ShiftRelations already applied); empty: none.
   std::vector<Relation> relations;
   std::optional<std::string> relations_path;  ///< the file they came from (report, figures)
-  std::optional<LogInfo> log;                 ///< replay: what was read from the log
-  std::optional<double> first_pass_s;         ///< observations before this time form the first pass
+  /// A reference trajectory (replay): ATE and RPE at 1 m are scored against it.
+  std::vector<StampedPose> reference;
+  std::optional<LogInfo> log;                   ///< replay: what was read from the log
+  std::optional<SimulationOutcome> simulation;  ///< run: what happened in the simulator
+  std::optional<double> first_pass_s;  ///< observations before this time form the first pass
   std::string command_line;
   std::ostream* progress = nullptr;  ///< progress lines; nullptr: quiet
   bool progress_terminal = false;    ///< progress goes to a terminal: redraw one line

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
@@ -13,6 +14,7 @@
 #include "eval/mapper_config_fields.hpp"
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
+#include "slam/scan_matcher.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -173,6 +175,52 @@ class Reader {
   std::set<std::string> used_;
 };
 
+// The products of settings that size a matcher's allocations (slam::EstimateFootprint), for
+// the incremental matcher and for the loop closer's widest and refining searches: refused at
+// load, naming the fields, instead of a bad_alloc minutes into a run.
+void CheckMatcherFootprint(const std::string& name, const YAML::Node& at, const std::string& where,
+                           const slam::MatcherConfig& m, double window_m, const char* window_key,
+                           double window_rad, const char* window_rad_key) {
+  const slam::MatcherFootprint f = slam::EstimateFootprint(m, window_m, window_rad);
+  const auto gib = [](double bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.3g GiB", bytes / 1073741824.0);
+    return std::string(buf);
+  };
+  const std::string limit = gib(slam::kMaxMatcherBytes);
+  if (f.table_bytes > slam::kMaxMatcherBytes) {
+    throw InputError(
+        name, LineOf(at),
+        std::string(window_key) + ", " + where + ".resolution_m, " + where + ".coarse_factor",
+        "the matcher's tables over this window would take " + gib(f.table_bytes) + ", more than " +
+            limit + ": a narrower window or coarser cells");
+  }
+  if (f.frontier_bytes > slam::kMaxMatcherBytes) {
+    throw InputError(name, LineOf(at),
+                     std::string(window_key) + ", " + window_rad_key + ", " + where +
+                         ".angular_step_rad, " + where + ".resolution_m",
+                     "the matcher's search frontier (rotations x blocks) would take " +
+                         gib(f.frontier_bytes) + ", more than " + limit +
+                         ": narrower windows, a coarser step or a larger coarse_factor");
+  }
+}
+
+void CheckFootprints(const std::string& name, const YAML::Node& root, const slam::MapperConfig& c) {
+  const YAML::Node none;
+  const YAML::Node inc = root["incremental"] ? root["incremental"] : none;
+  const YAML::Node loops = root["loops"] ? root["loops"] : none;
+  CheckMatcherFootprint(
+      name, inc ? inc : root, "incremental.matcher", c.incremental.matcher,
+      c.incremental.matcher.linear_window_m, "incremental.matcher.linear_window_m",
+      c.incremental.matcher.angular_window_rad, "incremental.matcher.angular_window_rad");
+  CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
+                        c.loops.max_window_m, "loops.max_window_m", c.loops.max_window_rad,
+                        "loops.max_window_rad");
+  CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
+                        c.loops.refine_window_m, "loops.refine_window_m", c.loops.refine_window_rad,
+                        "loops.refine_window_rad");
+}
+
 slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
                          const slam::MapperConfig& base) {
   slam::MapperConfig config = base;
@@ -181,6 +229,7 @@ slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
   Reader reader(name, root, "");
   VisitConfig(reader, config);
   reader.RejectUnknown();
+  CheckFootprints(name, root, config);
   return config;
 }
 

@@ -14,6 +14,7 @@
 #include "eval/resources.hpp"
 #include "eval/run_maps.hpp"
 #include "eval/stopwatch.hpp"
+#include "eval/trajectory_reference.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -146,6 +147,18 @@ std::vector<LoopCurvePoint> ModeRunner::LoopCurve(const LoopClosureResult& truth
   return curve;
 }
 
+namespace {
+
+// RPE over 1 m of reference path; absent when the path is shorter than that.
+std::optional<RpeSummary> Rpe1m(const std::vector<Pose2>& estimate,
+                                const std::vector<Pose2>& reference) {
+  const DistanceRpe r = ComputeRpeAtDistance(estimate, reference, 1.0);
+  if (r.count == 0) return std::nullopt;
+  return RpeSummary{static_cast<std::int64_t>(r.count), r.trans_rmse_m, r.rot_rmse_deg};
+}
+
+}  // namespace
+
 Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
                                const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                                ModeSummary* summary) {
@@ -157,6 +170,7 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   }
   const AteResult ate = ComputeAte(estimate, true_poses);
   summary->ate_rmse_m = ate.rmse_m;
+  summary->rpe_1m = Rpe1m(estimate, true_poses);
   const Pose2 T_truth_est = AlignSE2(estimate, true_poses);
   const BlurResult blur = ComputeBlur(grid, truth.walls, T_truth_est, true_poses);
   BlurSummary bs;
@@ -230,6 +244,14 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
+  if (!config_.reference.empty()) {
+    const ReferencePairs pairs = PairWithReference(trajectory, config_.reference);
+    summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
+    if (!pairs.estimate.empty()) {
+      summary.ate_rmse_m = ComputeAte(pairs.estimate, pairs.reference).rmse_m;
+      summary.rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
+    }
+  }
   if (!relations.empty()) {
     const RelationsResult rr = ComputeRelationsError(trajectory, relations);
     summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,

@@ -64,6 +64,12 @@ json ModeJson(const ModeSummary& m) {
     j["blur"] = b;
   }
   Put(j, "ate_rmse_m", m.ate_rmse_m);
+  if (m.rpe_1m) {
+    j["rpe_1m"] = {{"count", m.rpe_1m->count},
+                   {"trans_rmse_m", m.rpe_1m->trans_rmse_m},
+                   {"rot_rmse_deg", m.rpe_1m->rot_rmse_deg}};
+  }
+  Put(j, "reference_matched", m.reference_matched);
   Put(j, "loop_precision", m.loop_precision);
   Put(j, "loop_recall", m.loop_recall);
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
@@ -204,7 +210,24 @@ std::string SummaryJsonText(const RunSummary& s) {
     Put(log, "relations_offset_s", s.log->relations_offset_s);
     Put(log, "relations_offset_detected", s.log->relations_offset_detected);
     Put(log, "relations_in_file", s.log->relations_in_file);
+    Put(log, "reference", s.log->reference);
+    Put(log, "reference_poses", s.log->reference_poses);
     j["log"] = log;
+  }
+  if (s.simulation) {
+    const SimulationOutcome& o = *s.simulation;
+    json sim = {{"failed", o.Failed()},
+                {"collided", o.collided},
+                {"timed_out", o.timed_out},
+                {"collisions_expected", o.collisions_expected},
+                {"collisions", o.collisions},
+                {"duration_s", o.duration_s},
+                {"expected_duration_s", o.expected_duration_s}};
+    if (o.first_collision_s) {
+      sim["first_collision"] = {{"t_s", *o.first_collision_s},
+                                {"with", o.first_collision_with.value_or("")}};
+    }
+    j["simulation"] = sim;
   }
   if (!s.mode_order.empty()) j["mode_order"] = s.mode_order;
   json modes = json::object();

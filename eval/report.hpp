@@ -44,6 +44,12 @@ struct LoopVerificationSummary {
   /// loops.suspect_chi2: the back-end's kernel is switching them off.
   std::int64_t switched_off = 0;
 };
+/// RPE over 1 m of travelled reference path (eval/trajectory_reference.hpp); summary.json's
+/// "rpe_1m".
+struct RpeSummary {
+  std::int64_t count = 0;
+  double trans_rmse_m = 0.0, rot_rmse_deg = 0.0;
+};
 struct KldSummary {
   std::int64_t count = 0;
   double mean = 0.0, max = 0.0;  ///< +inf (null in JSON) when any removal's KL is infinite
@@ -65,8 +71,11 @@ struct ModeSummary {
   std::optional<double> scans_kept_pct;
   std::optional<double> peak_rss_mb;
   std::optional<std::int64_t> graph_bytes_final;
-  std::optional<BlurSummary> blur;       ///< ground truth only
-  std::optional<double> ate_rmse_m;      ///< ground truth only
+  std::optional<BlurSummary> blur;   ///< ground truth only
+  std::optional<double> ate_rmse_m;  ///< ground truth or a reference trajectory
+  std::optional<RpeSummary> rpe_1m;  ///< ground truth or a reference trajectory
+  /// Reference trajectory: estimate poses scored against it (others had no reference pose).
+  std::optional<std::int64_t> reference_matched;
   std::optional<double> loop_precision;  ///< ground truth only, >= 1 closure accepted
   std::optional<double> loop_recall;     ///< ground truth only, >= 1 revisit
   /// Ground truth, runs over an hour: precision of the closures accepted in the last hour.
@@ -88,14 +97,34 @@ struct LogInfo {
   std::optional<double> relations_offset_s;  ///< s, relation time = log time + this
   std::optional<bool> relations_offset_detected;  ///< false: given with --relations-offset
   std::optional<std::int64_t> relations_in_file;  ///< relations read from the file
+  /// The reference trajectory ATE and RPE are scored against: a file given with --reference,
+  /// or "corrected FLASER poses" of a GMapping-corrected log.
+  std::optional<std::string> reference;
+  std::optional<std::int64_t> reference_poses;
+};
+
+/// What happened in the simulator (run only): summary.json's "simulation" object. A run
+/// whose robot collided (unless the scenario expects it) or whose route timed out did not
+/// drive the scenario it names: `run` exits 1 and a sweep keeps it out of its aggregate.
+struct SimulationOutcome {
+  bool collided = false;
+  bool timed_out = false;
+  bool collisions_expected = false;  ///< the scenario's collisions_expected
+  std::int64_t collisions = 0;
+  std::optional<double> first_collision_s;          ///< s, simulated time
+  std::optional<std::string> first_collision_with;  ///< wall, door or box name
+  double duration_s = 0.0;                          ///< s, simulated
+  double expected_duration_s = 0.0;                 ///< s, the route's estimate
+  bool Failed() const { return timed_out || (collided && !collisions_expected); }
 };
 
 struct RunSummary {
-  std::string source;                    ///< scenario or log path
-  std::optional<std::int64_t> seed;      ///< simulation only
-  double wall_time_s = 0.0;              ///< s, whole command
-  std::optional<double> log_duration_s;  ///< s, simulated or recorded time covered (>= 0)
-  std::optional<LogInfo> log;            ///< replay only
+  std::string source;                           ///< scenario or log path
+  std::optional<std::int64_t> seed;             ///< simulation only
+  double wall_time_s = 0.0;                     ///< s, whole command
+  std::optional<double> log_duration_s;         ///< s, simulated or recorded time covered (>= 0)
+  std::optional<LogInfo> log;                   ///< replay only
+  std::optional<SimulationOutcome> simulation;  ///< run only
   std::map<std::string, ModeSummary> modes;
   /// The modes in --modes order; the first is the baseline that ratios are taken against.
   std::vector<std::string> mode_order;

@@ -61,6 +61,36 @@ SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progr
   return run;
 }
 
+SimulationOutcome Outcome(const sim::Scenario& scenario, const SimulatedRun& run) {
+  SimulationOutcome o;
+  o.collided = !run.collisions.empty();
+  o.timed_out = run.timed_out;
+  o.collisions_expected = scenario.collisions_expected;
+  o.collisions = static_cast<std::int64_t>(run.collisions.size());
+  if (o.collided) {
+    o.first_collision_s = run.collisions.front().stamp_s;
+    o.first_collision_with = run.collisions.front().what;
+  }
+  o.duration_s = run.duration_s;
+  o.expected_duration_s = scenario.duration_s;
+  return o;
+}
+
+std::string OutcomeText(const SimulationOutcome& o) {
+  std::ostringstream s;
+  if (o.collided) {
+    s << o.collisions << (o.collisions == 1 ? " collision" : " collisions")
+      << ", the first at t = " << *o.first_collision_s << " s with "
+      << o.first_collision_with.value_or("?")
+      << (o.collisions_expected ? " (the scenario expects collisions)" : "") << "\n";
+  }
+  if (o.timed_out) {
+    s << "the route timed out: " << o.duration_s << " s simulated, " << o.expected_duration_s
+      << " s expected\n";
+  }
+  return s.str();
+}
+
 namespace {
 
 /// True when the door is closed at some time in [0, end_s].

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/report.hpp"
 #include "sensor/observation.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulator.hpp"
@@ -26,6 +27,13 @@ struct SimulatedRun {
 /// line redrawn in 1 % steps; else a plain line per 10 %). Throws Interrupted after Ctrl-C.
 SimulatedRun SimulateScenario(const sim::Scenario& scenario, std::ostream* progress,
                               bool terminal = false);
+
+/// The run's outcome for summary.json's "simulation" (collisions, timeout, durations).
+SimulationOutcome Outcome(const sim::Scenario& scenario, const SimulatedRun& run);
+
+/// The outcome as lines for a person: "collision at t = ... with ...", a timeout with both
+/// durations; empty when the robot drove its route untouched.
+std::string OutcomeText(const SimulationOutcome& outcome);
 
 /// The ground truth for map metrics over a run that ends at `end_s`: static walls, the
 /// doors that are closed at some time in [0, end_s] (a door open all run long is no wall

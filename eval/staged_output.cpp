@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "eval/interrupt.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {
@@ -45,6 +46,7 @@ fs::path WithoutTrailingSlash(const std::string& dir) {
 void CheckReplaceableOutput(const std::string& dir) {
   const fs::path p = WithoutTrailingSlash(dir);
   std::error_code ec;
+  if (dir.empty()) throw InputError("-o", 0, "", "the path is empty: give an output directory");
   if (p.empty() || p == "." || p == ".." || p == p.root_path()) {
     throw InputError(dir, 0, "-o", "give an output directory of its own, not . or .. or /");
   }
@@ -72,12 +74,15 @@ StagedOutput::StagedOutput(std::string final_dir)
   if (!fs::create_directory(staging_, ec) || ec) {
     throw InputError(final_, 0, "-o", "cannot create " + staging_ + ": " + ec.message());
   }
+  RegisterScratchDirectory(staging_);  // removed even when a signal ends the process
 }
 
 StagedOutput::~StagedOutput() {
-  if (committed_) return;
-  std::error_code ec;
-  fs::remove_all(staging_, ec);
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(staging_, ec);
+  }
+  UnregisterScratchDirectory(staging_);
 }
 
 void StagedOutput::Commit() {

@@ -83,6 +83,12 @@ SweepTables CollectSweepTables(const std::string& dir) {
       continue;
     }
     const json summary = ReadJson(cell_dir / "summary.json");
+    // A run whose robot collided or timed out did not drive its scenario: never aggregated,
+    // even when its cell was stamped (a result of a version that exited 0 for it).
+    if (summary.contains("simulation") && summary["simulation"].value("failed", false)) {
+      t.missing.push_back(cell.name);
+      continue;
+    }
     std::optional<std::int64_t> seed = cell.seed;
     if (!seed && summary.contains("seed") && summary["seed"].is_number_integer()) {
       seed = summary["seed"].get<std::int64_t>();

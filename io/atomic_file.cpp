@@ -1,6 +1,8 @@
 #include "io/atomic_file.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -26,6 +28,7 @@ void WriteThroughTempFile(const std::string& path,
                           const std::function<bool(const std::string& tmp_path)>& write) {
   const std::string tmp = TempPathFor(path);
   bool written = false;
+  errno = 0;  // a writer that fails sets it; a stale value must not be reported
   try {
     written = write(tmp);
   } catch (...) {
@@ -33,8 +36,11 @@ void WriteThroughTempFile(const std::string& path,
     throw;
   }
   if (!written) {
+    const int error = errno;  // of the failed open or write, before remove() sets its own
     std::remove(tmp.c_str());
-    throw InputError(path, 0, "", "cannot write file");
+    throw InputError(path, 0, "",
+                     std::string("cannot write file") +
+                         (error != 0 ? std::string(": ") + std::strerror(error) : ""));
   }
   CommitTempFile(tmp, path);
 }

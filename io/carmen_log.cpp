@@ -288,6 +288,7 @@ void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, Carm
       const Pose2& odom_before = log->odometry[ev[i - 1].index].T_odom_robot;
       Observation& o = log->observations[ev[i].index];
       o.T_odom_robot = raw_prev * Between(corrected_prev, odom_before);
+      log->corrected_poses.push_back({o.stamp_s, ev[i].corrected});
       corrected_prev = ev[i].corrected;
       raw_prev = o.T_odom_robot;
     } else if (i > 0 && ev[i - 1].is_flaser) {

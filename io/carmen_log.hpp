@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "sensor/observation.hpp"
+#include "types/stamped_pose.hpp"
 
 namespace lifelong::io {
 
@@ -52,7 +53,10 @@ struct CarmenLog {
   int first_backward_scan_line = 0;  ///< file line of the first such scan; 0: none
   int backward_odom_stamps = 0;      ///< ODOMs stamped earlier than the ODOM before them
   bool odometry_recovered = false;   ///< FLASER poses were corrected; raw odometry rebuilt
-  int dropped_odometry = 0;          ///< ODOM lines dropped by the recovery (after FLASER)
+  /// The corrected FLASER poses, one per scan, when odometry_recovered: the log's own
+  /// reference trajectory (the corrected estimate it was published with).
+  std::vector<StampedPose> corrected_poses;
+  int dropped_odometry = 0;  ///< ODOM lines dropped by the recovery (after FLASER)
 };
 
 /// Reads a CARMEN log; throws lifelong::InputError(path, line, field, ...) on a missing

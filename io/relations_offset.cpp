@@ -109,6 +109,16 @@ OffsetDetection DetectRelationsOffset(const std::vector<Relation>& relations,
   return best;
 }
 
+std::size_t CountRelationsInside(const std::vector<Relation>& relations, double first_s,
+                                 double last_s, double offset_s) {
+  std::size_t n = 0;
+  for (const Relation& r : relations) {
+    const double a = r.t1_s - offset_s, b = r.t2_s - offset_s;
+    if (a >= first_s && a <= last_s && b >= first_s && b <= last_s) ++n;
+  }
+  return n;
+}
+
 std::vector<Relation> ShiftRelations(std::vector<Relation> relations, double offset_s) {
   for (Relation& r : relations) {
     r.t1_s -= offset_s;

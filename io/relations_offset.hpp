@@ -21,6 +21,11 @@ std::size_t CountMatchedRelations(const std::vector<Relation>& relations,
                                   const std::vector<double>& sorted_scan_stamps, double offset_s,
                                   double tolerance_s = kRelationStampToleranceS);
 
+/// How many relations have both stamps, once `offset_s` is subtracted, within
+/// [first_s, last_s] (the log's time span): those that should land on scans.
+std::size_t CountRelationsInside(const std::vector<Relation>& relations, double first_s,
+                                 double last_s, double offset_s);
+
 struct OffsetDetection {
   double offset_s = 0.0;    ///< s; relation time = log time + offset_s
   std::size_t matched = 0;  ///< relations with both stamps on scans at that offset

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include "io/atomic_file.hpp"
 #include "io/text_fields.hpp"
@@ -60,6 +61,44 @@ std::vector<StampedPose> ParseTum(std::istream& in, const std::string& name) {
                       poses.push_back({v[0], Pose2(v[1], v[2], YawOf(v, name, line))});
                     },
                     {kMaxStampS, kMaxCoordinateM, kMaxCoordinateM, kMaxCoordinateM});
+  return poses;
+}
+
+std::vector<StampedPose> ReadTrajectory(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", "cannot open file");
+  std::string text;
+  std::size_t columns = 0;
+  while (columns == 0 && std::getline(in, text)) {
+    std::istringstream tokens(text);
+    std::string token;
+    while (tokens >> token && !(columns == 0 && token[0] == '#')) ++columns;
+  }
+  in.clear();
+  in.seekg(0);
+  std::vector<StampedPose> poses;
+  if (columns == 8) {
+    poses = ParseTum(in, path);
+  } else if (columns == 4) {
+    ForEachNumericRow(in, path, {"t", "x", "y", "theta"},
+                      [&](int, const std::vector<double>& v) {
+                        poses.push_back({v[0], Pose2(v[1], v[2], v[3])});
+                      },
+                      {kMaxStampS, kMaxCoordinateM, kMaxCoordinateM, kMaxCoordinateM});
+  } else if (columns != 0) {
+    throw InputError(path, 0, "",
+                     "expected 8 fields a line (TUM: t x y z qx qy qz qw) or 4 (t x y theta), "
+                     "the first line has " +
+                         std::to_string(columns));
+  }
+  if (poses.empty()) throw InputError(path, 0, "", "no pose in the file");
+  for (std::size_t k = 1; k < poses.size(); ++k) {
+    if (poses[k].stamp_s < poses[k - 1].stamp_s) {
+      throw InputError(path, 0, "t",
+                       "stamps go backwards at pose " + std::to_string(k + 1) + " of " +
+                           std::to_string(poses.size()));
+    }
+  }
   return poses;
 }
 

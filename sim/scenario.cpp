@@ -141,6 +141,14 @@ void ParseBackAndForth(Fields* f, const World& world, const RobotConfig& robot, 
     const Point p = ParseWaypoint(f->file(), wps[i], name, world);
     std::string why = CheckFree(world, p, robot.Radius());
     if (!why.empty()) Fail(f->file(), wps[i], name, "waypoint " + why);
+    // A leg of zero length ([west, west]) is reached as it starts: the route would end
+    // with one scan and "0 s expected".
+    if (i > 0 && std::hypot(p.x - r->waypoints.back().x, p.y - r->waypoints.back().y) <=
+                     robot.waypoint_tolerance_m) {
+      Fail(f->file(), wps[i], name,
+           "waypoint is where waypoint " + std::to_string(i - 1) +
+               " is (within robot.waypoint_tolerance_m): the leg has no length");
+    }
     if (i > 0) why = CheckPath(world, r->waypoints.back(), p, 0.5 * robot.width_m + 0.05);
     if (!why.empty()) Fail(f->file(), wps[i], name, "path to waypoint " + why);
     r->waypoints.push_back(p);
@@ -226,6 +234,7 @@ Scenario ParseScenario(const YAML::Node& root, const std::string& file,
   s.laser = ParseLaser(section("laser"));
   s.odometry = ParseOdometry(section("odometry"));
   s.route = ParseRoute(Fields(file, f.Required("route"), "route"), s.world, s.robot);
+  s.collisions_expected = f.Bool("collisions_expected", false);
   f.Finish();
   EstimateDuration(&s);
   if (!(s.duration_s <= kMaxDurationS)) {

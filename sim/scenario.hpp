@@ -3,9 +3,10 @@
 // and back in a 20 m x 3 m corridor); office tour after section 6.2 (about an hour).
 //
 // YAML (see scenarios/*.yaml): name, world (relative to the scenario file), seed,
-// optional physics_rate_hz and sections robot / laser (mount: [x, y, yaw_deg]) / odometry
-// whose keys are the fields below (each key at most once; numbers in the ranges given
-// there, else an InputError naming that key's own line), and route, one of
+// optional physics_rate_hz, optional collisions_expected (true/false) and sections robot / laser
+// (mount: [x, y, yaw_deg]) / odometry whose keys are the fields below (each key at most once;
+// numbers in the ranges given there, else an InputError naming that key's own line), and route, one
+// of
 //   {type: back_and_forth, waypoints: [place or [x, y], ...], repetitions: N, stop_s: 0}
 //   {type: path, waypoints: [...]}                      # driven once, no way back
 //   {type: tour, start: place, places: [...], duration_s: 3600, stop_s: 2}
@@ -87,6 +88,10 @@ struct Scenario {
   RouteConfig route;
   std::uint64_t seed = 1;          ///< split into the route, odometry and laser streams
   double physics_rate_hz = 100.0;  ///< fixed Box2D step rate
+  /// The robot is meant to touch something (a test of the simulator, a push): a collision
+  /// does not fail `run` or `simulate` (key collisions_expected, default false). A route
+  /// that times out fails them still.
+  bool collisions_expected = false;
   /// Expected simulated duration, s: exact for tours, an estimate for back-and-forth
   /// (path length, acceleration and turns). For progress bars and log_duration_s hints.
   double duration_s = 0.0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <set>
 
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
@@ -180,11 +181,20 @@ World ParseWorld(const YAML::Node& root, const std::string& file) {
   ForEachItem(&f, "walls", [&](const YAML::Node& n, const std::string& name) {
     w.walls.push_back(ParseWall(file, n, name));
   });
+  // Doors and boxes are named in collision reports and change metrics: one name, one object.
+  std::set<std::string> object_names;
+  auto unique_name = [&](const std::string& object, const YAML::Node& n, const std::string& name) {
+    if (!object_names.insert(object).second) {
+      Fail(file, n["name"], name + ".name", "duplicate door or box name '" + object + "'");
+    }
+  };
   ForEachItem(&f, "doors", [&](const YAML::Node& n, const std::string& name) {
     w.doors.push_back(ParseDoor(file, n, name));
+    unique_name(w.doors.back().name, n, name);
   });
   ForEachItem(&f, "boxes", [&](const YAML::Node& n, const std::string& name) {
     w.boxes.push_back(ParseBox(file, n, name));
+    unique_name(w.boxes.back().name, n, name);
   });
   ParsePlaces(&f, &w);
   ParseRoadmap(&f, &w);

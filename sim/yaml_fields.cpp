@@ -113,6 +113,16 @@ int Fields::Int(const std::string& key, int fallback) {
   return n ? AsInt(file_, n, Name(key)) : fallback;
 }
 
+bool Fields::Bool(const std::string& key, bool fallback) {
+  const YAML::Node n = Optional(key);
+  if (!n) return fallback;
+  bool value = false;
+  if (!n.IsScalar() || !YAML::convert<bool>::decode(n, value)) {
+    Fail(file_, n, Name(key), "expected true or false");
+  }
+  return value;
+}
+
 std::string Fields::String(const std::string& key) {
   return AsString(file_, Required(key), Name(key));
 }

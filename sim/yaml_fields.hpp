@@ -43,6 +43,7 @@ class Fields {
   double Double(const std::string& key);
   double Double(const std::string& key, double fallback);
   int Int(const std::string& key, int fallback);
+  bool Bool(const std::string& key, bool fallback);
   std::string String(const std::string& key);
   Point GetPoint(const std::string& key);
   /// Dotted name of a child field, e.g. "laser.rate_hz".

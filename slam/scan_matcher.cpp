@@ -291,6 +291,22 @@ void CropToSearch(const std::vector<Eigen::Vector2d>& points_in_cur, const Pose2
                    reference->end());
 }
 
+MatcherFootprint EstimateFootprint(const MatcherConfig& c, double linear_window_m,
+                                   double angular_window_rad) {
+  int side = 1, levels = 1;
+  while (side < c.coarse_factor) side *= 2, ++levels;
+  const double W = std::ceil(linear_window_m / c.resolution_m);
+  // CropToSearch's box around a point-free scan: translations, blocks, kernel, rounding.
+  const double cells = 2.0 * W + side + 2.0 * std::ceil(3.0 * c.sigma_m / c.resolution_m) + 4.0;
+  MatcherFootprint f;
+  f.table_bytes = cells * cells * (levels + 2) * 4.0;
+  const double step = c.angular_step_rad > 0.0 ? c.angular_step_rad : c.resolution_m / 10.0;
+  const double rotations = 2.0 * std::ceil(angular_window_rad / step) + 1.0;
+  const double blocks = std::ceil((2.0 * W + 1.0) / side);
+  f.frontier_bytes = rotations * blocks * blocks * static_cast<double>(sizeof(Node));
+  return f;
+}
+
 MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& points_in_cur,
                   const Pose2& T_ref_cur_guess, const MatcherConfig& config) {
   MatchResult result;

@@ -44,6 +44,20 @@ struct MatcherConfig {
   bool refine = true;
 };
 
+/// What one search with this config allocates whatever the scan: the lookup tables over the
+/// translation window (the fine table, its log table and a bound table per coarse level, 4
+/// bytes a cell; the scan's own extent adds to this) and the branch-and-bound frontier (every
+/// rotation times every top-level block, 16 bytes a node; an automatic angular step is taken
+/// at its finest, resolution / 10 m).
+struct MatcherFootprint {
+  double table_bytes = 0.0;
+  double frontier_bytes = 0.0;
+};
+MatcherFootprint EstimateFootprint(const MatcherConfig& config, double linear_window_m,
+                                   double angular_window_rad);
+/// Settings whose footprint passes this are refused when loaded (2 GiB each).
+inline constexpr double kMaxMatcherBytes = 2147483648.0;
+
 /// Likelihood field of a reference point set, in the reference frame (steps 1 and 2).
 class ReferenceGrid {
  public:

@@ -1,5 +1,6 @@
 #include "eval/report_alerts.hpp"
 
+#include <cstdio>
 #include <sstream>
 
 #include "eval/html.hpp"
@@ -7,6 +8,51 @@
 
 namespace lifelong::eval {
 namespace {
+
+std::string Seconds(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.1f s", s);
+  return buf;
+}
+
+/// "the first at 12.3 s, with door lab_a": when and what the robot hit first.
+std::string FirstCollision(const SimulationOutcome& o) {
+  std::string text;
+  if (o.first_collision_s) text += "the first at " + Seconds(*o.first_collision_s);
+  if (o.first_collision_with) {
+    text += (text.empty() ? "the first " : ", ") + std::string("with <b>") +
+            HtmlEscape(*o.first_collision_with) + "</b>";
+  }
+  return text;
+}
+
+/// Red when the simulated robot collided (unless the scenario expects it) or timed out:
+/// the run did not follow its route, and every figure below describes another run.
+/// Expected collisions are a note.
+std::string SimulationAlert(const RunSummary& s) {
+  if (!s.simulation) return "";
+  const SimulationOutcome& o = *s.simulation;
+  const std::string count =
+      std::to_string(o.collisions) + (o.collisions == 1 ? " collision" : " collisions");
+  const std::string first = FirstCollision(o);
+  const std::string duration =
+      "simulated " + Seconds(o.duration_s) + " of the expected " + Seconds(o.expected_duration_s);
+  if (o.Failed()) {
+    std::string what;
+    if (o.collided && !o.collisions_expected) {
+      what = "the robot collided (" + count + (first.empty() ? "" : "; " + first) + ")";
+    }
+    if (o.timed_out) what += (what.empty() ? "" : ", and ") + std::string("the route timed out");
+    return "<div class=\"alert\"><b>The simulation failed:</b> " + what + "; " + duration +
+           ". The robot did not drive the scenario's route: the figures below describe "
+           "another run.</div>\n";
+  }
+  if (o.collided) {
+    return "<div class=\"notice\">Collisions the scenario expects (collisions_expected): " + count +
+           (first.empty() ? "" : ", " + first) + "; " + duration + ".</div>\n";
+  }
+  return "";
+}
 
 /// Red when a mode used fewer than half the relations of the file.
 std::string RelationsAlert(const ReportPage& page) {
@@ -45,7 +91,7 @@ std::string FailedFiguresNotice(const ReportPage& page) {
 }  // namespace
 
 std::string ReportAlertsHtml(const ReportPage& page) {
-  return RelationsAlert(page) + FailedFiguresNotice(page);
+  return SimulationAlert(page.summary) + RelationsAlert(page) + FailedFiguresNotice(page);
 }
 
 }  // namespace lifelong::eval

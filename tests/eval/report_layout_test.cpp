@@ -1,7 +1,8 @@
 // The order and the banners of report.html (eval/report_html.hpp, report_alerts.hpp,
 // report_files.hpp): charts and maps first, then the key figures with the full table
 // folded below; a figure gnuplot failed on is named with its log; a page without charts
-// says why; a relations replay that used few relations of its file says so in red.
+// says why; a relations replay that used few relations of its file, and a simulation that
+// collided or timed out, say so in red.
 #include <filesystem>
 #include <fstream>
 
@@ -113,6 +114,33 @@ TEST(ReportLayoutTest, FewRelationsUsedAreFlagged) {
   html = ReportHtmlText(page);
   EXPECT_EQ(html.find("class=\"alert\""), std::string::npos);
   EXPECT_NE(html.find("<td>100 of 120</td>"), std::string::npos);
+}
+
+// A robot that collided or timed out did not drive its route: a red banner first, with the
+// first collision and the simulated against the expected duration. Collisions the
+// scenario expects are an amber note; a clean run has no banner.
+TEST(ReportLayoutTest, AFailedSimulationIsARedBannerFirst) {
+  ReportPage page = Page();
+  page.summary.simulation = SimulationOutcome{};
+  EXPECT_EQ(ReportHtmlText(page).find("class=\"alert\""), std::string::npos);
+  SimulationOutcome& o = *page.summary.simulation;
+  o.collided = true, o.collisions = 3, o.first_collision_s = 12.34;
+  o.first_collision_with = "door lab_a", o.duration_s = 60.0, o.expected_duration_s = 240.0;
+  std::string html = ReportHtmlText(page);
+  const std::size_t alert = html.find("<div class=\"alert\"><b>The simulation failed:</b>");
+  ASSERT_NE(alert, std::string::npos) << html;
+  EXPECT_LT(alert, html.find("src=\"time_per_obs.png\""));
+  EXPECT_NE(html.find("the robot collided (3 collisions; the first at 12.3 s, with <b>door "
+                      "lab_a</b>); simulated 60.0 s of the expected 240.0 s"),
+            std::string::npos)
+      << html;
+  o.collided = false, o.timed_out = true;
+  html = ReportHtmlText(page);
+  EXPECT_NE(html.find("failed:</b> the route timed out; simulated 60.0 s"), std::string::npos);
+  o.timed_out = false, o.collided = true, o.collisions_expected = true;
+  html = ReportHtmlText(page);
+  EXPECT_EQ(html.find("class=\"alert\""), std::string::npos);
+  EXPECT_NE(html.find("<div class=\"notice\">Collisions the scenario expects"), std::string::npos);
 }
 
 }  // namespace

@@ -227,9 +227,20 @@ int Replay(const ReplayArgs& a) {
   if (!a.relations.empty())
     config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, data, &info);
   if (!a.reference.empty()) {
+    std::vector<double> stamps;
+    for (const auto& o : data.observations) stamps.push_back(o.stamp_s);
+    std::sort(stamps.begin(), stamps.end());
+    const auto distinct = std::unique(stamps.begin(), stamps.end()) - stamps.begin();
+    if (2 * distinct <= static_cast<std::ptrdiff_t>(stamps.size())) {
+      throw InputError(log, 0, "--reference",
+                       "the log's scans share their stamps (" + std::to_string(distinct) +
+                           " distinct of " + std::to_string(stamps.size()) +
+                           "): a reference cannot be paired with them by time");
+    }
     info.reference = a.reference;
   } else if (data.odometry_recovered) {
     config.reference = data.corrected_poses;
+    config.reference_per_scan = data.corrected_poses.size() == data.observations.size();
     info.reference = "corrected FLASER poses";
   }
   if (!config.reference.empty()) {

@@ -24,6 +24,7 @@
 #include "eval/run_maps.hpp"
 #include "eval/staged_output.hpp"
 #include "eval/stopwatch.hpp"
+#include "eval/trajectory_figure.hpp"
 #include "eval/video.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
@@ -153,6 +154,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   ModeTimelines timelines;
   std::map<std::string, std::vector<double>> kld;
   std::map<std::string, std::vector<LoopCurvePoint>> loop_curves;
+  std::vector<AlignedTrack> reference_tracks;
   ReportPage page;
   // Evaluates a mode, writes its outputs and frees its mapper.
   auto finish = [&](ModeRunner* r) {
@@ -162,6 +164,9 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     timelines[r->name()] = r->timeline();
     if (!kl.empty()) kld[r->name()] = std::move(kl);
     if (!r->loop_curve().empty()) loop_curves[r->name()] = r->loop_curve();
+    if (!r->aligned_to_reference().empty()) {
+      reference_tracks.push_back({r->name(), r->aligned_to_reference()});
+    }
     page.maps[r->name()] = map_png;
     r->Release();
   };
@@ -192,6 +197,14 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   }
   ThrowIfInterrupted();
   if (truth) WriteTruth(stream, *truth, config);
+  if (!reference_tracks.empty()) {
+    std::vector<Pose2> reference;
+    for (const StampedPose& p : config.reference) reference.push_back(p.T_world_robot);
+    const std::string name =
+        config.log && config.log->reference ? *config.log->reference : std::string("reference");
+    WriteTrajectoryFigure((fs::path(config.out_dir) / "trajectories.png").string(), reference,
+                          "reference: " + name, reference_tracks);
+  }
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   plot_config.mode_order = summary.mode_order;

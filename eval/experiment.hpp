@@ -35,6 +35,9 @@ struct ExperimentConfig {
   std::optional<std::string> relations_path;  ///< the file they came from (report, figures)
   /// A reference trajectory (replay): ATE and RPE at 1 m are scored against it.
   std::vector<StampedPose> reference;
+  /// reference[i] is the pose of scan i (a corrected log's own poses): paired by index,
+  /// whatever the stamps say (some logs stamp every scan 0). Else paired by stamp.
+  bool reference_per_scan = false;
   std::optional<LogInfo> log;                   ///< replay: what was read from the log
   std::optional<SimulationOutcome> simulation;  ///< run: what happened in the simulator
   std::optional<double> first_pass_s;  ///< observations before this time form the first pass

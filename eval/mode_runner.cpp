@@ -245,11 +245,22 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
   if (!config_.reference.empty()) {
-    const ReferencePairs pairs = PairWithReference(trajectory, config_.reference);
+    ReferencePairs pairs;
+    if (config_.reference_per_scan && config_.reference.size() == trajectory.size()) {
+      for (std::size_t i = 0; i < trajectory.size(); ++i) {
+        pairs.estimate.push_back(trajectory[i].T_world_robot);
+        pairs.reference.push_back(config_.reference[i].T_world_robot);
+      }
+    } else {
+      pairs = PairWithReference(trajectory, config_.reference);
+    }
     summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
     if (!pairs.estimate.empty()) {
-      summary.ate_rmse_m = ComputeAte(pairs.estimate, pairs.reference).rmse_m;
+      const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);
+      summary.ate_rmse_m = ate.rmse_m;
       summary.rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
+      aligned_to_reference_.clear();
+      for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
     }
   }
   if (!relations.empty()) {

@@ -55,6 +55,7 @@ class ModeRunner {
   std::unique_ptr<slam::Mapper> mapper_;
   std::vector<TimelineRow> timeline_;
   std::vector<LoopCurvePoint> loop_curve_;
+  std::vector<Pose2> aligned_to_reference_;
   std::optional<int> first_pass_end_;
   double seconds_ = 0.0;
 
@@ -62,6 +63,9 @@ class ModeRunner {
   const std::vector<TimelineRow>& timeline() const { return timeline_; }
   /// Loop precision and recall over the run (ground truth only; empty otherwise).
   const std::vector<LoopCurvePoint>& loop_curve() const { return loop_curve_; }
+  /// The estimate at the reference's poses, moved onto it by the ATE alignment (replay with
+  /// a reference; empty otherwise).
+  const std::vector<Pose2>& aligned_to_reference() const { return aligned_to_reference_; }
 };
 
 }  // namespace lifelong::eval

@@ -50,6 +50,9 @@ std::vector<std::pair<const char*, std::string>> PlotCaptions(const ReportContex
       {"loop_closing.png",
        "Loop closing against the truth: cumulative precision of the accepted closures and "
        "recall of the revisits (correct: within 0.3 m and 5 deg)."},
+      {"trajectories.png",
+       "The log's reference trajectory (black) and each mode's estimate moved onto it by its "
+       "ATE alignment: where the map bends or a loop stays open, the tracks part."},
       {"kld.png",
        "KL divergence of each marginalization's approximate clique from the exact marginal, "
        "nats, in removal order (exact: 0)."},

@@ -93,10 +93,11 @@ std::vector<StampedPose> ReadTrajectory(const std::string& path) {
   }
   if (poses.empty()) throw InputError(path, 0, "", "no pose in the file");
   for (std::size_t k = 1; k < poses.size(); ++k) {
-    if (poses[k].stamp_s < poses[k - 1].stamp_s) {
+    if (poses[k].stamp_s <= poses[k - 1].stamp_s) {
       throw InputError(path, 0, "t",
-                       "stamps go backwards at pose " + std::to_string(k + 1) + " of " +
-                           std::to_string(poses.size()));
+                       "stamps must increase (poses are paired with scans by time): pose " +
+                           std::to_string(k + 1) + " of " + std::to_string(poses.size()) +
+                           " is not later than the one before");
     }
   }
   return poses;

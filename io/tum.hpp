@@ -24,7 +24,7 @@ std::vector<StampedPose> ParseTum(std::istream& in, const std::string& name);
 /// A reference trajectory in either of the two plain formats, told apart by the first data
 /// line: 8 fields (TUM, as above) or 4 (`t x y theta`, theta in radians). `#` comments and
 /// blank lines are skipped. Throws InputError at the line that breaks the format, for an
-/// empty file, or for stamps that go backwards.
+/// empty file, or for stamps that do not increase.
 std::vector<StampedPose> ReadTrajectory(const std::string& path);
 
 }  // namespace lifelong::io

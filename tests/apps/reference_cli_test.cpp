@@ -1,0 +1,97 @@
+// `replay` scores a log against a reference trajectory: a corrected log's own FLASER poses by
+// default, or a file given with --reference (TUM or t x y theta); ATE, RPE at 1 m and the
+// figure of both tracks.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "run_lifelong.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using lifelong::test::Lifelong;
+using lifelong::test::Read;
+using lifelong::test::Result;
+const std::string kSource = LIFELONG_SOURCE_DIR;
+
+fs::path Fresh(const std::string& name) { return lifelong::test::FreshPath("reference_", name); }
+
+TEST(ReferenceCli, ACorrectedLogIsScoredAgainstItsOwnPoses) {
+  const fs::path out = Fresh("corrected");
+  const Result r = Lifelong("replay " + kSource +
+                            "/tests/data/io/corrected.clf --modes standard -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("reference: 2 poses (corrected FLASER poses)"), std::string::npos)
+      << r.output;
+  const auto s = nlohmann::json::parse(Read(out / "summary.json"));
+  EXPECT_EQ(s["log"]["reference"], "corrected FLASER poses");
+  EXPECT_EQ(s["log"]["reference_poses"], 2);
+  const auto& m = s["modes"]["standard"];
+  EXPECT_EQ(m["reference_matched"], 2);
+  EXPECT_TRUE(m.contains("ate_rmse_m"));
+  EXPECT_TRUE(fs::exists(out / "trajectories.png"));
+  EXPECT_NE(Read(out / "report.html").find("trajectories.png"), std::string::npos);
+}
+
+// Some corrected logs stamp every scan 0 (freiburg-campus): their own poses are paired by
+// scan, not by time (by time every scan met the first pose, and ATE read 83 m).
+TEST(ReferenceCli, ACorrectedLogWithoutStampsIsPairedScanByScan) {
+  std::string text = Read(kSource + "/tests/data/io/corrected.clf");
+  std::string zeroed;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const auto h = line.rfind(" h ");
+    if (line[0] != '#' && h != std::string::npos) {
+      line = line.substr(0, line.rfind(' ', h - 1)) + " 0 h 0";
+    }
+    zeroed += line + "\n";
+  }
+  const fs::path log = Fresh("zero_stamps.clf");
+  std::ofstream(log) << zeroed;
+  const fs::path out = Fresh("zero_out");
+  const fs::path stamped_out = Fresh("stamped_out");
+  ASSERT_EQ(Lifelong("replay " + log.string() + " --modes standard -o " + out.string()).code, 0);
+  ASSERT_EQ(Lifelong("replay " + kSource + "/tests/data/io/corrected.clf --modes standard -o " +
+                     stamped_out.string())
+                .code,
+            0);
+  const auto zero = nlohmann::json::parse(Read(out / "summary.json"))["modes"]["standard"];
+  const auto stamped =
+      nlohmann::json::parse(Read(stamped_out / "summary.json"))["modes"]["standard"];
+  EXPECT_EQ(zero["reference_matched"], 2);
+  EXPECT_NEAR(zero["ate_rmse_m"].get<double>(), stamped["ate_rmse_m"].get<double>(), 1e-9);
+  // A reference file cannot be paired with such a log by time: said, not guessed.
+  const fs::path ref = Fresh("ref0.txt");
+  std::ofstream(ref) << "0 0 0 0\n1 1 0 0\n";
+  const Result r = Lifelong("replay " + log.string() + " --reference " + ref.string() + " -o " +
+                            Fresh("zero_ref").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("share their stamps"), std::string::npos) << r.output;
+}
+
+TEST(ReferenceCli, AGivenReferenceIsUsedAndABadOneIsNamedBeforeTheLog) {
+  const fs::path ref = Fresh("ref.txt");
+  std::ofstream(ref) << "2.0 0 0 0\n4.0 1 0 0\n";
+  const fs::path out = Fresh("given");
+  Result r =
+      Lifelong("replay " + kSource + "/tests/data/io/tiny.clf --modes standard --reference " +
+               ref.string() + " -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto s = nlohmann::json::parse(Read(out / "summary.json"));
+  EXPECT_EQ(s["log"]["reference"], ref.string());
+  const fs::path bad = Fresh("bad.txt");
+  std::ofstream(bad) << "0 1 2\n";
+  r = Lifelong("replay " + kSource + "/tests/data/io/tiny.clf --reference " + bad.string() +
+               " -o " + Fresh("bad_out").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("read "), std::string::npos) << "the log was read first\n" << r.output;
+}
+
+}  // namespace

@@ -42,7 +42,8 @@ std::string SummaryTableHtml(const RunSummary& summary, const std::vector<std::s
 
 /// The pointers of the key figures, in the compact table's order (a dozen of the rows:
 /// time per observation mean and last 10 %, mapper time, nodes and edges final, scans
-/// kept, ATE, blur, loop precision and recall, relations and their error, peak memory).
+/// kept, ATE, blur, loop precision and recall, relations used and their translation
+/// error, peak memory).
 const std::vector<std::string>& KeyFigurePointers();
 
 /// The compact table of the key figures that any mode has (<table class="summary key">),

@@ -100,16 +100,18 @@ double CardHeight(const ReportMapCard& card, double factor) {
   return h;
 }
 
-/// The columns of the maps' grid and the one display factor of all its images: the fewest
-/// columns (the largest images) whose grid fits max_height_px, else the lowest grid.
+/// The columns of the maps' grid and the one display factor of all its images. Of the
+/// grids that fit max_maps_height_px, the one with the largest images for the share of its
+/// cells filled (factor x cards / cells: four cards in one row rather than three and one
+/// left alone); when none fits, the lowest.
 std::pair<int, double> MapGrid(const std::vector<ReportMapCard>& cards, const ReportContext& c) {
   int max_w = 0, max_h = 0;
   for (const ReportMapCard& card : cards)
     for (const ReportFigure& f : card.figures)
       max_w = std::max(max_w, f.width_px), max_h = std::max(max_h, f.height_px);
   constexpr double kGapPx = 16.0;
-  std::pair<int, double> best{1, 1.0};
-  double best_height = std::numeric_limits<double>::max();
+  std::pair<int, double> best{1, 1.0}, best_fit{0, 0.0};
+  double best_height = std::numeric_limits<double>::max(), best_score = 0.0;
   const int n = static_cast<int>(cards.size());
   for (int k = 1; k <= std::max(n, 1); ++k) {
     double factor = 1.0;
@@ -122,14 +124,17 @@ std::pair<int, double> MapGrid(const std::vector<ReportMapCard>& cards, const Re
         row_height = std::max(row_height, CardHeight(cards[i], factor));
       height += row_height + kGapPx;
     }
-    if (height <= c.max_maps_height_px) return {k, factor};
+    const int rows = (n + k - 1) / k;
+    const double score = factor * n / std::max(rows * k, 1);
+    if (height <= c.max_maps_height_px && score > best_score)
+      best_score = score, best_fit = {k, factor};
     if (height < best_height) best_height = height, best = {k, factor};
   }
-  return best;
+  return best_fit.first > 0 ? best_fit : best;
 }
 
 /// Map and graph of each mode in one card, the truth's first, every image at one display
-/// factor, in as many columns as keep the grid low.
+/// factor, in the columns MapGrid chooses.
 void MapFigures(const ReportContext& c, ReportPage* page) {
   const std::string scale = "1 px = " + Num(c.map_m_per_px * 100.0, "%.3g") + " cm";
   const fs::path dir(c.out_dir);

@@ -141,7 +141,8 @@ TEST(ReportFilesTest, LinksOnlyFilesThatExistAndPlotsInTheSeedsOrder) {
 }
 
 // Each mode's map and graph share a card, the truth's first, the modes in run order; all
-// images at one factor; as few columns as keep the grid within its height.
+// images at one factor; the columns that give the largest images for the cells filled
+// within the grid's height.
 TEST(ReportFilesTest, MapsTruthFirstAtOneDisplayScale) {
   const fs::path dir = OutDir();
   Png(dir / "truth" / "map.png", 1800, 400);

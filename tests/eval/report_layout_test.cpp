@@ -97,6 +97,33 @@ TEST(ReportLayoutTest, APageWithoutChartsSaysWhy) {
   EXPECT_NE(failed.figures_note.find("gnuplot failed"), std::string::npos);
 }
 
+// Four cards (truth and three modes) of office-like maps: one row of four, not a row of
+// three and one left alone, even though three columns would show them larger.
+TEST(ReportLayoutTest, MapCardsFillTheirRows) {
+  const fs::path dir = OutDir("cards");
+  ReportPage page = Page();
+  page.summary.modes["pruned-exact"].observations = 4;
+  page.mode_order = {"standard", "pruned", "pruned-exact"};
+  fs::create_directories(dir / "truth");
+  const auto png = [&](const std::string& rel) {
+    fs::create_directories((dir / rel).parent_path());
+    WritePng((dir / rel).string(), Image{841, 441, std::vector<std::uint8_t>(3u * 841 * 441, 9)});
+  };
+  png("truth/map.png");
+  for (const std::string& m : page.mode_order) {
+    png(m + "/map.png");
+    png("graph_" + m + ".png");
+    page.maps[m] = m + "/map.png";
+  }
+  ReportContext c;
+  c.out_dir = dir.string();
+  c.mode_order = page.mode_order;
+  CompleteReportPage(c, &page);
+  ASSERT_EQ(page.map_cards.size(), 4u);
+  EXPECT_EQ(page.map_columns, 4);
+  EXPECT_LE(4 * page.map_cards[0].figures[0].width_px + 3 * 16, c.page_width_px);
+}
+
 // 6 of 120 relations used: a red banner and "6 of 120" in the tables; 100 of 120 (more
 // than half): the count with its total, no banner.
 TEST(ReportLayoutTest, FewRelationsUsedAreFlagged) {

@@ -80,6 +80,10 @@ void ModeRunner::Record(const slam::StepStats& s) {
   row.nodes_removed = s.nodes_removed_total;
   row.stages = s.stages;
   timeline_.push_back(row);
+  if (s.observation_index > 0) {  // the first observation has nothing to match against
+    ++sequential_.count;
+    if (s.incremental_match_ok) ++sequential_.matched;
+  }
   if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
 }
 
@@ -221,6 +225,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
         100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
   }
   summary.edges_by_kind = EdgesByKind(m.graph());
+  if (sequential_.count > 0) summary.sequential = sequential_;
   for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
   if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
 

@@ -56,6 +56,7 @@ class ModeRunner {
   std::vector<TimelineRow> timeline_;
   std::vector<LoopCurvePoint> loop_curve_;
   std::vector<Pose2> aligned_to_reference_;
+  SequentialSummary sequential_;
   std::optional<int> first_pass_end_;
   double seconds_ = 0.0;
 

@@ -70,6 +70,9 @@ json ModeJson(const ModeSummary& m) {
                    {"rot_rmse_deg", m.rpe_1m->rot_rmse_deg}};
   }
   Put(j, "reference_matched", m.reference_matched);
+  if (m.sequential) {
+    j["sequential"] = {{"count", m.sequential->count}, {"matched", m.sequential->matched}};
+  }
   Put(j, "loop_precision", m.loop_precision);
   Put(j, "loop_recall", m.loop_recall);
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);

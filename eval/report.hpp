@@ -50,6 +50,12 @@ struct RpeSummary {
   std::int64_t count = 0;
   double trans_rmse_m = 0.0, rot_rmse_deg = 0.0;
 };
+/// Sequential scan matching (each observation against the local map of recent scans):
+/// summary.json's "sequential". An observation that did not match keeps its odometry.
+struct SequentialSummary {
+  std::int64_t count = 0;    ///< observations after the first
+  std::int64_t matched = 0;  ///< of those, matched (the rest keep odometry alone)
+};
 struct KldSummary {
   std::int64_t count = 0;
   double mean = 0.0, max = 0.0;  ///< +inf (null in JSON) when any removal's KL is infinite
@@ -67,6 +73,7 @@ struct ModeSummary {
   /// Final graph's factors by origin: "odometry", "loop", "marginal" (Chow-Liu or naive
   /// edges), "prior", and "clique_pairs" (pairs of exact clique factors, as for gamma).
   std::map<std::string, std::int64_t> edges_by_kind;
+  std::optional<SequentialSummary> sequential;
   std::optional<double> gamma_final;
   std::optional<double> scans_kept_pct;
   std::optional<double> peak_rss_mb;

@@ -208,8 +208,9 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   plot_config.mode_order = summary.mode_order;
+  plot_config.named_dir = final_config.out_dir;  // the staging directory is gone by then
   const PlotResult plots = PlotRun(timelines, kld, loop_curves, config.out_dir, plot_config);
-  if (!plots.ok) Progress(config, "warning: no figures: " + plots.error + "\n");
+  if (!plots.ok) Progress(config, "warning: " + plots.error + "\n");
   ThrowIfInterrupted();
   summary.wall_time_s = Seconds(start);
   page.summary = summary;

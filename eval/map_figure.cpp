@@ -143,16 +143,23 @@ Image RenderFigure(const Canvas& c, const FigureLayers& layers) {
                TrajectoryColour(t.kind), 1, cv::LINE_AA, kShift);
     }
   }
-  for (const GraphEdge& e : layers.graph.edges) {
-    const Segment& s = e.segment;
-    cv::line(img, Px(c, s.x0, s.y0), Px(c, s.x1, s.y1), Colour(render::EdgeColour(e.kind)), 1,
-             cv::LINE_AA, kShift);
-  }
+  const auto draw_edges = [&](bool loops, int width_px) {
+    for (const GraphEdge& e : layers.graph.edges) {
+      if ((e.kind == EdgeKind::kLoop) != loops) continue;
+      const Segment& s = e.segment;
+      cv::line(img, Px(c, s.x0, s.y0), Px(c, s.x1, s.y1), Colour(render::EdgeColour(e.kind)),
+               width_px, cv::LINE_AA, kShift);
+    }
+  };
+  draw_edges(false, 1);
   const int radius = static_cast<int>(std::lround(layers.node_radius_px * kSub));
   for (const Pose2& n : layers.graph.nodes) {
     cv::circle(img, Px(c, n.x, n.y), radius, Colour(render::kGraphNode), cv::FILLED, cv::LINE_AA,
                kShift);
   }
+  // Loop closures join nodes that lie close together, on the path: drawn under it they
+  // vanish. Last and thick, they show.
+  draw_edges(true, std::max(layers.loop_edge_width_px, 1));
   if (layers.scale_bar) DrawScaleBar(img, c.m_per_px);
   return out;
 }

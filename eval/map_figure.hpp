@@ -2,7 +2,9 @@
 // a run can be drawn at one scale and orientation (the seed's Figs. 6.6-6.9 put the modes
 // side by side). The grid is resampled into the figure frame (nearest cell at each pixel
 // centre), then the trajectories are drawn thin, then the graph's edges (coloured by kind,
-// render/palette.hpp) and nodes over them, so a sparse graph is never hidden by a path.
+// render/palette.hpp) and nodes over them, so a sparse graph is never hidden by a path, and
+// last the loop closures, thick, so that the short edges of a revisit are not hidden by
+// the nodes and edges around them.
 #pragma once
 
 #include "eval/draw.hpp"
@@ -38,11 +40,12 @@ struct FigureLayers {
   std::vector<TrajectoryOverlay> trajectories;  ///< figure frame; 1 px, under the graph
   GraphOverlay graph;                           ///< figure frame
   double node_radius_px = 1.5;                  ///< px
+  int loop_edge_width_px = 2;                   ///< px; loop closures go over everything
   bool scale_bar = true;                        ///< a 1/2/5 x 10^k m bar in the lower-left corner
 };
 
 /// Draws the layers on the canvas: cells (unknown grey 205, free white, occupied black,
-/// grey level 255 * (1 - min(2p, 1))), trajectories, edges, nodes, scale bar.
+/// grey level 255 * (1 - min(2p, 1))), trajectories, edges, nodes, loop closures, scale bar.
 Image RenderFigure(const Canvas& canvas, const FigureLayers& layers);
 
 /// The overlay moved by T (e.g. T_truth_est: from the mapper's frame into the truth's).

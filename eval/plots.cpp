@@ -1,7 +1,5 @@
 #include "eval/plots.hpp"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +9,7 @@
 
 #include "io/atomic_file.hpp"
 
+#include "eval/gnuplot_run.hpp"
 #include "eval/mode_colors.hpp"
 
 namespace lifelong::eval {
@@ -19,12 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kMiB = 1024.0 * 1024.0;  // bytes; rss_mb is in the same unit (resources.hpp)
-
-std::string ShellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 /// gnuplot single-quoted string: no escapes, a quote is doubled.
 std::string GpQuote(const std::string& s) {
@@ -59,13 +52,16 @@ struct Panel {
   std::string ylabel;
   bool log_y = false;
   Clauses clauses;
+  std::string yrange;  ///< e.g. "[0:1.05]"; empty: autoscale
+  std::string note;    ///< written across the panel, e.g. "no closures"; empty: none
 };
 
 struct Figure {
   std::string name;  ///< file stem
   std::string xlabel;
-  std::vector<Panel> panels;                 ///< stacked top to bottom, sharing the x axis
-  std::map<std::string, std::string> files;  ///< mode -> its data file
+  std::vector<Panel> panels;                  ///< stacked top to bottom, sharing the x axis
+  std::map<std::string, std::string> files;   ///< mode -> its data file
+  std::map<std::string, std::string> titles;  ///< mode -> legend entry; absent: the mode
 };
 
 /// Writes a plot_data file atomically; a failure becomes the result's error (figures are
@@ -107,13 +103,19 @@ bool WriteScript(const Figure& f, const std::string& out_dir, const std::string&
   if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
   for (const Panel& panel : f.panels) {
     gp << "set ylabel " << GpQuote(panel.ylabel) << "\n"
-       << (panel.log_y ? "set logscale y\n" : "unset logscale y\n") << "plot ";
+       << (panel.log_y ? "set logscale y\n" : "unset logscale y\n")
+       << (panel.yrange.empty() ? "set autoscale y\n" : "set yrange " + panel.yrange + "\n")
+       << (panel.note.empty() ? "unset label 1\n"
+                              : "set label 1 " + GpQuote(panel.note) +
+                                    " at graph 0.5, graph 0.5 center font ',16'\n")
+       << "plot ";
     int i = 0;
     for (const auto& [mode, file] : InLegendOrder(f.files, c.mode_order)) {
+      const auto title = f.titles.find(mode);
       gp << (i++ ? ", \\\n     " : "")
          << panel.clauses(GpQuote(ModeColourHex(mode)),
                           GpQuote(fs::path(file).lexically_relative(out_dir).string()),
-                          GpQuote(mode));
+                          GpQuote(title == f.titles.end() ? mode : title->second));
     }
     gp << "\n";
   }
@@ -122,32 +124,41 @@ bool WriteScript(const Figure& f, const std::string& out_dir, const std::string&
   return WritePlotFile(fs::path(out_dir) / "plot_data" / (f.name + ".gp"), gp.str(), result);
 }
 
-/// Writes the figures' scripts, runs them all in one gnuplot process (a process per
-/// figure cost about 50 ms each), and renames each PNG drawn into place.
+/// The directory that messages name: where the output will be read.
+std::string NamedDir(const std::string& out_dir, const PlotConfig& c) {
+  return c.named_dir.empty() ? out_dir : c.named_dir;
+}
+
+/// "figure loop_closing.png not drawn (gnuplot: DIR/plot_data/loop_closing.log)", or all.
+std::string FailureMessage(const std::vector<FailedFigure>& failed, std::size_t drawn,
+                           const std::string& named_dir) {
+  if (drawn == 0) {
+    return "gnuplot failed on every figure (see " +
+           (fs::path(named_dir) / "plot_data" / "gnuplot.log").string() +
+           " and the figure's .log beside it): no figures written";
+  }
+  std::string text;
+  for (const FailedFigure& f : failed) {
+    text += (text.empty() ? "" : "; ") + std::string("figure ") + f.figure + " not drawn (" +
+            f.log + ")";
+  }
+  return text + "; the other " + std::to_string(drawn) + " written";
+}
+
+/// Writes the figures' scripts, runs them (eval/gnuplot_run.hpp: one process, each figure
+/// alone when that fails) and renames each PNG drawn into place.
 bool RenderAll(const std::vector<Figure>& figures, const std::string& out_dir,
                const std::string& terminal, const PlotConfig& c, PlotResult* result) {
   if (figures.empty()) return true;
-  // Paths in the scripts are relative to out_dir, so that plot_data/ can re-make a figure
-  // wherever the directory is moved (a run is written in a staging directory and renamed).
-  std::string cmd = "cd " + ShellQuote(out_dir) + " && " + ShellQuote(c.gnuplot);
+  std::vector<std::string> names;
   for (const Figure& f : figures) {
     if (!WriteScript(f, out_dir, terminal, c, result)) return false;
-    cmd += " " + ShellQuote("plot_data/" + f.name + ".gp");
+    names.push_back(f.name);
   }
-  cmd += " 2> " + ShellQuote("plot_data/gnuplot.log");
-  const int status = std::system(cmd.c_str());
-  std::error_code ec;
-  if (status != 0) {  // gnuplot stops at the first script that fails: no figure is trusted
-    for (const Figure& f : figures)
-      fs::remove(io::TempPathFor((fs::path(out_dir) / (f.name + ".png")).string()), ec);
-    result->error = "gnuplot failed (see " +
-                    (fs::path(out_dir) / "plot_data" / "gnuplot.log").string() +
-                    "): no figures written";
-    return false;
-  }
-  bool ok = true;
-  for (const Figure& f : figures) {
-    const fs::path png = fs::path(out_dir) / (f.name + ".png");
+  const GnuplotRun run = RunGnuplotScripts(c.gnuplot, out_dir, names);
+  bool ok = run.failed.empty();
+  for (const std::string& name : run.drawn) {
+    const fs::path png = fs::path(out_dir) / (name + ".png");
     try {
       io::CommitTempFile(io::TempPathFor(png.string()), png.string());
       result->files.push_back(png.string());
@@ -156,6 +167,12 @@ bool RenderAll(const std::vector<Figure>& figures, const std::string& out_dir,
       ok = false;
     }
   }
+  for (const std::string& name : run.failed) {
+    result->failed.push_back(
+        {name + ".png", (fs::path(NamedDir(out_dir, c)) / "plot_data" / (name + ".log")).string()});
+  }
+  if (!run.failed.empty())
+    result->error = FailureMessage(result->failed, run.drawn.size(), NamedDir(out_dir, c));
   return ok;
 }
 
@@ -185,7 +202,9 @@ Figure LinesFigure(const std::string& name, const std::string& ylabel, int col, 
           {{ylabel, log_y,
             [col](const std::string& c, const std::string& f, const std::string& t) {
               return Lines(c, f, t, col);
-            }}},
+            },
+            "", ""}},
+          {},
           {}};
 }
 
@@ -224,7 +243,8 @@ bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
       {"time_per_obs",
        "observation",
        {{"time per observation [ms] (lines: moving average of " + ma_label + ")", config.log_time,
-         dots_and_average}},
+         dots_and_average, "", ""}},
+       {},
        {}},
       LinesFigure("nodes", "nodes", 4, false),
       LinesFigure("edges", "edges", 5, false),
@@ -234,6 +254,7 @@ bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
        "observation",
        {LinesFigure("", "resident memory of the process [MiB]", 8, false).panels[0],
         LinesFigure("", "memory held by the graph [MiB]", 9, any_graph_bytes).panels[0]},
+       {},
        {}},
   };
   for (Figure& f : made) {
@@ -250,7 +271,9 @@ bool KldFigure(const std::map<std::string, std::vector<double>>& kl_per_mode,
            {{"KL divergence of the approximate clique [nats]", false,
              [](const std::string& c, const std::string& file, const std::string& t) {
                return file + " using 1:2 with points pt 7 ps 0.5 lc rgb " + c + " title " + t;
-             }}},
+             },
+             "", ""}},
+           {},
            {}};
   for (const auto& [mode, kl] : kl_per_mode) {
     const fs::path p = fs::path(out_dir) / "plot_data" / ("kld_" + SafeName(mode) + ".dat");
@@ -272,11 +295,23 @@ bool LoopFigure(const std::map<std::string, std::vector<LoopCurvePoint>>& curves
              t;
     };
   };
+  // Fixed y ranges (shares): a mode, or a whole run, without closures has no defined
+  // point, which gnuplot's autoscale refuses ("all points y value undefined").
   Figure f{"loop_closing",
            "robot time [s]",
-           {{"loop-closure precision, cumulative", false, column(2)},
-            {"loop-closure recall, cumulative", false, column(3)}},
+           {{"loop-closure precision, cumulative", false, column(2), "[0:1.05]", ""},
+            {"loop-closure recall, cumulative", false, column(3), "[0:1.05]", ""}},
+           {},
            {}};
+  bool any_accepted = false, any_revisit = false;
+  for (const auto& [mode, curve] : curves) {
+    const bool accepted = !curve.empty() && curve.back().accepted > 0;
+    any_accepted = any_accepted || accepted;
+    any_revisit = any_revisit || (!curve.empty() && curve.back().revisits > 0);
+    if (!accepted) f.titles[mode] = mode + " (no closures)";
+  }
+  if (!any_accepted) f.panels[0].note = "no closures";
+  if (!any_revisit) f.panels[1].note = "no revisits";
   for (const auto& [mode, curve] : curves) {
     const fs::path p = fs::path(out_dir) / "plot_data" / ("loops_" + SafeName(mode) + ".dat");
     std::ostringstream out;
@@ -294,20 +329,6 @@ bool LoopFigure(const std::map<std::string, std::vector<LoopCurvePoint>>& curves
 }
 
 }  // namespace
-
-bool GnuplotAvailable(const std::string& gnuplot, std::string* terminal) {
-  const std::string cmd = ShellQuote(gnuplot) + " -e 'set terminal' 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return false;
-  std::string out;
-  char buf[512];
-  while (std::fgets(buf, sizeof(buf), pipe)) out += buf;
-  const int status = pclose(pipe);
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return false;
-  if (out.find("png") == std::string::npos) return false;
-  if (terminal) *terminal = out.find("pngcairo") != std::string::npos ? "pngcairo" : "png";
-  return true;
-}
 
 PlotResult PlotRun(const ModeTimelines& timelines,
                    const std::map<std::string, std::vector<double>>& kl_per_mode,
@@ -332,7 +353,7 @@ PlotResult PlotRun(const ModeTimelines& timelines,
 
 PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
                          const PlotConfig& config) {
-  if (timelines.empty()) return {false, "no timelines to plot", {}};
+  if (timelines.empty()) return {false, "no timelines to plot", {}, {}};
   return PlotRun(timelines, {}, {}, out_dir, config);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/gnuplot_run.hpp"
 #include "eval/types.hpp"
 
 namespace lifelong::eval {
@@ -22,14 +23,24 @@ struct PlotConfig {
   /// Legend (and drawing) order: these modes first, as given (the run's --modes, baseline
   /// first); any other mode after them by name.
   std::vector<std::string> mode_order;
+  /// The directory that messages name (the output's final place when out_dir is a staging
+  /// directory, eval/staged_output.hpp); empty: out_dir.
+  std::string named_dir;
 };
 
-/// ok == false with a message (e.g. gnuplot missing) instead of an exception: figures are
-/// optional output. `files` lists the PNGs written, with their paths.
+struct FailedFigure {
+  std::string figure;  ///< e.g. "loop_closing.png"
+  std::string log;     ///< gnuplot's messages: <named_dir>/plot_data/<name>.log
+};
+
+/// ok == false with a message (e.g. gnuplot missing, a figure failed) instead of an
+/// exception: figures are optional output. `files` lists the PNGs written, with their
+/// paths; `failed` the figures whose gnuplot script failed (the others are still written).
 struct PlotResult {
   bool ok = false;
   std::string error;
   std::vector<std::string> files;
+  std::vector<FailedFigure> failed;
 };
 
 /// mode name -> its timeline.
@@ -42,19 +53,18 @@ using ModeTimelines = std::map<std::string, std::vector<TimelineRow>>;
 PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
                          const PlotConfig& config = {});
 
-/// Every figure of a run in one gnuplot process (a process per figure cost about 50 ms):
+/// Every figure of a run, in one gnuplot process when all succeed (eval/gnuplot_run.hpp):
 /// PlotTimelines' figures; kld.png, the KL divergence of each marginalization per mode in
 /// order; and loop_closing.png, cumulative loop-closure precision (top) and recall (bottom)
-/// of each mode over robot time, points before the first closure (revisit) left out. Each
+/// of each mode over robot time, points before the first closure (revisit) left out, on a
+/// fixed 0-1 axis: a run without closures draws an empty chart saying "no closures". Each
 /// figure when its data is not empty.
 /// The scripts stay in plot_data/ and each re-makes its figure alone; gnuplot's messages go
-/// to plot_data/gnuplot.log. When gnuplot fails no figure is written.
+/// to plot_data/gnuplot.log. A figure whose script fails is the only one lost: it leaves
+/// plot_data/<name>.log and no <name>.png (eval/report_files.cpp reads that).
 PlotResult PlotRun(const ModeTimelines& timelines,
                    const std::map<std::string, std::vector<double>>& kl_per_mode,
                    const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
                    const std::string& out_dir, const PlotConfig& config = {});
-
-/// True when `gnuplot` runs; fills *terminal with "pngcairo" or "png" when given.
-bool GnuplotAvailable(const std::string& gnuplot, std::string* terminal = nullptr);
 
 }  // namespace lifelong::eval

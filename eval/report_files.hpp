@@ -1,7 +1,9 @@
 // Gathers what report.html shows from a finished output directory: the plots that were
-// written (in the seed's order, each with its caption), the maps and graphs (truth first,
-// then the modes in run order, all shown at one display scale), links to the output files
-// that exist, the published figures for the log and the provenance.
+// written (in the seed's order, each with its caption) and those that failed (with their
+// gnuplot log), the maps and graphs (truth first, then the modes in run order, each
+// mode's map and graph in one card, all shown at one display scale in a grid of as many
+// columns as keep it low), links to the output files that exist, the published figures
+// for the log and the provenance.
 #pragma once
 
 #include <string>
@@ -21,8 +23,9 @@ struct ReportContext {
   int moving_average = 25;              ///< observations in time_per_obs.png's moving average
   bool log_time = true;                 ///< time_per_obs.png has a log y axis
   std::string relations_path;           ///< --relations file; empty without
-  int max_map_width_px = 900;           ///< display size of the largest map, at most ...
-  int max_map_height_px = 640;          ///< ... and this tall (full size on click)
+  int page_width_px = 1340;             ///< px across the page's content (1400 px window)
+  int max_map_height_px = 640;          ///< px, a map at most this tall (full size on click)
+  int max_maps_height_px = 1300;        ///< px, the maps' grid at most this tall if it can
 };
 
 /// The context of a run of RunExperiment.
@@ -31,8 +34,9 @@ ReportContext MakeReportContext(const ExperimentConfig& config,
                                 const std::optional<GroundTruth>& truth,
                                 const PlotConfig& plot_config);
 
-/// Fills page->mode_order, figures, map_figures, graph_figures, maps_note,
-/// true_path_in_maps, files, reference, build, working_dir and written_utc. Needs
+/// Fills page->mode_order, lead_figures, figures, failed_figures, figures_note,
+/// map_cards, map_columns, maps_note, true_path_in_maps, files, reference, build,
+/// working_dir and written_utc. Needs
 /// page->summary and maps (mode -> map image, relative to out_dir) to be set.
 void CompleteReportPage(const ReportContext& context, ReportPage* page);
 

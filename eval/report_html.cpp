@@ -1,11 +1,13 @@
 #include "eval/report_html.hpp"
 #include "io/atomic_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
 #include "eval/html.hpp"
 #include "eval/mode_colors.hpp"
+#include "eval/report_alerts.hpp"
 #include "eval/report_table.hpp"
 #include "eval/resources.hpp"
 #include "render/palette.hpp"
@@ -14,29 +16,35 @@ namespace lifelong::eval {
 namespace {
 
 const char kCss[] =
-    "body{font-family:sans-serif;margin:1.5em auto;max-width:1400px;padding:0 1em;color:#222;"
-    "line-height:1.4}h1{margin-bottom:.2em}h2{border-bottom:1px solid #ddd;padding-bottom:.2em;"
-    "margin-top:1.6em}nav a{margin-right:1em}.lead{color:#555;margin-top:0}"
-    "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:2px 8px}"
+    "body{font-family:sans-serif;margin:1em auto;max-width:1400px;padding:0 1em;color:#222;"
+    "line-height:1.35}h1{margin:0 0 .1em}h2{border-bottom:1px solid #ddd;padding-bottom:.1em;"
+    "margin:1em 0 .4em;font-size:1.3em}nav a{margin-right:1em}.lead{color:#555;margin:0}"
+    "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:1px 8px}"
     "table.summary td{text-align:right}table.summary td:first-child,table.summary td.unit,"
     "table.summary "
-    "td.def{text-align:left}td.def{color:#555;font-size:92%}td.unit{color:#555}td.na{color:#aaa;"
-    "text-align:center}tr.group th{background:#eef2f6;text-align:left}.ratio{color:#888;"
+    "td.def{text-align:left}td.def{color:#555;font-size:92%}td.unit{color:#555}td.na{color:#999;"
+    "text-align:center;font-style:italic}td.warn{background:#fde2e1;color:#900}"
+    "tr.group th{background:#eef2f6;text-align:left}.ratio{color:#888;"
     "font-size:85%}.swatch{display:inline-block;width:.9em;height:.9em;margin-right:.35em;"
-    "vertical-align:-.1em;border-radius:2px}.note{color:#555;font-size:90%}"
-    ".row{display:flex;flex-wrap:wrap;gap:1.2em;align-items:flex-start}"
-    "figure{margin:0}figcaption{font-size:88%;color:#444;max-width:640px;margin-top:.3em}"
-    ".plots img{width:600px;max-width:100%;border:1px solid #ddd}"
-    ".maps img{border:1px solid #ccc}"  // no max-width: every map at one scale
-    ".with-legend{display:flex;gap:1.2em;align-items:flex-start}.with-legend>.row{flex:1}"
-    "aside.legend{position:sticky;top:1em;border:1px solid #ccc;padding:.5em .8em;"
-    "font-size:90%;width:13em;flex:none;background:#fafafa}aside.legend div{margin:.2em 0}"
-    "aside.legend p{color:#555;font-size:90%;margin:.4em 0 0}"
-    ".line{display:inline-block;width:2em;height:3px;vertical-align:middle;margin-right:.5em}"
-    ".dot{display:inline-block;width:7px;height:7px;border-radius:50%;margin:0 .85em 0 .75em}"
+    "vertical-align:-.1em;border-radius:2px}.note{color:#555;font-size:90%;margin:.3em 0}"
+    ".row{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}"
+    "figure{margin:0}figcaption{font-size:85%;color:#444;margin-top:.1em;line-height:1.25}"
+    ".lead-plots figure{width:440px}.lead-plots img{width:440px;border:1px solid #ddd}"
+    ".plots figure{width:326px}.plots img{width:326px;border:1px solid #ddd}"
+    ".maps{display:grid;gap:16px;align-items:start}.card h3{font-size:100%;margin:0 0 .2em}"
+    ".card figure{margin-bottom:.3em}.card img{border:1px solid #ccc}"
+    ".legend{font-size:90%;margin:.3em 0}.legend span.item{margin-right:1.2em;white-space:nowrap}"
+    ".line{display:inline-block;width:2em;height:3px;vertical-align:middle;margin-right:.4em}"
+    ".dot{display:inline-block;width:7px;height:7px;border-radius:50%;margin:0 .5em 0 .3em}"
+    ".alert{border:2px solid #c00;background:#fde2e1;color:#700;padding:.5em .8em;margin:.5em 0;"
+    "border-radius:4px;font-size:110%}.alert b{color:#a00}.notice{border:1px solid "
+    "#cb8;background:#fff6e0;"
+    "padding:.4em .8em;margin:.5em 0;border-radius:4px}"
+    "details{margin:.6em 0}details summary{cursor:pointer;color:#246}"
     "code{background:#f3f3f3;padding:1px 3px}dl.prov{display:grid;grid-template-columns:"
-    "max-content auto;gap:.2em 1em}dl.prov dt{font-weight:bold}dl.prov dd{margin:0}"
-    "ul.files{list-style:none;padding:0}ul.files li{margin:.2em 0}ul.files a{margin-right:.8em}";
+    "max-content auto;gap:.1em 1em;font-size:90%}dl.prov dt{font-weight:bold}dl.prov dd{margin:0}"
+    "ul.files{list-style:none;padding:0;font-size:90%}ul.files li{margin:.1em 0}"
+    "ul.files a{margin-right:.8em}";
 
 std::string Hex(const render::Rgb& c) { return HexColour(c); }
 
@@ -58,28 +66,44 @@ std::string Figures(const std::vector<ReportFigure>& figures) {
   return html;
 }
 
-std::string LegendLine(const render::Rgb& c, const std::string& label, const char* cls) {
-  return "<div><span class=\"" + std::string(cls) + "\" style=\"background:" + Hex(c) +
-         "\"></span>" + label + "</div>\n";
+std::string LegendItem(const render::Rgb& c, const std::string& label, const char* cls) {
+  return "<span class=\"item\"><span class=\"" + std::string(cls) +
+         "\" style=\"background:" + Hex(c) + "\"></span>" + label + "</span>";
 }
 
-/// The colours of render/palette.hpp, as drawn in the maps and graphs.
+/// The colours of render/palette.hpp, as drawn in the maps and graphs, on one line.
 std::string Legend(const ReportPage& page) {
   bool prior = false;
   for (const auto& [name, mode] : page.summary.modes)
     prior = prior || mode.edges_by_kind.count("prior");
-  std::string html = "<aside class=\"legend\"><b>Legend</b>\n";
-  html += LegendLine(render::EdgeColour(EdgeKind::kOdometry), "odometry edge", "line");
-  html += LegendLine(render::EdgeColour(EdgeKind::kLoop), "loop closure", "line");
-  html += LegendLine(render::EdgeColour(EdgeKind::kMarginal), "marginal edge", "line");
-  if (prior) html += LegendLine(render::EdgeColour(EdgeKind::kPrior), "prior", "line");
-  html += LegendLine(render::kGraphNode, "graph node", "dot");
+  std::string html = "<div class=\"legend\">";
+  html += LegendItem(render::EdgeColour(EdgeKind::kOdometry), "odometry edge", "line");
+  html += LegendItem(render::EdgeColour(EdgeKind::kLoop), "loop closure (thick, on top)", "line");
+  html += LegendItem(render::EdgeColour(EdgeKind::kMarginal),
+                     "marginal edge (from removed nodes: Chow-Liu tree or naive; an exact "
+                     "clique from its first node to each other)",
+                     "line");
+  if (prior) html += LegendItem(render::EdgeColour(EdgeKind::kPrior), "prior", "line");
+  html += LegendItem(render::kGraphNode, "graph node", "dot");
   if (page.true_path_in_maps) {
-    html += LegendLine(render::kTrueTrajectory, "true trajectory (thin, under the graph)", "line");
+    html += LegendItem(render::kTrueTrajectory, "true trajectory (thin, under the graph)", "line");
   }
-  return html +
-         "<p>Marginal edges come from removed nodes: Chow-Liu tree or naive edges; an exact "
-         "clique is drawn from its first node to each other.</p></aside>\n";
+  return html + "</div>\n";
+}
+
+/// The maps' grid: one card per mode (its map, then its graph alone), the truth's first.
+std::string MapGrid(const ReportPage& page) {
+  std::ostringstream h;
+  h << "<div class=\"maps\" style=\"grid-template-columns:repeat(" << std::max(page.map_columns, 1)
+    << ",max-content)\">\n";
+  for (const ReportMapCard& card : page.map_cards) {
+    h << "<div class=\"card\"><h3>";
+    if (!card.colour.empty()) {
+      h << "<span class=\"swatch\" style=\"background:" << card.colour << "\"></span>";
+    }
+    h << HtmlEscape(card.name) << "</h3>\n" << Figures(card.figures) << "</div>\n";
+  }
+  return h.str() + "</div>\n";
 }
 
 std::string Num(double v, const char* fmt = "%.3g") {
@@ -173,30 +197,39 @@ std::string Header(const ReportPage& page) {
     h << (i ? ", " : "") << "<span class=\"swatch\" style=\"background:" << ModeColourHex(modes[i])
       << "\"></span>" << HtmlEscape(modes[i]);
   }
-  h << "</p>\n<nav><a href=\"#summary\">Summary</a>";
+  h << "</p>\n<nav><a href=\"#plots\">Runtime</a><a href=\"#maps\">Maps</a>"
+       "<a href=\"#summary\">Key figures</a>";
   if (page.reference) h << "<a href=\"#published\">Published figures</a>";
-  h << "<a href=\"#plots\">Plots</a><a href=\"#maps\">Maps</a><a href=\"#graphs\">Graphs</a>"
-       "<a href=\"#files\">Files</a><a href=\"#provenance\">Provenance</a></nav>\n";
+  h << "<a href=\"#more\">More plots</a><a href=\"#files\">Files</a>"
+       "<a href=\"#provenance\">Provenance</a></nav>\n";
   return h.str();
 }
 
 }  // namespace
 
+/// Laid out for a reader of the seed's chapter 6: the charts and maps first, then the key
+/// figures (the full table folded), then the rest.
 std::string ReportHtmlText(const ReportPage& page) {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
     << HtmlEscape(page.title) << "</title>\n<style>" << kCss << "</style></head><body>\n"
-    << Header(page) << "<h2 id=\"summary\">Summary</h2>\n"
-    << SummaryTableHtml(page.summary, page.mode_order) << Reference(page);
-  h << "<h2 id=\"plots\">Runtime and graph size</h2>\n<div class=\"row plots\">\n"
-    << Figures(page.figures) << "</div>\n";
-  h << "<h2 id=\"maps\">Maps</h2>\n";
+    << Header(page) << ReportAlertsHtml(page);
+  h << "<h2 id=\"plots\">Runtime and graph size</h2>\n";
+  if (!page.figures_note.empty()) {
+    h << "<div class=\"notice\">" << HtmlEscape(page.figures_note) << "</div>\n";
+  }
+  h << "<div class=\"row lead-plots\">\n" << Figures(page.lead_figures) << "</div>\n";
+  h << "<h2 id=\"maps\">Maps and graphs</h2>\n" << Legend(page) << MapGrid(page);
   if (!page.maps_note.empty()) h << "<p class=\"note\">" << HtmlEscape(page.maps_note) << "</p>\n";
-  h << "<div class=\"with-legend\">" << Legend(page) << "<div class=\"row maps\">\n"
-    << Figures(page.map_figures) << "</div></div>\n";
-  h << "<h2 id=\"graphs\">Graphs</h2>\n<div class=\"with-legend\">" << Legend(page)
-    << "<div class=\"row maps\">\n"
-    << Figures(page.graph_figures) << "</div></div>\n";
+  h << "<h2 id=\"summary\">Key figures</h2>\n"
+    << KeyTableHtml(page.summary, page.mode_order)
+    << "<details><summary>All figures, with their definitions</summary>\n"
+    << SummaryTableHtml(page.summary, page.mode_order) << "</details>\n"
+    << Reference(page);
+  if (!page.figures.empty()) {
+    h << "<h2 id=\"more\">More plots</h2>\n<div class=\"row plots\">\n"
+      << Figures(page.figures) << "</div>\n";
+  }
   h << Files(page) << Provenance(page) << "</body></html>\n";
   return h.str();
 }

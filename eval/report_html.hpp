@@ -1,9 +1,12 @@
-// report.html: one offline page (inline CSS, no scripts, relative links only) laid out as a
-// reader of the seed's chapter 6 expects: the grouped summary table, published figures for
-// the log, the timeline plots (Figs. 6.1-6.5), the maps and the graphs alone (Figs.
-// 6.6-6.9) at one scale with the edge-colour legend beside them, links to every output
-// file, and the provenance (version, commit, command line). Every figure has a caption and
-// opens full size on click.
+// report.html: one offline page (inline CSS, no scripts, relative links only) laid out for
+// a reader of the seed's chapter 6, who looks first at the runtime and the graph size
+// (Figs. 6.1-6.4) and the maps and graphs (Figs. 6.6-6.9): the banners of what makes the
+// run doubtful (eval/report_alerts.hpp), the time per observation, nodes and edges charts,
+// the maps and graphs of every mode side by side at one scale with the edge-colour legend,
+// a compact table of the key figures with the full grouped table folded below it,
+// published figures for the log, the other charts, links to every output file, and the
+// provenance (version, commit, command line). Every figure has a caption and opens full
+// size on click.
 #pragma once
 
 #include <map>
@@ -22,6 +25,13 @@ struct ReportFigure {
   std::string caption;  ///< one or two sentences
   int width_px = 0;     ///< display size; 0: the stylesheet's
   int height_px = 0;
+};
+
+/// One cell of the maps' grid: a mode's map and its graph alone, or the truth's map.
+struct ReportMapCard {
+  std::string name;                   ///< the mode, or "ground truth"
+  std::string colour;                 ///< the mode's "#rrggbb"; empty for the truth
+  std::vector<ReportFigure> figures;  ///< the map, then the graph alone
 };
 
 struct ReportLink {
@@ -43,11 +53,14 @@ struct ReportPage {
   std::string machine;                      ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
   BuildInfo build;                          ///< version and commit of the program
   std::string written_utc;                  ///< e.g. "2026-12-01 16:23 UTC"
-  std::vector<ReportFigure> figures;        ///< the timeline plots
+  std::vector<ReportFigure> lead_figures;   ///< time per observation, nodes, edges: first
+  std::vector<ReportFigure> figures;        ///< the other plots, further down
+  std::vector<ReportLink> failed_figures;   ///< plots gnuplot failed on: figure, its log
+  std::string figures_note;                 ///< why there is no plot at all; empty: there are
   std::map<std::string, std::string> maps;  ///< mode -> its map image (set while running)
-  std::vector<ReportFigure> map_figures;    ///< truth first, then the modes in order
-  std::vector<ReportFigure> graph_figures;  ///< the graphs alone, modes in order
-  std::string maps_note;                    ///< the maps' frame and scale, one sentence
+  std::vector<ReportMapCard> map_cards;     ///< truth first, then the modes in order
+  int map_columns = 1;                      ///< cards per row of the maps' grid
+  std::string maps_note;                    ///< the maps' content, frame and scale
   bool true_path_in_maps = false;           ///< the legend lists the true trajectory
   std::vector<ReportLinkGroup> files;       ///< links to the output files
   std::optional<ReferenceFigures> reference;  ///< published figures for this log

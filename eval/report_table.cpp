@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 
@@ -32,15 +33,76 @@ std::optional<double> Value(const json& mode, const TableRow& row, bool* is_inte
   return v.get<double>() * row.scale;
 }
 
-std::string Cell(const json& mode, const TableRow& row, const std::optional<double>& base) {
+/// The smallest baseline a ratio is taken against: a time under a millisecond is noise
+/// (e.g. "82x" of 35 us of bookkeeping); other figures need only a non-zero baseline.
+double RatioFloor(const TableRow& row) {
+  const std::string unit = row.unit;
+  if (unit == "s") return 1e-3;
+  if (unit == "ms") return 1.0;
+  return 0.0;
+}
+
+/// What a row's cell of one mode shows beyond the bare value.
+struct CellContext {
+  std::optional<double> base;                     ///< the baseline's value; none: no ratio
+  std::optional<std::int64_t> relations_in_file;  ///< summary.json's log.relations_in_file
+};
+
+std::string Cell(const json& mode, const TableRow& row, const CellContext& context) {
+  const std::string pointer = row.pointer;
   bool is_integer = false;
   const std::optional<double> v = Value(mode, row, &is_integer);
-  if (!v) return "<td class=\"na\">&ndash;</td>";
+  if (!v) {
+    // Precision is undefined without an accepted closure: say so rather than a dash.
+    const json::json_pointer accepted("/loop_verification/accepted");
+    if (pointer == "/loop_precision" && mode.contains(accepted) && mode.at(accepted) == 0)
+      return "<td class=\"na\">no closures</td>";
+    return "<td class=\"na\">&ndash;</td>";
+  }
+  // A stage that never ran during the observations: 0 s would read as "free".
+  if (pointer.rfind("/stage_ms/", 0) == 0 && *v == 0.0) return "<td class=\"na\">not run</td>";
+  if (pointer == "/relations/count" && context.relations_in_file) {
+    const bool few = *v * 2.0 < static_cast<double>(*context.relations_in_file);
+    return std::string(few ? "<td class=\"warn\">" : "<td>") + FormatValue(*v, true) + " of " +
+           std::to_string(*context.relations_in_file) + "</td>";
+  }
   std::string html = "<td>" + FormatValue(*v, is_integer);
-  if (row.ratio && base && *base != 0.0) {
+  const std::optional<double>& base = context.base;
+  if (row.ratio && base && *base != 0.0 && std::fabs(*base) >= RatioFloor(row)) {
     html += " <span class=\"ratio\">" + FormatRatio(*v / *base) + "</span>";
   }
   return html + "</td>";
+}
+
+/// The table's header row: figure, unit, one column per mode (and the definitions).
+std::string HeadHtml(const std::vector<std::string>& modes, bool definitions) {
+  std::string head = "<tr><th>figure</th><th>unit</th>";
+  for (const std::string& m : modes) {
+    head += "<th><span class=\"swatch\" style=\"background:" + ModeColourHex(m) + "\"></span>" +
+            HtmlEscape(m) + "</th>";
+  }
+  return head + (definitions ? "<th>definition</th></tr>\n" : "</tr>\n");
+}
+
+/// One row's <tr>; "" when no mode has the figure.
+std::string RowHtml(const TableRow& row, const std::vector<std::string>& modes, const json& all,
+                    const RunSummary& summary, bool definitions) {
+  bool any = false, is_integer = false;
+  for (const std::string& m : modes) any = any || Value(all.at(m), row, &is_integer).has_value();
+  if (!any) return "";
+  const std::optional<double> base = Value(all.at(modes.front()), row, &is_integer);
+  std::string html = definitions ? "<tr><td>" + std::string(row.label) + "</td>"
+                                 : "<tr><td title=\"" + HtmlEscape(row.definition) + "\">" +
+                                       std::string(row.label) + "</td>";
+  html += "<td class=\"unit\">" + std::string(row.unit) + "</td>";
+  CellContext context;
+  if (summary.log) context.relations_in_file = summary.log->relations_in_file;
+  for (const std::string& m : modes) {
+    context.base = m == modes.front() ? std::nullopt : base;
+    html += Cell(all.at(m), row, context);
+  }
+  if (definitions) html += "<td class=\"def\">" + HtmlEscape(row.definition) + "</td>";
+  return html + "</tr>\n";
 }
 
 }  // namespace
@@ -203,41 +265,54 @@ std::vector<std::string> OrderedModes(const RunSummary& summary,
 std::string SummaryTableHtml(const RunSummary& summary,
                              const std::vector<std::string>& mode_order) {
   const std::vector<std::string> modes = OrderedModes(summary, mode_order);
+  if (modes.empty()) return "";
   const json all = json::parse(SummaryJsonText(summary))["modes"];
-  std::string head = "<tr><th>figure</th><th>unit</th>";
-  for (const std::string& m : modes) {
-    head += "<th><span class=\"swatch\" style=\"background:" + ModeColourHex(m) + "\"></span>" +
-            HtmlEscape(m) + "</th>";
-  }
-  head += "<th>definition</th></tr>\n";
   std::string body;
   const char* group = "";
   const std::size_t columns = modes.size() + 3;
   for (const TableRow& row : SummaryTableRows()) {
-    bool any = false, is_integer = false;
-    for (const std::string& m : modes) any = any || Value(all.at(m), row, &is_integer).has_value();
-    if (!any) continue;  // a row no mode has: left out
+    const std::string tr = RowHtml(row, modes, all, summary, true);
+    if (tr.empty()) continue;  // a row no mode has: left out
     if (std::string(group) != row.group) {
       group = row.group;
       body += "<tr class=\"group\"><th colspan=\"" + std::to_string(columns) + "\">" +
               std::string(group) + "</th></tr>\n";
     }
-    const std::optional<double> base = Value(all.at(modes.front()), row, &is_integer);
-    body += "<tr><td>" + std::string(row.label) + "</td><td class=\"unit\">" + row.unit + "</td>";
-    for (const std::string& m : modes) {
-      body += Cell(all.at(m), row, m == modes.front() ? std::nullopt : base);
+    body += tr;
+  }
+  const std::string note =
+      "<p class=\"note\">Grey &times; figures: the mode's value divided by the baseline's, <b>" +
+      HtmlEscape(modes.front()) +
+      "</b> (the first mode of <code>--modes</code>), where a ratio means something (not "
+      "against a time under 1 ms). &ndash; : the figure does not apply to that mode; "
+      "<i>not run</i>: the stage never ran during the observations (the final optimization "
+      "after the last one counts in the mapper time only).</p>\n";
+  return "<table class=\"summary\">\n" + HeadHtml(modes, true) + body + "</table>\n" + note;
+}
+
+const std::vector<std::string>& KeyFigurePointers() {
+  static const std::vector<std::string> pointers = {
+      "/time_per_obs_ms/mean", "/time_per_obs_ms/last10_mean",
+      "/wall_time_s",          "/nodes_final",
+      "/edges_final",          "/scans_kept_pct",
+      "/ate_rmse_m",           "/blur/mean_cm",
+      "/loop_precision",       "/loop_recall",
+      "/relations/count",      "/relations/trans_mean_m",
+      "/peak_rss_mb"};
+  return pointers;
+}
+
+std::string KeyTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order) {
+  const std::vector<std::string> modes = OrderedModes(summary, mode_order);
+  if (modes.empty()) return "";
+  const json all = json::parse(SummaryJsonText(summary))["modes"];
+  std::string body;
+  for (const std::string& pointer : KeyFigurePointers()) {
+    for (const TableRow& row : SummaryTableRows()) {
+      if (row.pointer == pointer) body += RowHtml(row, modes, all, summary, false);
     }
-    body += "<td class=\"def\">" + HtmlEscape(row.definition) + "</td></tr>\n";
   }
-  std::string note;
-  if (!modes.empty()) {
-    note =
-        "<p class=\"note\">Grey &times; figures: the mode's value divided by the baseline's, <b>" +
-        HtmlEscape(modes.front()) +
-        "</b> (the first mode of <code>--modes</code>), where a ratio means something. "
-        "&ndash; : the figure does not apply to that mode.</p>\n";
-  }
-  return "<table class=\"summary\">\n" + head + body + "</table>\n" + note;
+  return "<table class=\"summary key\">\n" + HeadHtml(modes, false) + body + "</table>\n";
 }
 
 }  // namespace lifelong::eval

@@ -4,6 +4,7 @@
 // run's --modes order, and each mode's ratio to the baseline (the first of those modes)
 // where a ratio means something (times, sizes, errors; not counts of observations, shares
 // or KL divergences). A row no mode has is left out, and so is a group with no row left.
+// A compact table of the key figures leads the report; this one is folded below it.
 #pragma once
 
 #include <string>
@@ -32,8 +33,22 @@ const std::vector<TableRow>& SummaryTableRows();
 std::vector<std::string> OrderedModes(const RunSummary& summary,
                                       const std::vector<std::string>& mode_order);
 
-/// The table as HTML (<table class="summary">...</table> and a note on the ratios).
+/// The table as HTML (<table class="summary">...</table> and a note on the ratios and
+/// the marks). A stage's time of 0 reads "not run"; no ratio is taken against a time
+/// under 1 ms; "relations used" reads "N of M" (M: summary.log->relations_in_file), marked
+/// class "warn" when fewer than half were used; a missing precision reads "no closures"
+/// when the mode accepted none.
 std::string SummaryTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order);
+
+/// The pointers of the key figures, in the compact table's order (a dozen of the rows:
+/// time per observation mean and last 10 %, mapper time, nodes and edges final, scans
+/// kept, ATE, blur, loop precision and recall, relations used and their translation
+/// error, peak memory).
+const std::vector<std::string>& KeyFigurePointers();
+
+/// The compact table of the key figures that any mode has (<table class="summary key">),
+/// formatted as SummaryTableHtml's, each definition in its label's tooltip.
+std::string KeyTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order);
 
 /// A value as shown: integers in full, others with 3 significant digits (whole numbers
 /// from 1000 on).

@@ -1,9 +1,11 @@
 // The map figures of one run at one scale and, with ground truth, in one frame: each
 // mode's <mode>/map.png (grid, true path thin, graph) and graph_<mode>.png (the graph
 // alone on white, as the seed's Fig. 6.6), and truth/map.png. With ground truth every
-// figure covers the truth map's bounds in the world frame, the estimates moved there by
-// their ATE alignment T_truth_est; without it (replays) each mode keeps its own frame and
-// bounds but all share one scale. The truth's other files are written here too.
+// figure covers one box of the world frame: what the laser saw from the true path, plus
+// 1 m, within the truth map's bounds (a route through part of a large world is not drawn
+// in a corner of it); the estimates are moved there by their ATE alignment T_truth_est.
+// Without ground truth (replays) each mode keeps its own frame and is cropped to its
+// known cells, but all share one scale. The truth's other files are written here too.
 #pragma once
 
 #include <optional>
@@ -27,7 +29,8 @@ struct RunMapFrame {
 
 /// Upscaling: k = clamp(1600 / (larger side in cells), 1, 4) pixels per cell, so a map is
 /// about 1600 px wide at most; m_per_px = resolution_m / k. With walls the side is the
-/// truth map's (RasterizeWalls(walls, resolution_m)); without, the odometry path's
+/// canvas's: the box of every beam's end point seen from the true poses, plus 1 m, cut to
+/// the truth map (RasterizeWalls(walls, resolution_m)); without, the odometry path's
 /// bounding box plus 10 m (the laser sees beyond the path). Both depend only on what
 /// every mode shares, so each mode can draw its figures as soon as it is finished.
 RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,

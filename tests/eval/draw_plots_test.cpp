@@ -168,8 +168,9 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
 }
 
 // A run's figures come from one gnuplot process, each script still standing alone; when
-// gnuplot fails (here a stand-in that exits 1) no figure is written, not even a partial one.
-TEST(PlotsTest, ARunsFiguresInOneProcessAllOrNothing) {
+// gnuplot fails on every figure (here a stand-in that exits 1, also when each figure is
+// tried alone) no figure is written, not even a partial one.
+TEST(PlotsTest, ARunsFiguresInOneProcessNoneWhenGnuplotAlwaysFails) {
   if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
   const fs::path dir = fs::temp_directory_path() / "lifelong_eval_plot_run";
   fs::remove_all(dir);
@@ -207,6 +208,7 @@ TEST(PlotsTest, ARunsFiguresInOneProcessAllOrNothing) {
   EXPECT_FALSE(failed.ok);
   EXPECT_NE(failed.error.find("gnuplot.log"), std::string::npos) << failed.error;
   EXPECT_TRUE(failed.files.empty());
+  EXPECT_EQ(failed.failed.size(), 7u);  // six timeline figures and kld.png
   for (const auto& entry : fs::directory_iterator(other))
     EXPECT_NE(entry.path().extension(), ".png") << entry.path();
 }

@@ -102,6 +102,29 @@ TEST(RenderFigureTest, TransformedMovesNodesAndEdges) {
   EXPECT_EQ(t.edges[0].kind, EdgeKind::kOdometry);
 }
 
+/// True when the pixel is within 40 per channel of the colour.
+bool Near(const cv::Vec3b& bgr, const render::Rgb& c) {
+  return std::abs(bgr[0] - c.b) < 40 && std::abs(bgr[1] - c.g) < 40 && std::abs(bgr[2] - c.r) < 40;
+}
+
+// A loop closure joins nodes close together on the path, where the nodes and the odometry
+// edges would hide it: it is drawn last, over them, and thicker.
+TEST(RenderFigureTest, LoopClosuresAreDrawnOverNodesAndOtherEdges) {
+  FigureLayers layers;
+  layers.scale_bar = false;
+  layers.graph.nodes = {Pose2(1.0, 1.0, 0.0)};
+  layers.graph.edges = {{{0.5, 1.0, 1.5, 1.0}, EdgeKind::kLoop},  // listed first
+                        {{0.5, 1.0, 1.5, 1.0}, EdgeKind::kOdometry}};
+  const Canvas c = CanvasCovering(0.0, 0.0, 2.0, 2.0, 0.05);  // 40 x 40 px, y = 1 m at row 20
+  const Image im = RenderFigure(c, layers);
+  const render::Rgb loop = render::EdgeColour(EdgeKind::kLoop);
+  EXPECT_TRUE(Near(Pixel(im, 20, 19), loop) || Near(Pixel(im, 20, 20), loop));  // on the node
+  EXPECT_TRUE(Near(Pixel(im, 14, 19), loop) || Near(Pixel(im, 14, 20), loop));  // on odometry
+  int rows = 0;  // the line is two pixels thick
+  for (int r = 15; r < 25; ++r) rows += Near(Pixel(im, 14, r), loop);
+  EXPECT_GE(rows, 2);
+}
+
 std::vector<Observation> Stream(double length_m) {
   std::vector<Observation> s;
   for (int i = 0; i <= 10; ++i) {
@@ -114,14 +137,32 @@ std::vector<Observation> Stream(double length_m) {
   return s;
 }
 
-TEST(RunMapFrameTest, TruthFrameIsTheTruthMapsCanvasAtOneScale) {
-  const std::vector<Segment> walls = {{0, 0, 20, 0}, {20, 0, 20, 3}};
+// With ground truth the canvas is what the laser saw from the true path, plus 1 m, cut
+// to the truth map: a route through part of a world is not drawn in a corner of it.
+TEST(RunMapFrameTest, TruthFrameIsWhatTheLaserSawAtOneScale) {
+  const std::vector<Segment> walls = {{0, 0, 20, 0}, {20, 0, 20, 3}};  // map: [-1, 21] x [-1, 4]
+  // No beams: the laser's positions, x in [1, 11] at y = 2, plus 1 m: 12 m -> k = 4.
   const RunMapFrame f = MakeRunMapFrame(Stream(10.0), &walls, 0.05);
-  const OccupancyGrid truth = RasterizeWalls(walls, 0.05);  // 22 m -> 441 cells -> k = 3
   EXPECT_TRUE(f.truth_frame);
-  EXPECT_DOUBLE_EQ(f.m_per_px, 0.05 / 3);
-  EXPECT_EQ(f.canvas.width_px, truth.width * 3);
-  EXPECT_EQ(f.canvas.height_px, truth.height * 3);
+  EXPECT_DOUBLE_EQ(f.m_per_px, 0.05 / 4);
+  EXPECT_DOUBLE_EQ(f.canvas.x0_m, 0.0);
+  EXPECT_DOUBLE_EQ(f.canvas.y0_m, 1.0);
+  EXPECT_EQ(f.canvas.width_px, 960);
+  EXPECT_EQ(f.canvas.height_px, 160);
+  // A "no return" beam ahead reaches x = 41 and one to the left y = 3.5: cut to the map
+  // (whole cells: [-1, 21.05] x [-1, 4.05]), [0, 21.05] x [1, 4.05], 21 m -> k = 3.
+  std::vector<Observation> seen = Stream(10.0);
+  for (Observation& o : seen) {
+    o.scan.range_max_m = 30.0;
+    o.scan.angle_increment_rad = M_PI / 2;
+    o.scan.ranges_m = {30.0f, 1.5f};
+  }
+  const RunMapFrame g = MakeRunMapFrame(seen, &walls, 0.05);
+  EXPECT_DOUBLE_EQ(g.m_per_px, 0.05 / 3);
+  const OccupancyGrid truth = RasterizeWalls(walls, 0.05);
+  EXPECT_NEAR(truth.origin_x_m + truth.width * 0.05, 21.05, 1e-9);
+  EXPECT_EQ(g.canvas.width_px, 1263);
+  EXPECT_EQ(g.canvas.height_px, 183);
   EXPECT_EQ(f.true_path.size(), 11u);
   // Without truth the scale follows the odometry path (10 m + 10 m -> 400 cells -> k = 4).
   const RunMapFrame r = MakeRunMapFrame(Stream(10.0), nullptr, 0.05);

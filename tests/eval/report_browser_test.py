@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Opens report.html in a real browser (headless Chromium) and checks that every figure
-and every link of it loads.
+and every link of it loads, that every figure is shown (not folded away), and that a
+six-mode run's page reads at a glance: at most 4000 px tall at 1400 px wide.
 
 The output directory is served on 127.0.0.1 (a free port); a checker page of the same
 origin loads report.html in an iframe, waits for every <img> (complete, naturalWidth > 0),
@@ -43,9 +44,15 @@ async function check() {
     img.addEventListener('error', resolve);
   })));
   const problems = [];
+  const hidden = [];
   for (const img of images) {
     if (!(img.complete && img.naturalWidth > 0)) problems.push('image ' + img.getAttribute('src'));
+    const box = img.getBoundingClientRect();
+    if (!(box.width > 0 && box.height > 0)) hidden.push(img.getAttribute('src'));
   }
+  const height = doc.documentElement.scrollHeight;
+  const sections = Array.from(doc.querySelectorAll('h2')).map(
+      h => h.textContent + ' @' + Math.round(h.getBoundingClientRect().top));
   const links = Array.from(doc.querySelectorAll('a[href]'))
                      .filter(a => !a.getAttribute('href').startsWith('#'));
   for (const a of links) {
@@ -58,7 +65,8 @@ async function check() {
       problems.push('link ' + href + ' ' + e);
     }
   }
-  done({title: doc.title, images: images.length, links: links.length, problems: problems});
+  done({title: doc.title, images: images.length, links: links.length, problems: problems,
+        hidden: hidden, height: height, sections: sections});
 }
 document.getElementById('report').addEventListener('load', () => {
   check().catch(e => done({error: String(e)}));
@@ -107,8 +115,12 @@ def browser_verdict(chromium, root, report_rel, tmp):
     return json.loads(match.group(1).replace("&quot;", '"').replace("&amp;", "&"))
 
 
+SIX_MODES = "standard,pruned,pruned-exact,pruned-glc,pruned-nfr,pruned-naive"
+MAX_HEIGHT_PX = 4000  # at 1400 px wide, six modes: the page reads at a glance
+
+
 def run_lifelong(lifelong, scenario, out_dir):
-    cmd = [lifelong, "run", scenario, "-o", out_dir, "--modes", "standard,pruned,pruned-exact"]
+    cmd = [lifelong, "run", scenario, "-o", out_dir, "--modes", SIX_MODES]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                    timeout=600)
 
@@ -142,6 +154,7 @@ def main():
             print(json.dumps(verdict, indent=1))
             expect(not verdict.get("error") and not verdict.get("problems"),
                    "every image and link of %s loads" % root, failures)
+            expect(verdict.get("hidden") == [], "every figure is shown", failures)
             return 1 if failures else 0
         run_dir = os.path.join(tmp, "run")
         run_lifelong(args.lifelong, args.scenario, run_dir)
@@ -149,9 +162,13 @@ def main():
         print(json.dumps(verdict, indent=1))
         expect("error" not in verdict, "the checker ran in the browser", failures)
         expect(verdict.get("problems") == [], "every image and link loads", failures)
-        # 7 plots, truth + 3 maps, 3 graphs; links: figures, CSVs, graphs, trajectories.
-        expect(verdict.get("images", 0) >= 14, "14 or more images", failures)
-        expect(verdict.get("links", 0) >= 40, "40 or more links", failures)
+        # 8 plots, truth + 6 maps, 6 graphs; links: figures, CSVs, graphs, trajectories.
+        expect(verdict.get("images", 0) >= 21, "21 or more images", failures)
+        expect(verdict.get("links", 0) >= 60, "60 or more links", failures)
+        expect(verdict.get("hidden") == [], "every figure is shown, none folded away", failures)
+        expect(0 < verdict.get("height", 0) <= MAX_HEIGHT_PX,
+               "six modes: the page is %s px tall at 1400 px wide, at most %d" %
+               (verdict.get("height"), MAX_HEIGHT_PX), failures)
 
         # The checker must catch breakage: one image and one linked file gone.
         os.rename(os.path.join(run_dir, "nodes.png"), os.path.join(tmp, "nodes.png"))

@@ -1,6 +1,7 @@
 // report.html (eval/report_html.hpp) and what it gathers from an output directory
 // (eval/report_files.hpp): captions, full size on click, the legend in the palette's
 // colours, one display scale for all maps, links only to files that exist, provenance.
+// The page's order and banners: report_layout_test.cpp.
 #include <filesystem>
 #include <fstream>
 
@@ -34,10 +35,12 @@ ReportPage Page() {
   page.working_dir = "/home/me";
   page.machine = "Test CPU";
   page.build = {"0.1.0", "abc1234-dirty"};
-  page.figures = {{"time_per_obs.png", "Time per observation.", 0, 0}};
-  page.map_figures = {{"truth/map.png", "Ground truth.", 450, 150},
-                      {"standard/map.png", "standard map.", 450, 150}};
-  page.graph_figures = {{"graph_standard.png", "standard graph.", 450, 150}};
+  page.lead_figures = {{"time_per_obs.png", "Time per observation.", 0, 0}};
+  page.map_cards = {{"ground truth", "", {{"truth/map.png", "Ground truth.", 450, 150}}},
+                    {"standard",
+                     ModeColourHex("standard"),
+                     {{"standard/map.png", "standard map.", 450, 150},
+                      {"graph_standard.png", "standard graph.", 450, 150}}}};
   page.true_path_in_maps = true;
   page.files = {{"standard", {{"timeline.csv", "standard/timeline.csv"}}}};
   return page;
@@ -63,7 +66,7 @@ TEST(ReportHtmlTest, LegendUsesThePaletteAndModesTheirColours) {
   }
   EXPECT_NE(html.find("background:" + HexColour(render::kTrueTrajectory) + "\"></span>true"),
             std::string::npos);
-  EXPECT_EQ(Count(html, "<aside class=\"legend\">"), 2u);  // beside the maps and the graphs
+  EXPECT_EQ(Count(html, "<div class=\"legend\">"), 1u);  // above the maps and graphs
   EXPECT_NE(html.find("background:" + ModeColourHex("pruned")), std::string::npos);
 }
 
@@ -117,10 +120,15 @@ TEST(ReportFilesTest, LinksOnlyFilesThatExistAndPlotsInTheSeedsOrder) {
   c.out_dir = dir.string();
   c.mode_order = {"standard", "pruned"};
   CompleteReportPage(c, &page);
-  std::vector<std::string> plots;
+  std::vector<std::string> lead, plots;
+  for (const ReportFigure& f : page.lead_figures) lead.push_back(f.path);
   for (const ReportFigure& f : page.figures) plots.push_back(f.path);
-  EXPECT_EQ(plots, (std::vector<std::string>{"time_per_obs.png", "nodes.png", "memory.png"}));
+  EXPECT_EQ(lead, (std::vector<std::string>{"time_per_obs.png", "nodes.png"}));
+  EXPECT_EQ(plots, (std::vector<std::string>{"memory.png"}));
+  for (const ReportFigure& f : page.lead_figures) EXPECT_FALSE(f.caption.empty()) << f.path;
   for (const ReportFigure& f : page.figures) EXPECT_FALSE(f.caption.empty()) << f.path;
+  EXPECT_TRUE(page.failed_figures.empty());
+  EXPECT_TRUE(page.figures_note.empty());
   std::set<std::string> links;
   for (const ReportLinkGroup& g : page.files)
     for (const ReportLink& l : g.links) links.insert(l.path);
@@ -132,7 +140,9 @@ TEST(ReportFilesTest, LinksOnlyFilesThatExistAndPlotsInTheSeedsOrder) {
   EXPECT_FALSE(page.written_utc.empty());
 }
 
-// All maps are shown at one factor: the largest fits 900 x 640 px, the others keep scale.
+// Each mode's map and graph share a card, the truth's first, the modes in run order; all
+// images at one factor; the columns that give the largest images for the cells filled
+// within the grid's height.
 TEST(ReportFilesTest, MapsTruthFirstAtOneDisplayScale) {
   const fs::path dir = OutDir();
   Png(dir / "truth" / "map.png", 1800, 400);
@@ -145,17 +155,30 @@ TEST(ReportFilesTest, MapsTruthFirstAtOneDisplayScale) {
   c.out_dir = dir.string();
   c.mode_order = {"pruned", "standard"};
   c.truth_frame = true;
+  c.page_width_px = 900;
   CompleteReportPage(c, &page);
-  ASSERT_EQ(page.map_figures.size(), 3u);
-  EXPECT_EQ(page.map_figures[0].path, "truth/map.png");
-  EXPECT_EQ(page.map_figures[1].path, "pruned/map.png");  // run order
-  EXPECT_EQ(page.map_figures[0].width_px, 900);
-  EXPECT_EQ(page.map_figures[0].height_px, 200);
-  EXPECT_EQ(page.map_figures[1].width_px, 450);
-  ASSERT_EQ(page.graph_figures.size(), 1u);
-  EXPECT_EQ(page.graph_figures[0].width_px, 450);
+  ASSERT_EQ(page.map_cards.size(), 3u);
+  EXPECT_EQ(page.map_cards[0].name, "ground truth");
+  EXPECT_EQ(page.map_cards[1].name, "pruned");  // run order
+  ASSERT_EQ(page.map_cards[1].figures.size(), 2u);
+  EXPECT_EQ(page.map_cards[1].figures[0].path, "pruned/map.png");
+  EXPECT_EQ(page.map_cards[1].figures[1].path, "graph_pruned.png");
+  EXPECT_EQ(page.map_cards[1].colour, ModeColourHex("pruned"));
+  // One column fits: 1800 px shown at 900 (50 %), and every other image at 50 % too.
+  EXPECT_EQ(page.map_columns, 1);
+  EXPECT_EQ(page.map_cards[0].figures[0].width_px, 900);
+  EXPECT_EQ(page.map_cards[0].figures[0].height_px, 200);
+  EXPECT_EQ(page.map_cards[1].figures[0].width_px, 450);
+  EXPECT_EQ(page.map_cards[1].figures[1].width_px, 450);
   EXPECT_TRUE(page.true_path_in_maps);
   EXPECT_NE(page.maps_note.find("shown here at 50 %"), std::string::npos) << page.maps_note;
+  // A lower limit on the grid's height puts the cards side by side, smaller.
+  c.max_maps_height_px = 400;
+  ReportPage low = Page();
+  low.maps = page.maps;
+  CompleteReportPage(c, &low);
+  EXPECT_GT(low.map_columns, 1);
+  EXPECT_LT(low.map_cards[0].figures[0].width_px, 900 / low.map_columns + 1);
 }
 
 TEST(ReportFilesTest, PngSizeReadsTheHeader) {

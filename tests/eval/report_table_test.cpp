@@ -114,6 +114,51 @@ TEST(ReportTableTest, EveryContractFigureHasADefinedRow) {
   for (const auto& [pointer, value] : flat.items()) EXPECT_TRUE(rows.count(pointer)) << pointer;
 }
 
+// A stage that never ran reads "not run", not "0"; no ratio is taken against a time under
+// 1 ms (35 us of bookkeeping made "82x"), nor against a stage that did not run.
+TEST(ReportTableTest, NotRunAndNoRatioAgainstATimeUnderAMillisecond) {
+  RunSummary s = TwoModes();
+  s.modes["standard"].stage_ms = {{"optimization", 0.0}, {"matching", 400.0}, {"other", 0.035}};
+  s.modes["pruned"].stage_ms = {{"optimization", 2.0}, {"matching", 100.0}, {"other", 2.87}};
+  const std::string html = SummaryTableHtml(s, {"standard", "pruned"});
+  const std::string optimization = RowOf(html, "time in optimization");
+  EXPECT_NE(optimization.find("<td class=\"na\">not run</td><td>0.002</td>"), std::string::npos)
+      << optimization;
+  EXPECT_EQ(RowOf(html, "time in other").find("ratio"), std::string::npos);
+  EXPECT_NE(RowOf(html, "time in matching").find("0.25\u00d7"), std::string::npos);
+  EXPECT_NE(html.find("<i>not run</i>"), std::string::npos);  // explained in the note
+}
+
+// Precision is undefined without an accepted closure: the cell says why.
+TEST(ReportTableTest, NoPrecisionWithoutClosuresSaysSo) {
+  RunSummary s = TwoModes();
+  s.modes["standard"].loop_verification = LoopVerificationSummary{};
+  s.modes["pruned"].loop_verification = LoopVerificationSummary{};
+  s.modes["pruned"].loop_verification->counts.accepted = 3;
+  s.modes["pruned"].loop_precision = 1.0;
+  const std::string row =
+      RowOf(SummaryTableHtml(s, {"standard", "pruned"}), "loop-closure precision");
+  EXPECT_NE(row.find("<td class=\"na\">no closures</td><td>100</td>"), std::string::npos) << row;
+}
+
+// The compact table: only key figures, in their order, definitions as tooltips.
+TEST(ReportTableTest, KeyTableHoldsTheKeyFiguresOnly) {
+  const std::string html = KeyTableHtml(TwoModes(), {"standard", "pruned"});
+  EXPECT_NE(html.find("<table class=\"summary key\">"), std::string::npos);
+  EXPECT_EQ(html.find("definition"), std::string::npos);
+  EXPECT_LT(html.find(">time per observation, mean<"), html.find(">nodes, final<"));
+  EXPECT_LT(html.find(">nodes, final<"), html.find(">ATE RMSE<"));
+  EXPECT_EQ(html.find("observations<"), std::string::npos);  // not a key figure
+  EXPECT_NE(html.find("title=\"mapper time per observation, mean"), std::string::npos);
+  EXPECT_GE(KeyFigurePointers().size(), 8u);
+  EXPECT_LE(KeyFigurePointers().size(), 13u);
+  for (const std::string& pointer : KeyFigurePointers()) {
+    bool defined = false;
+    for (const TableRow& r : SummaryTableRows()) defined = defined || r.pointer == pointer;
+    EXPECT_TRUE(defined) << pointer;
+  }
+}
+
 TEST(ReportTableTest, FormatsValuesAndRatios) {
   EXPECT_EQ(FormatValue(249, true), "249");
   EXPECT_EQ(FormatValue(0.0229, false), "0.0229");

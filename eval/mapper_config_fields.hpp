@@ -120,6 +120,24 @@ void VisitVerify(V& v, slam::LoopVerifierConfig& c) {
 }
 
 template <class V>
+void VisitGlobal(V& v, slam::GlobalLoopConfig& g) {
+  v.Bool("enabled", g.enabled);
+  // Each bounded: a search matches `candidates` places and compares `index_neighbours` in
+  // full, and a descriptor holds rings x sectors bins for every node.
+  v.Int("every", g.every, 1);
+  v.Int("candidates", g.candidates, 1, 100);
+  v.Int("index_neighbours", g.index_neighbours, 1, 10000);
+  v.Number("max_distance", g.max_distance, kUnit);
+  v.Int("min_occupied", g.min_occupied, 0);
+  v.Int("context_nodes", g.context_nodes, 0, 1000);
+  v.Number("linear_window_m", g.linear_window_m, kWindowM);
+  v.Number("angular_window_rad", g.angular_window_rad, kWindowRad);
+  v.Int("rings", g.descriptor.rings, 1, 1000);
+  v.Int("sectors", g.descriptor.sectors, 4, 3600);
+  v.Number("max_range_m", g.descriptor.max_range_m, kPositive);
+}
+
+template <class V>
 void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Bool("enabled", c.enabled);
   v.Number("min_path_separation_m", c.min_path_separation_m, kNonNegative);
@@ -148,6 +166,7 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("optimize_edge_chi2", c.optimize_edge_chi2, kNonNegative);
   v.Int("optimize_every", c.optimize_every, 1);
   v.Section("verify", [&](auto& s) { VisitVerify(s, c.verify); });
+  v.Section("global", [&](auto& s) { VisitGlobal(s, c.global); });
   v.Number("suspect_chi2", c.suspect_chi2, kPositive);
   v.Number("inject_false_share", c.inject_false_share, kUnit);
   v.Number("inject_false_dx_m", c.inject_false_dx_m, kAnyNumber);

@@ -66,7 +66,7 @@ class Reader {
     value = v;
   }
 
-  void Int(const char* key, int& value, int min) {
+  void Int(const char* key, int& value, int min, int max = std::numeric_limits<int>::max()) {
     const YAML::Node n = Take(key);
     if (!n) return;
     int v = 0;
@@ -74,6 +74,7 @@ class Reader {
       Fail(n, Name(key), "expected an integer, got '" + Text(n) + "'");
     }
     if (v < min) Fail(n, Name(key), "must be >= " + std::to_string(min) + ", got " + Text(n));
+    if (v > max) Fail(n, Name(key), "must be <= " + std::to_string(max) + ", got " + Text(n));
     value = v;
   }
 
@@ -216,6 +217,9 @@ void CheckFootprints(const std::string& name, const YAML::Node& root, const slam
   CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
                         c.loops.max_window_m, "loops.max_window_m", c.loops.max_window_rad,
                         "loops.max_window_rad");
+  CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
+                        c.loops.global.linear_window_m, "loops.global.linear_window_m",
+                        c.loops.global.angular_window_rad, "loops.global.angular_window_rad");
   CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
                         c.loops.refine_window_m, "loops.refine_window_m", c.loops.refine_window_rad,
                         "loops.refine_window_rad");

@@ -23,7 +23,7 @@ class Writer {
     out_ << YAML::EndMap;
   }
   void Number(const char* key, double value, const Range&) { Put(key, ShortestDouble(value)); }
-  void Int(const char* key, int value, int) { Put(key, std::to_string(value)); }
+  void Int(const char* key, int value, int, int = 0) { Put(key, std::to_string(value)); }
   void PowerOfTwo(const char* key, int value) { Put(key, std::to_string(value)); }
   void Bool(const char* key, bool value) { Put(key, value ? "true" : "false"); }
   template <class E, std::size_t N>

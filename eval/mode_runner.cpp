@@ -240,8 +240,9 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
 
-  summary.loop_verification = LoopVerificationSummary{
-      m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0, 0};
+  summary.loop_verification =
+      LoopVerificationSummary{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0,
+                              config_.mapper.loops.global.enabled, 0};
   for (const std::optional<double>& chi2 : m.LoopEdgeChi2()) {
     if (chi2 && *chi2 > config_.mapper.loops.suspect_chi2)
       ++summary.loop_verification->switched_off;

@@ -84,6 +84,10 @@ json ModeJson(const ModeSummary& m) {
                {"attempts", v.attempts},      {"few_points", v.few_points},
                {"low_score", v.low_score},    {"ambiguous", v.ambiguous},
                {"implausible", v.implausible}};
+    if (m.loop_verification->global) {
+      lv["global_attempts"] = v.global_attempts;
+      lv["global_proposed"] = v.global_proposed;
+    }
     if (m.loop_verification->injection) {
       lv["injected"] = v.injected;
       lv["injected_accepted"] = v.injected_accepted;

@@ -40,6 +40,7 @@ struct RelationsSummary {
 struct LoopVerificationSummary {
   slam::LoopVerifierStats counts;
   bool injection = false;  ///< the false-closure test was on; else injected* are not written
+  bool global = false;     ///< the global search was on; else global_* are not written
   /// Accepted closures whose edge, still in the graph at the end, has a chi2 above
   /// loops.suspect_chi2: the back-end's kernel is switching them off.
   std::int64_t switched_off = 0;

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages lifelong builds against; does nothing when all are present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libbox2d-dev libeigen3-dev libyaml-cpp-dev
-  libcli11-dev nlohmann-json3-dev libsuitesparse-dev zlib1g-dev libpng-dev libopencv-dev gnuplot-nox
+  libcli11-dev nlohmann-json3-dev libsuitesparse-dev libnanoflann-dev zlib1g-dev libpng-dev libopencv-dev gnuplot-nox
   libgtest-dev libgmock-dev libbenchmark-dev libosmesa6-dev libegl-dev libgl-dev libegl-mesa0)
 # An optimized serial BLAS for CHOLMOD's supernodal factorization (the reference BLAS is
 # several times slower on large pose graphs).

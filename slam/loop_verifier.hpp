@@ -81,6 +81,9 @@ struct LoopVerifierStats {
   int low_score = 0;    ///< ...whose best match scored below the minimum
   int ambiguous = 0;    ///< ...whose best match had a close second farther away
   int implausible = 0;  ///< ...whose correction lay outside the consistency gate
+  /// Of the attempts, those of the global search (loops.global), and of its proposals.
+  int global_attempts = 0;
+  int global_proposed = 0;
 };
 
 /// Why the mapper refused a loop-closure match before it became a hypothesis.
@@ -99,6 +102,11 @@ class LoopVerifier {
   void ForgetNode(NodeId id);
   /// Counts a loop-closing attempt (a candidate inside the gate).
   void NoteAttempt() { ++stats_.attempts; }
+  void NoteGlobalAttempt() {
+    ++stats_.attempts;
+    ++stats_.global_attempts;
+  }
+  void NoteGlobalProposed() { ++stats_.global_proposed; }
   /// Counts an attempt the mapper refused before it became a hypothesis.
   void NoteRefused(MatchRefusal why) {
     // In the order of MatchRefusal.

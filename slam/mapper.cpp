@@ -87,6 +87,16 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
     const ScopedMs timer = s.Stage(&StageTimes::loop_ms);
     stats.loop_closed = s.TryCloseLoop(current);
+    const GlobalLoopConfig& global = s.config.loops.global;
+    if (global.enabled) {
+      const PlaceDescriptor place = s.DescribeNode(current);
+      if (!stats.loop_closed && s.observations % global.every == 0 &&
+          place.occupied >= global.min_occupied) {
+        stats.loop_closed = s.TryGlobalLoop(current, place);
+      }
+      // Indexed after its own search, so that it never finds itself.
+      if (place.occupied >= global.min_occupied) s.places.Add(current, place);
+    }
   }
   if (s.config.pruning.mode != PruningMode::kNone &&
       s.observations % s.config.pruning.round_period == 0)

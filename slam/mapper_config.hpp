@@ -9,6 +9,7 @@
 #include "slam/loop_verifier.hpp"
 #include "slam/marginalization.hpp"
 #include "slam/optimizer.hpp"
+#include "slam/place_descriptor.hpp"
 #include "slam/scan_matcher.hpp"
 #include "slam/sparsifier.hpp"
 
@@ -54,6 +55,24 @@ struct IncrementalConfig {
   double odom_sigma_xy_per_m = 0.1;  ///< ...plus this much per metre travelled
   double odom_sigma_rad = 0.02;      ///< ...heading base sigma
   double odom_sigma_rad_per_rad = 0.1;
+};
+
+/// Global loop closing (slam/global_loop_search.cpp): where the local search, gated by the
+/// projected uncertainty, finds nothing, the node's place descriptor (Scan Context,
+/// slam/place_descriptor.hpp) proposes the most similar earlier places wherever the estimate
+/// puts them; each is matched in a wide window around the heading the descriptor gives, and
+/// goes through the same acceptance and group verification as a local closure.
+struct GlobalLoopConfig {
+  bool enabled = false;
+  int every = 5;               ///< observations between searches (when no local closure)
+  int candidates = 3;          ///< places matched per search, most similar first
+  int index_neighbours = 25;   ///< ring-key neighbours compared in full per search
+  double max_distance = 0.35;  ///< descriptor distance in [0, 1]: farther is no candidate
+  int min_occupied = 30;       ///< descriptor bins: sparser places are neither indexed nor searched
+  int context_nodes = 10;      ///< recent nodes whose points, with the node's, make its place
+  double linear_window_m = 4.0;     ///< m, search half-width around the candidate's position
+  double angular_window_rad = 0.2;  ///< rad, around the descriptor's heading
+  PlaceDescriptorConfig descriptor;
 };
 
 struct LoopClosingConfig {
@@ -104,6 +123,7 @@ struct LoopClosingConfig {
   double inject_false_share = 0.0;
   double inject_false_dx_m = 0.0;  ///< m, world frame
   double inject_false_dy_m = 3.0;  ///< m, world frame
+  GlobalLoopConfig global;
 };
 
 struct PruningConfig {

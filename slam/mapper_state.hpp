@@ -16,6 +16,7 @@
 #include "slam/loop_closing_state.hpp"
 #include "slam/loop_verifier.hpp"
 #include "slam/mapper.hpp"
+#include "slam/place_index.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/pruning_state.hpp"
 #include "slam/removal_policy.hpp"
@@ -103,6 +104,8 @@ struct Mapper::State {
   /// The loop closer's surface points (robot frame) of the nodes its recent submaps used
   /// (64 nodes: 80 % of the lookups on Intel hit, against 83 % with 256 and 57 % with 32).
   SurfaceCache loop_surfaces{64};
+  /// The nodes' place descriptors (loops.global), searchable by ring key.
+  PlaceIndex places;
 
   /// Times its scope as the stage `field` of the observation being processed (none when
   /// there is none).
@@ -123,6 +126,11 @@ struct Mapper::State {
   std::vector<Eigen::Vector2d> SurfacesOf(NodeId id, const SurfaceRule& rule) const;
   void Reanchor(std::size_t scan, NodeId anchor);
   bool TryCloseLoop(NodeId current);
+  /// The global search (loops.global): the places most like the current node's, wherever
+  /// the estimate puts them, matched in a wide window; then verified as any closure.
+  bool TryGlobalLoop(NodeId current, const PlaceDescriptor& place);
+  /// The place descriptor of `id` from its points and its recent neighbours', in its frame.
+  PlaceDescriptor DescribeNode(NodeId id) const;
   /// Local uniqueness of a loop-closure match: no pose uniqueness_radius_m away (8
   /// directions, same heading) scores above max_flatness times the best.
   bool LocallyUnique(const MatchResult& match, const std::vector<Eigen::Vector2d>& points) const;

@@ -214,6 +214,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   nodes.erase(id);
   values.erase(id);
   loop_surfaces.Erase(id);
+  places.Remove(id);
   recent.erase(std::find(recent.begin(), recent.end(), id));
   if (last_node == id) last_node = recent.back();
 }

@@ -17,7 +17,8 @@ nlohmann::json ModeJsonOf(const ModeSummary& m) {
 
 TEST(LoopSummary, VerificationCountsWithoutInjection) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0, 64, 3, 10, 4, 2}, false, 2};
+  m.loop_verification =
+      LoopVerificationSummary{{40, 31, 2, 7, 5, 0, 0, 64, 3, 10, 4, 2}, false, false, 2};
   const auto j = ModeJsonOf(m)["loop_verification"];
   EXPECT_EQ(j["proposed"], 40);
   EXPECT_EQ(j["accepted"], 31);
@@ -36,7 +37,7 @@ TEST(LoopSummary, VerificationCountsWithoutInjection) {
 
 TEST(LoopSummary, InjectedCountsWhenTheTestWasOn) {
   ModeSummary m;
-  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 3, 0}, true, 0};
+  m.loop_verification = LoopVerificationSummary{{40, 31, 2, 7, 5, 3, 0}, true, false, 0};
   m.loop_precision_last_hour = 0.995;
   const auto j = ModeJsonOf(m);
   EXPECT_EQ(j["loop_verification"]["injected"], 3);

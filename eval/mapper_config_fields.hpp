@@ -132,6 +132,7 @@ void VisitGlobal(V& v, slam::GlobalLoopConfig& g) {
   v.Int("context_nodes", g.context_nodes, 0, 1000);
   v.Number("linear_window_m", g.linear_window_m, kWindowM);
   v.Number("angular_window_rad", g.angular_window_rad, kWindowRad);
+  v.Number("plausible_sigmas", g.plausible_sigmas, kPositive);
   v.Int("rings", g.descriptor.rings, 1, 1000);
   v.Int("sectors", g.descriptor.sectors, 4, 3600);
   v.Number("max_range_m", g.descriptor.max_range_m, kPositive);

@@ -13,8 +13,10 @@
 
 #include <Eigen/LU>
 
+#include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
 #include "slam/scan_matcher.hpp"
+#include "slam/se2.hpp"
 
 namespace lifelong::slam {
 
@@ -60,7 +62,21 @@ bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) 
   if (static_cast<int>(proposals.size()) > g.candidates) proposals.resize(g.candidates);
 
   loop_state.verifier.NoteGlobalAttempt();
+  // How far each candidate may be from where the estimate puts it: the Dijkstra projection
+  // of the covariances (as the local search), inflated by plausible_sigmas; a candidate the
+  // projection does not reach (position sigma past loops.max_position_sigma_m) may be
+  // anywhere.
+  ProjectionConfig projection;
+  projection.max_position_sigma_m = lc.max_position_sigma_m;
+  const auto projected = ProjectCovariances(graph, values, current, projection);
+  // Every proposal is matched: a place that another, distant place matches about as well
+  // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
   MatchRefusal why = MatchRefusal::kLowScore;
+  struct Matched {
+    NodeId id;
+    MatchResult match;
+  };
+  std::vector<Matched> matched;
   for (const Proposal& p : proposals) {
     // The current scan placed at the candidate, turned by the descriptors' heading.
     const Pose2& X_old = values.at(p.id);
@@ -86,10 +102,7 @@ bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) 
     }
     match_grid.Build(reference, mc);
     const MatchResult match = Match(match_grid, cur.points, guess, mc);
-    if (!match.ok || match.score < lc.min_score) {
-      why = MatchRefusal::kLowScore;
-      continue;
-    }
+    if (!match.ok || match.score < lc.min_score) continue;
     if (match.ambiguity > lc.max_ambiguity) {
       why = MatchRefusal::kAmbiguous;
       continue;
@@ -98,25 +111,53 @@ bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) 
       why = MatchRefusal::kNotUnique;
       continue;
     }
-    const MatchResult pair = RefineAgainstNode(p.id, cur.points, match);
-    LoopHypothesis h;
-    h.old = p.id;
-    h.current = current;
-    h.T_old_current = Between(X_old, pair.T_ref_cur);
-    h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
-    h.covariance = h.information.inverse();
-    h.travelled_m = cur.travelled_m;
-    MaybeInjectFalse(&h);
-    loop_state.verifier.NoteGlobalProposed();
-    bool closed = false;
-    for (const LoopHypothesis& accepted : loop_state.verifier.Add(h, values)) {
-      AddLoopEdge(accepted);
-      closed = true;
+    const auto reach = projected.find(p.id);
+    if (reach != projected.end()) {
+      // Where the uncertainty is small, a place far from the estimate is another place that
+      // looks alike (the next aisle), not drift.
+      Eigen::Vector3d correction = T2V(match.T_ref_cur) - T2V(values.at(current));
+      correction.z() = NormalizeAngle(correction.z());
+      const double k2 = g.plausible_sigmas * g.plausible_sigmas;
+      const Eigen::Matrix3d S = k2 * reach->second.covariance + match.covariance;
+      if (correction.dot(S.inverse() * correction) > lc.consistency_chi2) {
+        why = MatchRefusal::kImplausible;
+        continue;
+      }
     }
-    return closed;
+    matched.push_back({p.id, match});
   }
-  loop_state.verifier.NoteRefused(why);
-  return false;
+  if (matched.empty()) {
+    loop_state.verifier.NoteRefused(why);
+    return false;
+  }
+  const auto best = std::max_element(
+      matched.begin(), matched.end(),
+      [](const Matched& a, const Matched& b) { return a.match.score < b.match.score; });
+  for (const Matched& m : matched) {
+    const double apart = std::hypot(m.match.T_ref_cur.x - best->match.T_ref_cur.x,
+                                    m.match.T_ref_cur.y - best->match.T_ref_cur.y);
+    if (apart > g.linear_window_m && m.match.score > lc.max_ambiguity * best->match.score) {
+      loop_state.verifier.NoteRefused(MatchRefusal::kAmbiguous);
+      return false;
+    }
+  }
+  const Pose2& X_old = values.at(best->id);
+  const MatchResult pair = RefineAgainstNode(best->id, cur.points, best->match);
+  LoopHypothesis h;
+  h.old = best->id;
+  h.current = current;
+  h.T_old_current = Between(X_old, pair.T_ref_cur);
+  h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
+  h.covariance = h.information.inverse();
+  h.travelled_m = cur.travelled_m;
+  MaybeInjectFalse(&h);
+  loop_state.verifier.NoteGlobalProposed();
+  bool closed = false;
+  for (const LoopHypothesis& accepted : loop_state.verifier.Add(h, values)) {
+    AddLoopEdge(accepted);
+    closed = true;
+  }
+  return closed;
 }
 
 }  // namespace lifelong::slam

@@ -72,6 +72,9 @@ struct GlobalLoopConfig {
   int context_nodes = 10;      ///< recent nodes whose points, with the node's, make its place
   double linear_window_m = 4.0;     ///< m, search half-width around the candidate's position
   double angular_window_rad = 0.2;  ///< rad, around the descriptor's heading
+  /// A match within reach of the covariance projection must lie within this many of its
+  /// sigmas of the estimate (the local search's consistency gate, widened).
+  double plausible_sigmas = 3.0;
   PlaceDescriptorConfig descriptor;
 };
 

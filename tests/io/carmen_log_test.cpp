@@ -121,6 +121,34 @@ TEST(CarmenRead, RecoversRawOdometryFromCorrectedLog) {
   ExpectPose(raw.observations[1].T_odom_robot, 1.2, 1.0, kPi / 2);
 }
 
+// seattle-corrected: one of its 241 scans has the ODOM before it stamped 0; the pattern
+// holds otherwise and the raw odometry is recovered. A log where most scans break it
+// (orebro-corrected: scans stamped 0, the ODOM before each repeating the previous scan's
+// corrected pose) keeps no raw odometry and is refused, with the counts.
+TEST(CarmenRead, AFewOffStampsStillRecoverButABrokenPatternIsRefusedWithItsCounts) {
+  std::string text;
+  for (int k = 0; k < 3; ++k) {
+    const std::string t = std::to_string(k + 1);
+    const std::string x = std::to_string(k * 0.5);
+    text += "ODOM " + x + " 0 0 0 0 0 " + (k == 1 ? "0" : t) + " h " + t + "\n";
+    text += "FLASER 1 1 " + x + " 0 0 " + x + " 0 0 " + t + " h " + t + "\n";
+    text += "ODOM " + x + " 0 0 0 0 0 0 h 0\nNEFF 5\n";
+  }
+  EXPECT_TRUE(ReadCarmenLog(WriteText("one_off.clf", text)).odometry_recovered);
+  std::string broken;
+  for (int k = 0; k < 3; ++k) {
+    broken += "ODOM 9 9 0 0 0 0 " + std::to_string(k + 5) + " h 0\n";
+    broken += "FLASER 1 1 0.5 0 0 0.5 0 0 0 h 0\nNEFF 5\n";
+  }
+  try {
+    ReadCarmenLog(WriteText("broken.clf", broken));
+    FAIL() << "a corrected log without raw odometry was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("2 of 3 scans lack the pattern"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(CarmenRead, ForcedRecoveryWithoutPatternThrows) {
   CarmenReadOptions on;
   on.recovery = OdometryRecovery::kOn;

@@ -1,5 +1,6 @@
 // CARMEN log reader; see carmen_log.hpp for the formats and conventions.
 #include "io/carmen_log.hpp"
+#include "io/carmen_recovery.hpp"
 
 #include <zlib.h>
 
@@ -240,71 +241,6 @@ CarmenParam ParseParam(const std::vector<std::string_view>& t, Fields& f) {
   const std::size_t end = t.size() >= 5 ? t.size() - 2 : t.size();
   for (std::size_t i = 3; i < end; ++i) p.value += " " + std::string(t[i]);
   return p;
-}
-
-/// FLASER and ODOM messages in file order, for the odometry recovery.
-struct Event {
-  bool is_flaser = false;
-  std::size_t index = 0;  ///< into observations or odometry
-  int line = 0;
-  Pose2 corrected;  ///< scans: the FLASER's first pose triple
-};
-
-bool SamePose(const Pose2& a, const Pose2& b) {
-  return std::abs(a.x - b.x) < 1e-9 && std::abs(a.y - b.y) < 1e-9 &&
-         std::abs(NormalizeAngle(a.theta - b.theta)) < 1e-9;
-}
-
-/// The GMapping pattern: every scan has an ODOM just before it and an ODOM repeating its
-/// corrected pose just after it (the last scan may end the log); the ODOM before carries the
-/// scan's stamp, on all but 1 % of the scans (seattle-corrected has one ODOM stamped 0
-/// there). `scans` counts the FLASERs, `broken` those without the pattern.
-bool LooksCorrected(const std::vector<Event>& ev, const CarmenLog& log, int* scans, int* broken) {
-  int stamps_off = 0;
-  *scans = *broken = 0;
-  for (std::size_t i = 0; i < ev.size(); ++i) {
-    if (!ev[i].is_flaser) continue;
-    ++*scans;
-    if (i == 0 || ev[i - 1].is_flaser ||
-        (i + 1 < ev.size() &&
-         (ev[i + 1].is_flaser ||
-          !SamePose(log.odometry[ev[i + 1].index].T_odom_robot, ev[i].corrected)))) {
-      ++*broken;
-    } else if (log.odometry[ev[i - 1].index].stamp_s != log.observations[ev[i].index].stamp_s) {
-      ++stamps_off;
-    }
-  }
-  const int allowed = std::max(1, *scans / 100);
-  if (stamps_off > allowed) *broken += stamps_off;
-  return *scans > 0 && *broken == 0;
-}
-
-/// Rebuilds raw odometry: raw(t) = raw_{k-1} * Between(corrected_{k-1}, ODOM(t)).
-void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, CarmenLog* log) {
-  Pose2 corrected_prev, raw_prev;
-  std::vector<Odometry> odometry;
-  for (std::size_t i = 0; i < ev.size(); ++i) {
-    if (ev[i].is_flaser) {
-      if (i == 0 || ev[i - 1].is_flaser) {
-        throw InputError(path, ev[i].line, "ODOM",
-                         "odometry recovery needs an ODOM line just before each scan");
-      }
-      const Pose2& odom_before = log->odometry[ev[i - 1].index].T_odom_robot;
-      Observation& o = log->observations[ev[i].index];
-      o.T_odom_robot = raw_prev * Between(corrected_prev, odom_before);
-      log->corrected_poses.push_back({o.stamp_s, ev[i].corrected});
-      corrected_prev = ev[i].corrected;
-      raw_prev = o.T_odom_robot;
-    } else if (i > 0 && ev[i - 1].is_flaser) {
-      ++log->dropped_odometry;  // repeats the corrected pose, garbage stamp
-    } else {
-      Odometry o = log->odometry[ev[i].index];
-      o.T_odom_robot = raw_prev * Between(corrected_prev, o.T_odom_robot);
-      odometry.push_back(o);
-    }
-  }
-  log->odometry = std::move(odometry);
-  log->odometry_recovered = true;
 }
 
 /// TRUEPOS true_x true_y true_theta odom_x odom_y odom_theta stamps: attached to the scan

@@ -206,7 +206,19 @@ void CheckMatcherFootprint(const std::string& name, const YAML::Node& at, const 
   }
 }
 
+// Every node keeps its place descriptor (rings x sectors floats) while the global search is
+// on: 10^4 bins is 40 kB a node, 400 MB for 10^4 nodes.
+constexpr int kMaxDescriptorBins = 10000;
+
 void CheckFootprints(const std::string& name, const YAML::Node& root, const slam::MapperConfig& c) {
+  const slam::PlaceDescriptorConfig& d = c.loops.global.descriptor;
+  if (static_cast<long long>(d.rings) * d.sectors > kMaxDescriptorBins) {
+    const YAML::Node loops = root["loops"];
+    throw InputError(name, LineOf(loops ? loops : root), "loops.global.rings, loops.global.sectors",
+                     "a place descriptor of " + std::to_string(d.rings) + " x " +
+                         std::to_string(d.sectors) + " bins is kept for every node: at most " +
+                         std::to_string(kMaxDescriptorBins) + " bins");
+  }
   const YAML::Node none;
   const YAML::Node inc = root["incremental"] ? root["incremental"] : none;
   const YAML::Node loops = root["loops"] ? root["loops"] : none;

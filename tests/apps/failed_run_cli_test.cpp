@@ -212,6 +212,11 @@ TEST(FailedRunCli, AMatcherWhoseTablesCannotFitIsRefusedAtLoad) {
   ExpectInputError(
       Lifelong("run " + kScenario + " --config " + loops.string() + " -o " + Fresh("h").string()),
       "loops.max_window_m");
+  const fs::path places =
+      WriteFile("huge_places.yaml", "loops:\n  global:\n    rings: 1000\n    sectors: 3600\n");
+  ExpectInputError(
+      Lifelong("run " + kScenario + " --config " + places.string() + " -o " + Fresh("h").string()),
+      "loops.global.rings, loops.global.sectors");
 }
 
 // A SIGTERM in the middle of a step that never returns to a poll (one scan matched over a

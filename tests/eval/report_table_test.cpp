@@ -99,6 +99,9 @@ TEST(ReportTableTest, EveryContractFigureHasADefinedRow) {
   full.blur = BlurSummary{1.0, 2.0, 3.0, 0.5};
   full.relations = RelationsSummary{1, 0.1, 0.1, 1.0, 1.0};
   full.map_entropy_bits = 1.0, full.occupied_share = 0.1;
+  full.rpe_1m = RpeSummary{10, 0.05, 1.0};
+  full.reference_matched = 11;
+  full.sequential = SequentialSummary{9, 8};
   full.edges_by_kind = {
       {"odometry", 1}, {"loop", 1}, {"marginal", 1}, {"prior", 1}, {"clique_pairs", 1}};
   RunSummary s;

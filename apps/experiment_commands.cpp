@@ -150,6 +150,14 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   return outcome.Failed() ? 1 : 0;
 }
 
+// The scans' stamps, ascending.
+std::vector<double> SortedScanStamps(const lifelong::io::CarmenLog& data) {
+  std::vector<double> stamps;
+  for (const auto& o : data.observations) stamps.push_back(o.stamp_s);
+  std::sort(stamps.begin(), stamps.end());
+  return stamps;
+}
+
 // Reads the relations and puts them in log time: with the given offset, or the one that
 // puts relation stamps on scan stamps. No matching relation is an input error, never a
 // zero error figure.
@@ -157,9 +165,7 @@ std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool give
                                               const lifelong::io::CarmenLog& data,
                                               lifelong::eval::LogInfo* info) {
   const auto file_time = lifelong::io::ReadRelations(path, 0.0);
-  std::vector<double> stamps;
-  for (const auto& o : data.observations) stamps.push_back(o.stamp_s);
-  std::sort(stamps.begin(), stamps.end());
+  const std::vector<double> stamps = SortedScanStamps(data);
   const lifelong::io::OffsetDetection d =
       given ? lifelong::io::OffsetDetection{given_s,
                                             lifelong::io::CountMatchedRelations(file_time, stamps,
@@ -227,9 +233,7 @@ int Replay(const ReplayArgs& a) {
   if (!a.relations.empty())
     config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, data, &info);
   if (!a.reference.empty()) {
-    std::vector<double> stamps;
-    for (const auto& o : data.observations) stamps.push_back(o.stamp_s);
-    std::sort(stamps.begin(), stamps.end());
+    std::vector<double> stamps = SortedScanStamps(data);
     const auto distinct = std::unique(stamps.begin(), stamps.end()) - stamps.begin();
     if (2 * distinct <= static_cast<std::ptrdiff_t>(stamps.size())) {
       throw InputError(log, 0, "--reference",

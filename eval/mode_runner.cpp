@@ -251,15 +251,9 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
   if (!config_.reference.empty()) {
-    ReferencePairs pairs;
-    if (config_.reference_per_scan && config_.reference.size() == trajectory.size()) {
-      for (std::size_t i = 0; i < trajectory.size(); ++i) {
-        pairs.estimate.push_back(trajectory[i].T_world_robot);
-        pairs.reference.push_back(config_.reference[i].T_world_robot);
-      }
-    } else {
-      pairs = PairWithReference(trajectory, config_.reference);
-    }
+    const ReferencePairs pairs = config_.reference_per_scan
+                                     ? PairScanByScan(trajectory, config_.reference)
+                                     : PairWithReference(trajectory, config_.reference);
     summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
     if (!pairs.estimate.empty()) {
       const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);

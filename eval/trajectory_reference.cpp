@@ -53,6 +53,17 @@ ReferencePairs PairWithReference(const std::vector<StampedPose>& estimate,
   return pairs;
 }
 
+ReferencePairs PairScanByScan(const std::vector<StampedPose>& estimate,
+                              const std::vector<StampedPose>& reference) {
+  if (estimate.size() != reference.size()) return PairWithReference(estimate, reference);
+  ReferencePairs pairs;
+  for (std::size_t i = 0; i < estimate.size(); ++i) {
+    pairs.estimate.push_back(estimate[i].T_world_robot);
+    pairs.reference.push_back(reference[i].T_world_robot);
+  }
+  return pairs;
+}
+
 DistanceRpe ComputeRpeAtDistance(const std::vector<Pose2>& estimate,
                                  const std::vector<Pose2>& reference, double distance_m) {
   if (estimate.size() != reference.size()) {

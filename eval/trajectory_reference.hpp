@@ -29,6 +29,11 @@ ReferencePairs PairWithReference(const std::vector<StampedPose>& estimate,
                                  const std::vector<StampedPose>& reference, double max_gap_s = 0.5,
                                  double tolerance_s = 1e-3);
 
+/// The same pairs when reference[i] is the pose of the estimate's scan i (a corrected log's own
+/// poses), whatever the stamps say; PairWithReference by stamp when the sizes differ.
+ReferencePairs PairScanByScan(const std::vector<StampedPose>& estimate,
+                              const std::vector<StampedPose>& reference);
+
 struct DistanceRpe {
   std::size_t count = 0;      ///< pairs (i, j) used
   double trans_rmse_m = 0.0;  ///< m

@@ -1,6 +1,5 @@
 // CARMEN log reader; see carmen_log.hpp for the formats and conventions.
 #include "io/carmen_log.hpp"
-#include "io/carmen_recovery.hpp"
 
 #include <zlib.h>
 
@@ -12,6 +11,7 @@
 #include <cstring>
 #include <string_view>
 
+#include "io/carmen_recovery.hpp"
 #include "sensor/input_bounds.hpp"
 #include "sensor/input_error.hpp"
 

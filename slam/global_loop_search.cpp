@@ -11,12 +11,8 @@
 #include <set>
 #include <vector>
 
-#include <Eigen/LU>
-
-#include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
 #include "slam/scan_matcher.hpp"
-#include "slam/se2.hpp"
 
 namespace lifelong::slam {
 
@@ -39,7 +35,8 @@ PlaceDescriptor Mapper::State::DescribeNode(NodeId id) const {
   return DescribePlace(points, g.descriptor);
 }
 
-bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) {
+bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place,
+                                  const std::map<NodeId, ProjectedNode>& projected) {
   const LoopClosingConfig& lc = config.loops;
   const GlobalLoopConfig& g = lc.global;
   const NodeData& cur = nodes.at(current);
@@ -62,13 +59,10 @@ bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) 
   if (static_cast<int>(proposals.size()) > g.candidates) proposals.resize(g.candidates);
 
   loop_state.verifier.NoteGlobalAttempt();
-  // How far each candidate may be from where the estimate puts it: the Dijkstra projection
-  // of the covariances (as the local search), inflated by plausible_sigmas; a candidate the
-  // projection does not reach (position sigma past loops.max_position_sigma_m) may be
-  // anywhere.
-  ProjectionConfig projection;
-  projection.max_position_sigma_m = lc.max_position_sigma_m;
-  const auto projected = ProjectCovariances(graph, values, current, projection);
+  MatcherConfig mc = lc.matcher;
+  mc.linear_window_m = g.linear_window_m;
+  mc.angular_window_rad = g.angular_window_rad;
+  const double k2 = g.plausible_sigmas * g.plausible_sigmas;
   // Every proposal is matched: a place that another, distant place matches about as well
   // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
   MatchRefusal why = MatchRefusal::kLowScore;
@@ -78,53 +72,30 @@ bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) 
   };
   std::vector<Matched> matched;
   for (const Proposal& p : proposals) {
-    // The current scan placed at the candidate, turned by the descriptors' heading.
-    const Pose2& X_old = values.at(p.id);
-    const Pose2 guess = X_old * Pose2(0.0, 0.0, p.cmp.yaw_rad);
+    // The current scan placed at the candidate, turned by the descriptors' heading, against
+    // the candidate and its graph neighbours.
+    const Pose2 guess = values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad);
     std::set<NodeId> submap{p.id};
     int added = 0;
     for (NodeId n : graph.Neighbours(p.id)) {
       if (added++ >= lc.neighbours_per_candidate) break;
       submap.insert(n);
     }
-    std::vector<Eigen::Vector2d> reference;
-    for (NodeId id : submap) {
-      const std::vector<Eigen::Vector2d> pts = LoopReference(id);
-      reference.insert(reference.end(), pts.begin(), pts.end());
-    }
-    MatcherConfig mc = lc.matcher;
-    mc.linear_window_m = g.linear_window_m;
-    mc.angular_window_rad = g.angular_window_rad;
-    CropToSearch(cur.points, guess, mc, &reference);
-    if (static_cast<int>(reference.size()) < lc.min_reference_points) {
-      why = MatchRefusal::kFewPoints;
+    MatchRefusal refused = MatchRefusal::kLowScore;
+    const std::optional<MatchResult> match = MatchSubmap(submap, current, guess, mc, &refused);
+    if (!match) {
+      if (refused != MatchRefusal::kLowScore) why = refused;
       continue;
     }
-    match_grid.Build(reference, mc);
-    const MatchResult match = Match(match_grid, cur.points, guess, mc);
-    if (!match.ok || match.score < lc.min_score) continue;
-    if (match.ambiguity > lc.max_ambiguity) {
-      why = MatchRefusal::kAmbiguous;
-      continue;
-    }
-    if (!LocallyUnique(match, cur.points)) {
-      why = MatchRefusal::kNotUnique;
-      continue;
-    }
+    // Where the covariance projection reaches the candidate, a place far outside its
+    // uncertainty (inflated by plausible_sigmas) is another place that looks alike (the next
+    // aisle), not drift; one it does not reach may be anywhere.
     const auto reach = projected.find(p.id);
-    if (reach != projected.end()) {
-      // Where the uncertainty is small, a place far from the estimate is another place that
-      // looks alike (the next aisle), not drift.
-      Eigen::Vector3d correction = T2V(match.T_ref_cur) - T2V(values.at(current));
-      correction.z() = NormalizeAngle(correction.z());
-      const double k2 = g.plausible_sigmas * g.plausible_sigmas;
-      const Eigen::Matrix3d S = k2 * reach->second.covariance + match.covariance;
-      if (correction.dot(S.inverse() * correction) > lc.consistency_chi2) {
-        why = MatchRefusal::kImplausible;
-        continue;
-      }
+    if (reach != projected.end() && !Plausible(*match, current, k2 * reach->second.covariance)) {
+      why = MatchRefusal::kImplausible;
+      continue;
     }
-    matched.push_back({p.id, match});
+    matched.push_back({p.id, *match});
   }
   if (matched.empty()) {
     loop_state.verifier.NoteRefused(why);
@@ -141,23 +112,8 @@ bool Mapper::State::TryGlobalLoop(NodeId current, const PlaceDescriptor& place) 
       return false;
     }
   }
-  const Pose2& X_old = values.at(best->id);
-  const MatchResult pair = RefineAgainstNode(best->id, cur.points, best->match);
-  LoopHypothesis h;
-  h.old = best->id;
-  h.current = current;
-  h.T_old_current = Between(X_old, pair.T_ref_cur);
-  h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
-  h.covariance = h.information.inverse();
-  h.travelled_m = cur.travelled_m;
-  MaybeInjectFalse(&h);
   loop_state.verifier.NoteGlobalProposed();
-  bool closed = false;
-  for (const LoopHypothesis& accepted : loop_state.verifier.Add(h, values)) {
-    AddLoopEdge(accepted);
-    closed = true;
-  }
-  return closed;
+  return ProposeClosure(best->id, current, best->match);
 }
 
 }  // namespace lifelong::slam

@@ -32,11 +32,69 @@ double Clamp3Sigma(double variance, double lo, double hi) {
 
 }  // namespace
 
-bool Mapper::State::TryCloseLoop(NodeId current) {
-  const LoopClosingConfig& lc = config.loops;
+std::map<NodeId, ProjectedNode> Mapper::State::ProjectFrom(NodeId current) const {
   ProjectionConfig projection;
-  projection.max_position_sigma_m = lc.max_position_sigma_m;
-  const auto projected = ProjectCovariances(graph, values, current, projection);
+  projection.max_position_sigma_m = config.loops.max_position_sigma_m;
+  return ProjectCovariances(graph, values, current, projection);
+}
+
+std::optional<MatchResult> Mapper::State::MatchSubmap(const std::set<NodeId>& submap,
+                                                      NodeId current, const Pose2& guess,
+                                                      const MatcherConfig& mc, MatchRefusal* why) {
+  const LoopClosingConfig& lc = config.loops;
+  const std::vector<Eigen::Vector2d>& points = nodes.at(current).points;
+  std::vector<Eigen::Vector2d> reference;
+  for (NodeId id : submap) {
+    const std::vector<Eigen::Vector2d> pts = LoopReference(id);
+    reference.insert(reference.end(), pts.begin(), pts.end());
+  }
+  CropToSearch(points, guess, mc, &reference);
+  if (static_cast<int>(reference.size()) < lc.min_reference_points) {
+    *why = MatchRefusal::kFewPoints;
+    return std::nullopt;
+  }
+  match_grid.Build(reference, mc);
+  const MatchResult match = Match(match_grid, points, guess, mc);
+  if (!match.ok || match.score < lc.min_score) {
+    *why = MatchRefusal::kLowScore;
+  } else if (match.ambiguity > lc.max_ambiguity) {
+    *why = MatchRefusal::kAmbiguous;
+  } else if (!LocallyUnique(match, points)) {
+    *why = MatchRefusal::kNotUnique;
+  } else {
+    return match;
+  }
+  return std::nullopt;
+}
+
+bool Mapper::State::Plausible(const MatchResult& match, NodeId current,
+                              const Eigen::Matrix3d& covariance) const {
+  Eigen::Vector3d correction = T2V(match.T_ref_cur) - T2V(values.at(current));
+  correction.z() = NormalizeAngle(correction.z());
+  const Eigen::Matrix3d S = covariance + match.covariance;
+  return correction.dot(S.inverse() * correction) <= config.loops.consistency_chi2;
+}
+
+bool Mapper::State::ProposeClosure(NodeId old, NodeId current, const MatchResult& match) {
+  const MatchResult pair = RefineAgainstNode(old, nodes.at(current).points, match);
+  LoopHypothesis h;
+  h.old = old;
+  h.current = current;
+  h.T_old_current = Between(values.at(old), pair.T_ref_cur);
+  h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
+  h.covariance = h.information.inverse();
+  h.travelled_m = nodes.at(current).travelled_m;
+  MaybeInjectFalse(&h);
+  bool closed = false;
+  for (const LoopHypothesis& accepted : loop_state.verifier.Add(h, values)) {
+    AddLoopEdge(accepted);
+    closed = true;
+  }
+  return closed;
+}
+
+bool Mapper::State::TryCloseLoop(NodeId current, const std::map<NodeId, ProjectedNode>& projected) {
+  const LoopClosingConfig& lc = config.loops;
   const auto near = ExpandByPathLength(graph, values, current, lc.min_path_separation_m);
   const Pose2& X_cur = values.at(current);
 
@@ -96,33 +154,20 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
     var_y = std::max(var_y, c.covariance(1, 1));
     var_th = std::max(var_th, c.covariance(2, 2));
   }
-  std::vector<Eigen::Vector2d> reference;
-  for (NodeId id : submap) {
-    const std::vector<Eigen::Vector2d> points = LoopReference(id);
-    reference.insert(reference.end(), points.begin(), points.end());
-  }
   MatcherConfig mc = lc.matcher;
   mc.linear_window_m = std::max(Clamp3Sigma(var_x, lc.min_window_m, lc.max_window_m),
                                 Clamp3Sigma(var_y, lc.min_window_m, lc.max_window_m));
   mc.angular_window_rad = Clamp3Sigma(var_th, lc.min_window_rad, lc.max_window_rad);
-  CropToSearch(nodes.at(current).points, X_cur, mc, &reference);
-  if (static_cast<int>(reference.size()) < lc.min_reference_points)
-    return refuse(MatchRefusal::kFewPoints);
-  match_grid.Build(reference, mc);
-  const MatchResult match = Match(match_grid, nodes.at(current).points, X_cur, mc);
-  if (!match.ok || match.score < lc.min_score) return refuse(MatchRefusal::kLowScore);
-  if (match.ambiguity > lc.max_ambiguity) return refuse(MatchRefusal::kAmbiguous);
-  if (!LocallyUnique(match, nodes.at(current).points)) return refuse(MatchRefusal::kNotUnique);
+  MatchRefusal why = MatchRefusal::kLowScore;
+  const std::optional<MatchResult> found = MatchSubmap(submap, current, X_cur, mc, &why);
+  if (!found) return refuse(why);
+  const MatchResult& match = *found;
 
   // The correction must be plausible under the projected uncertainty of the best candidate.
   const auto best = std::min_element(
       candidates.begin(), candidates.end(),
       [](const Candidate& a, const Candidate& b) { return a.mahalanobis < b.mahalanobis; });
-  Eigen::Vector3d correction = T2V(match.T_ref_cur) - T2V(X_cur);
-  correction.z() = NormalizeAngle(correction.z());
-  const Eigen::Matrix3d S = best->covariance + match.covariance;
-  if (correction.dot(S.inverse() * correction) > lc.consistency_chi2)
-    return refuse(MatchRefusal::kImplausible);
+  if (!Plausible(match, current, best->covariance)) return refuse(MatchRefusal::kImplausible);
 
   // Attach the closure to the candidate nearest to the matched pose.
   NodeId old = candidates.front().id;
@@ -135,21 +180,7 @@ bool Mapper::State::TryCloseLoop(NodeId current) {
       old = c.id;
     }
   }
-  const MatchResult pair = RefineAgainstNode(old, nodes.at(current).points, match);
-  LoopHypothesis h;
-  h.old = old;
-  h.current = current;
-  h.T_old_current = Between(values.at(old), pair.T_ref_cur);
-  h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
-  h.covariance = h.information.inverse();
-  h.travelled_m = nodes.at(current).travelled_m;
-  MaybeInjectFalse(&h);
-  bool closed = false;
-  for (const LoopHypothesis& accepted : loop_state.verifier.Add(h, values)) {
-    AddLoopEdge(accepted);
-    closed = true;
-  }
-  return closed;
+  return ProposeClosure(old, current, match);
 }
 
 std::vector<Eigen::Vector2d> Mapper::State::LoopReference(NodeId id) {

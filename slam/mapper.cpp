@@ -86,13 +86,16 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   const NodeId current = s.last_node;
   if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
     const ScopedMs timer = s.Stage(&StageTimes::loop_ms);
-    stats.loop_closed = s.TryCloseLoop(current);
+    // One projection for both searches: a search that closed nothing left the estimate as
+    // it was.
+    const auto projected = s.ProjectFrom(current);
+    stats.loop_closed = s.TryCloseLoop(current, projected);
     const GlobalLoopConfig& global = s.config.loops.global;
     if (global.enabled) {
       const PlaceDescriptor place = s.DescribeNode(current);
       if (!stats.loop_closed && s.observations % global.every == 0 &&
           place.occupied >= global.min_occupied) {
-        stats.loop_closed = s.TryGlobalLoop(current, place);
+        stats.loop_closed = s.TryGlobalLoop(current, place, projected);
       }
       // Indexed after its own search, so that it never finds itself.
       if (place.occupied >= global.min_occupied) s.places.Add(current, place);

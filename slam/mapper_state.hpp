@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "slam/dijkstra.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/loop_closing_state.hpp"
 #include "slam/loop_verifier.hpp"
@@ -125,10 +127,27 @@ struct Mapper::State {
   /// at the thinning spacing (the likelihood field's resolution without thinning).
   std::vector<Eigen::Vector2d> SurfacesOf(NodeId id, const SurfaceRule& rule) const;
   void Reanchor(std::size_t scan, NodeId anchor);
-  bool TryCloseLoop(NodeId current);
+  /// The Dijkstra projection of the covariances from `current` (loops.max_position_sigma_m),
+  /// which both loop searches of an observation use.
+  std::map<NodeId, ProjectedNode> ProjectFrom(NodeId current) const;
+  /// The local search: the candidates inside the projected uncertainty, matched as a submap.
+  bool TryCloseLoop(NodeId current, const std::map<NodeId, ProjectedNode>& projected);
   /// The global search (loops.global): the places most like the current node's, wherever
   /// the estimate puts them, matched in a wide window; then verified as any closure.
-  bool TryGlobalLoop(NodeId current, const PlaceDescriptor& place);
+  bool TryGlobalLoop(NodeId current, const PlaceDescriptor& place,
+                     const std::map<NodeId, ProjectedNode>& projected);
+  /// Matches the current node's points against the submap's loop references around `guess`:
+  /// the match when it has enough points in reach, scores, is unambiguous and locally
+  /// unique; else nothing and *why.
+  std::optional<MatchResult> MatchSubmap(const std::set<NodeId>& submap, NodeId current,
+                                         const Pose2& guess, const MatcherConfig& mc,
+                                         MatchRefusal* why);
+  /// The match's correction of the current pose lies inside the consistency gate
+  /// (loops.consistency_chi2) of `covariance` plus the match's own.
+  bool Plausible(const MatchResult& match, NodeId current, const Eigen::Matrix3d& covariance) const;
+  /// The closure old -> current measured by `match` (refined against old alone), proposed to
+  /// the verifier; true when that put closures into the graph.
+  bool ProposeClosure(NodeId old, NodeId current, const MatchResult& match);
   /// The place descriptor of `id` from its points and its recent neighbours', in its frame.
   PlaceDescriptor DescribeNode(NodeId id) const;
   /// Local uniqueness of a loop-closure match: no pose uniqueness_radius_m away (8

@@ -12,6 +12,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using lifelong::test::ExpectInputError;
 using lifelong::test::Lifelong;
 using lifelong::test::Result;
 const std::string kSource = LIFELONG_SOURCE_DIR;
@@ -20,15 +21,7 @@ const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";
 fs::path Fresh(const std::string& name) { return lifelong::test::FreshPath("bad_input_", name); }
 
 fs::path WriteFile(const std::string& name, const std::string& text) {
-  const fs::path p = Fresh(name);
-  std::ofstream(p) << text;
-  return p;
-}
-
-void ExpectInputError(const Result& r, const std::string& names) {
-  EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+  return lifelong::test::WriteFresh("bad_input_", name, text);
 }
 
 // A log whose odometry jumps 100 km at its second scan would make a map of 2e6 x 2e6 cells:

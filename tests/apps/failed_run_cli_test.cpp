@@ -34,15 +34,12 @@ const std::string kScenario = kSource + "/scenarios/corridor_3.yaml";
 fs::path Fresh(const std::string& name) { return lifelong::test::FreshPath("failed_run_", name); }
 
 fs::path WriteFile(const std::string& name, const std::string& text) {
-  const fs::path p = Fresh(name);
-  std::ofstream(p) << text;
-  return p;
+  return lifelong::test::WriteFresh("failed_run_", name, text);
 }
 
-void ExpectInputError(const Result& r, const std::string& names) {
-  EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+// Refused as bad input before the simulation started.
+void ExpectRefusedFirst(const Result& r, const std::string& names) {
+  lifelong::test::ExpectInputError(r, names);
   EXPECT_EQ(r.output.find("simulating"), std::string::npos) << "not before any work\n" << r.output;
 }
 
@@ -132,8 +129,8 @@ TEST(FailedRunCli, ARouteOfOnePlaceIsRefused) {
                                                             "/worlds/corridor.yaml\nseed: 1\n"
                                                             "route:\n  type: back_and_forth\n"
                                                             "  waypoints: [west, west]\n");
-  ExpectInputError(Lifelong("run " + scenario.string() + " -o " + Fresh("one").string()),
-                   "field 'route.waypoints[1]': waypoint is where waypoint 0 is");
+  ExpectRefusedFirst(Lifelong("run " + scenario.string() + " -o " + Fresh("one").string()),
+                     "field 'route.waypoints[1]': waypoint is where waypoint 0 is");
 }
 
 TEST(FailedRunCli, DuplicateDoorOrBoxNamesAreRefused) {
@@ -150,22 +147,22 @@ places:
   const fs::path scenario = WriteFile("dup.yaml",
                                       "name: dup\nworld: failed_run_dup_world.yaml\nseed: 1\n"
                                       "route: {type: path, waypoints: [west, east]}\n");
-  ExpectInputError(
+  ExpectRefusedFirst(
       Lifelong("run " + scenario.string() + " -o " + Fresh("dup").string()),
       "failed_run_dup_world.yaml:6: field 'boxes[0].name': duplicate door or box name 'lab'");
 }
 
 TEST(FailedRunCli, OptionsThatWouldBeIgnoredAreRefused) {
-  ExpectInputError(Lifelong("run " + kScenario + " --stride 5 -o " + Fresh("s").string()),
-                   "--stride does nothing without --video or --frames");
+  ExpectRefusedFirst(Lifelong("run " + kScenario + " --stride 5 -o " + Fresh("s").string()),
+                     "--stride does nothing without --video or --frames");
   const std::string log = kSource + "/tests/data/io/tiny.clf";
-  ExpectInputError(Lifelong("replay " + log + " --relations-offset 3 -o " + Fresh("r").string()),
-                   "--relations-offset does nothing without --relations");
-  ExpectInputError(Lifelong("replay " + log + " --relations x.rel --relations-offset '' -o " +
-                            Fresh("r").string()),
-                   "--relations-offset: expected a finite number, got ''");
-  ExpectInputError(Lifelong("sparsify g.g2o --method chow-liu --keep-share 0.5 --nfr-chords mi"),
-                   "--nfr-chords does nothing without --method nfr-subgraph");
+  ExpectRefusedFirst(Lifelong("replay " + log + " --relations-offset 3 -o " + Fresh("r").string()),
+                     "--relations-offset does nothing without --relations");
+  ExpectRefusedFirst(Lifelong("replay " + log + " --relations x.rel --relations-offset '' -o " +
+                              Fresh("r").string()),
+                     "--relations-offset: expected a finite number, got ''");
+  ExpectRefusedFirst(Lifelong("sparsify g.g2o --method chow-liu --keep-share 0.5 --nfr-chords mi"),
+                     "--nfr-chords does nothing without --method nfr-subgraph");
 }
 
 TEST(FailedRunCli, AnEmptyOutputPathIsNamedAsEmpty) {
@@ -204,17 +201,17 @@ TEST(FailedRunCli, AMatcherWhoseTablesCannotFitIsRefusedAtLoad) {
                                     "incremental:\n  matcher:\n    linear_window_m: 50\n"
                                     "    resolution_m: 0.005\n    angular_window_rad: 3.14159\n"
                                     "    angular_step_rad: 0.0001\n");
-  ExpectInputError(
+  ExpectRefusedFirst(
       Lifelong("run " + kScenario + " --config " + config.string() + " -o " + Fresh("h").string()),
       "incremental.matcher.linear_window_m, incremental.matcher.resolution_m");
   const fs::path loops = WriteFile(
       "huge_loops.yaml", "loops:\n  max_window_m: 50\n  matcher:\n    resolution_m: 0.005\n");
-  ExpectInputError(
+  ExpectRefusedFirst(
       Lifelong("run " + kScenario + " --config " + loops.string() + " -o " + Fresh("h").string()),
       "loops.max_window_m");
   const fs::path places =
       WriteFile("huge_places.yaml", "loops:\n  global:\n    rings: 1000\n    sectors: 3600\n");
-  ExpectInputError(
+  ExpectRefusedFirst(
       Lifelong("run " + kScenario + " --config " + places.string() + " -o " + Fresh("h").string()),
       "loops.global.rings, loops.global.sectors");
 }

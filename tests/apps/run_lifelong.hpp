@@ -38,6 +38,22 @@ inline std::filesystem::path FreshPath(const std::string& prefix, const std::str
   return p;
 }
 
+/// FreshPath(prefix, name) holding `text`.
+inline std::filesystem::path WriteFresh(const std::string& prefix, const std::string& name,
+                                        const std::string& text) {
+  const std::filesystem::path p = FreshPath(prefix, name);
+  std::ofstream(p) << text;
+  return p;
+}
+
+/// Bad input refused as such: exit 2, `names` (file, line, field) in the message, and no
+/// internal error.
+inline void ExpectInputError(const Result& r, const std::string& names) {
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+}
+
 /// The whole file (empty when it cannot be read).
 inline std::string Read(const std::filesystem::path& p) {
   std::ifstream in(p);

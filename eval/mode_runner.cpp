@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "eval/false_closures.hpp"
 #include "eval/map_quality.hpp"
 #include "eval/mode_csv.hpp"
 #include "eval/raster_limit.hpp"
@@ -38,6 +39,11 @@ ModeRunner::ModeRunner(slam::PruningMode mode, const ExperimentConfig& config)
   mc.pruning.mode = mode;
   mapper_ = std::make_unique<slam::Mapper>(mc);
   mapper_->on_observation = [this](const slam::StepStats& s) { Record(s); };
+  const slam::LoopClosingConfig& loops = config.mapper.loops;
+  if (loops.inject_false_share > 0.0) {
+    mapper_->set_hypothesis_hook(FalseClosureInjector(
+        loops.inject_false_share, loops.inject_false_dx_m, loops.inject_false_dy_m));
+  }
 }
 void ModeRunner::Step(const Observation& obs) {
   const auto start = Clock::now();

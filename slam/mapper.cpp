@@ -43,24 +43,6 @@ MapperConfig DefaultMapperConfig() {
   return c;
 }
 
-Eigen::Matrix3d RotateIntoFrame(const Eigen::Matrix3d& m, double theta_rad) {
-  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
-  const double c = std::cos(theta_rad), s = std::sin(theta_rad);
-  T.block<2, 2>(0, 0) << c, s, -s, c;  // R^T
-  return T * m * T.transpose();
-}
-
-std::vector<Eigen::Vector2d> ToWorld(const std::vector<Eigen::Vector2d>& points, const Pose2& T) {
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(points.size());
-  for (const Eigen::Vector2d& p : points) {
-    double x = 0.0, y = 0.0;
-    T.Apply(p.x(), p.y(), &x, &y);
-    out.emplace_back(x, y);
-  }
-  return out;
-}
-
 Mapper::Mapper(const MapperConfig& config) : state_(std::make_unique<State>(config)) {}
 Mapper::~Mapper() = default;
 
@@ -86,20 +68,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   const NodeId current = s.last_node;
   if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
     const ScopedMs timer = s.Stage(&StageTimes::loop_ms);
-    // One projection for both searches: a search that closed nothing left the estimate as
-    // it was.
-    const auto projected = s.ProjectFrom(current);
-    stats.loop_closed = s.TryCloseLoop(current, projected);
-    const GlobalLoopConfig& global = s.config.loops.global;
-    if (global.enabled) {
-      const PlaceDescriptor place = s.DescribeNode(current);
-      if (!stats.loop_closed && s.observations % global.every == 0 &&
-          place.occupied >= global.min_occupied) {
-        stats.loop_closed = s.TryGlobalLoop(current, place, projected);
-      }
-      // Indexed after its own search, so that it never finds itself.
-      if (place.occupied >= global.min_occupied) s.places.Add(current, place);
-    }
+    s.CloseLoops(current, &stats);
   }
   if (s.config.pruning.mode != PruningMode::kNone &&
       s.observations % s.config.pruning.round_period == 0)
@@ -114,7 +83,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   stats.edges = s.graph.NumEdgesForGamma();
   stats.gamma = s.graph.Gamma();
   stats.graph_bytes = s.graph.Bytes();
-  stats.loop_closures_total = static_cast<int>(s.loop_state.loops.size());
+  stats.loop_closures_total = static_cast<int>(s.loops.size());
   stats.nodes_removed_total = static_cast<int>(s.prune_state.marginalizations.size());
   if (on_observation) on_observation(stats);
   return stats;
@@ -185,12 +154,6 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   have_last = true;
 }
 
-std::vector<Eigen::Vector2d> Mapper::State::SurfacesOf(NodeId id, const SurfaceRule& rule) const {
-  const IncrementalConfig& inc = config.incremental;
-  const double spacing = inc.point_spacing_m > 0.0 ? inc.point_spacing_m : inc.matcher.resolution_m;
-  return SurfacePoints(nodes.at(id).scan, spacing, rule);
-}
-
 std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   const IncrementalConfig& inc = config.incremental;
   const auto count = static_cast<std::ptrdiff_t>(inc.local_map_nodes);
@@ -202,8 +165,9 @@ std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
     const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
     if (inc.surfaces.JoinsAny()) {
       const auto cached = local_surfaces.find(id);
-      local = &(kept[id] = cached != local_surfaces.end() ? std::move(cached->second)
-                                                          : SurfacesOf(id, inc.surfaces));
+      local = &(kept[id] = cached != local_surfaces.end()
+                               ? std::move(cached->second)
+                               : ScanSurfaces(nodes.at(id).scan, inc, inc.surfaces));
     }
     const auto world = ToWorld(*local, values.at(id));
     reference.insert(reference.end(), world.begin(), world.end());
@@ -238,7 +202,7 @@ void Mapper::State::OptimizeAndSyncMap() {
     const ScopedMs timer = Stage(&StageTimes::map_update_ms);
     SyncMap();
   }
-  loop_state.since_sync = 0;
+  since_sync = 0;
   if (step) {
     step->map_synced = true;
     step->optimize_ms += MsSince(start);
@@ -252,7 +216,7 @@ void Mapper::State::Optimize() {
     const ScopedMs timer = Stage(&StageTimes::backend_ms);
     summary = slam::Optimize(graph, &values, config.optimizer);
   }
-  loop_state.since_optimize = 0;
+  since_optimize = 0;
   if (step) {
     step->optimized = true;
     step->optimizer_iterations += summary.iterations;
@@ -286,15 +250,11 @@ void Mapper::Finish() {
 const PoseGraph& Mapper::graph() const { return state_->graph; }
 const Values& Mapper::values() const { return state_->values; }
 const GridMap& Mapper::map() const { return state_->map; }
-double Mapper::NodeStamp(NodeId id) const {
-  return state_->scans.at(static_cast<std::size_t>(state_->nodes.at(id).scan_index)).stamp_s;
+void Mapper::set_hypothesis_hook(std::function<void(LoopHypothesis*, const Values&)> hook) {
+  state_->closer.set_hypothesis_hook(std::move(hook));
 }
-const std::vector<LoopClosureRecord>& Mapper::loop_closures() const {
-  return state_->loop_state.loops;
-}
-const LoopVerifierStats& Mapper::loop_verification() const {
-  return state_->loop_state.verifier.stats();
-}
+const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return state_->loops; }
+const LoopVerifierStats& Mapper::loop_verification() const { return state_->closer.stats(); }
 const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
   return state_->prune_state.marginalizations;
 }

@@ -19,6 +19,7 @@
 
 #include "sensor/observation.hpp"
 #include "slam/grid_map.hpp"
+#include "slam/loop_attempt.hpp"
 #include "slam/mapper_config.hpp"
 #include "slam/pose_graph.hpp"
 #include "types/stage_times.hpp"
@@ -45,6 +46,7 @@ struct StepStats {
   bool map_synced = false;   ///< the map re-rendered the scans the estimate moved
   StageTimes stages;         ///< time_ms by stage
   int optimizer_iterations = 0;
+  std::vector<LoopAttempt> loop_attempts;  ///< the loop searches that had candidates
 };
 
 /// An accepted loop closure: current node, older node, and the measured T_old_cur.
@@ -54,7 +56,7 @@ struct LoopClosureRecord {
   double stamp_current_s = 0.0;
   double stamp_old_s = 0.0;
   Pose2 T_old_current;
-  bool injected = false;  ///< a deliberately wrong closure (loops.inject_false_share)
+  bool injected = false;  ///< a deliberately wrong closure (the hypothesis hook's)
 };
 
 /// One marginalization: which node, its clique size and the KL divergence (nats).
@@ -90,8 +92,6 @@ class Mapper {
   const PoseGraph& graph() const;
   const Values& values() const;
   const GridMap& map() const;
-  /// Stamp of the scan each node holds.
-  double NodeStamp(NodeId id) const;
   /// A pose for every scan seen so far, in stream order (removed nodes' scans included,
   /// held relative to a surviving node).
   std::vector<StampedPose> Trajectory() const;
@@ -115,6 +115,9 @@ class Mapper {
 
   /// Called after every AddObservation that took an observation (keyframe).
   std::function<void(const StepStats&)> on_observation;
+  /// Called with every loop-closure hypothesis before verification (eval's false-closure
+  /// test moves some of them).
+  void set_hypothesis_hook(std::function<void(LoopHypothesis*, const Values&)> hook);
 
  private:
   struct State;

@@ -57,7 +57,7 @@ struct IncrementalConfig {
   double odom_sigma_rad_per_rad = 0.1;
 };
 
-/// Global loop closing (slam/global_loop_search.cpp): where the local search, gated by the
+/// Global loop closing (slam/loop_closer_global.cpp): where the local search, gated by the
 /// projected uncertainty, finds nothing, the node's place descriptor (Scan Context,
 /// slam/place_descriptor.hpp) proposes the most similar earlier places wherever the estimate
 /// puts them; each is matched in a wide window around the heading the descriptor gives, and
@@ -120,8 +120,9 @@ struct LoopClosingConfig {
   /// switching it off): its nodes are neither removed nor sparsified, so that no
   /// marginal bakes it in.
   double suspect_chi2 = 16.27;
-  /// False-closure test: this share of the matcher's closures is moved by (dx, dy) in the
-  /// world frame before verification, as a closure into the neighbouring aisle would be.
+  /// False-closure test, read by eval (eval/false_closures.hpp), which installs it as the
+  /// mapper's hypothesis hook: this share of the matcher's closures is moved by (dx, dy) in
+  /// the world frame before verification, as a closure into the neighbouring aisle would be.
   /// 0: off.
   double inject_false_share = 0.0;
   double inject_false_dx_m = 0.0;  ///< m, world frame

@@ -19,7 +19,8 @@
 #include "slam/sparsifier.hpp"
 
 namespace lifelong::slam {
-Mapper::State::State(const MapperConfig& c) : config(c), loop_state(c.loops.verify), map(c.grid) {
+Mapper::State::State(const MapperConfig& c)
+    : config(c), closer(c.loops, c.incremental), map(c.grid) {
   if (c.pruning.mode == PruningMode::kNone) return;
   prune_state.policy =
       MakeRemovalPolicy(c.pruning.policy, {c.pruning.gain_threshold_bits, c.pruning.node_budget});
@@ -60,7 +61,7 @@ void Mapper::State::Prune(NodeId current) {
   // schedule it follows in standard mode (loops.optimize_edge_chi2, optimize_every), and the
   // gains are those of the map as rendered. Re-rendering before every round moved each scan
   // once per closure: 4x the optimizations and 3x the map update on Intel (BENCHMARKS.md).
-  if (loop_state.since_optimize > 0) Optimize();
+  if (since_optimize > 0) Optimize();
   const NodeId anchor = graph.NodeIds().front();
   std::set<NodeId> protected_ids{current, anchor};
   // Never marginalize a closure that is not settled: a pending hypothesis would lose its
@@ -171,7 +172,6 @@ void Mapper::State::KeepEdgeBudget() {
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
-  loop_state.verifier.ForgetNode(id);
   // With robust_marginal, the loop edges of the clique (at the node and among its
   // neighbours) enter the marginal as the optimizer weighs them at the estimate: information
   // times the kernel's IRLS weight rho'(e^T Omega e). Those among the neighbours that the
@@ -213,8 +213,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
       {id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
   nodes.erase(id);
   values.erase(id);
-  loop_surfaces.Erase(id);
-  places.Remove(id);
+  closer.ForgetNode(id);
   recent.erase(std::find(recent.begin(), recent.end(), id));
   if (last_node == id) last_node = recent.back();
 }

@@ -215,7 +215,7 @@ int main(int argc, char** argv) {
   std::string collect_dir;
   auto* sweep = app.add_subcommand(
       "sweep", "map scenarios/logs x seeds x settings, one run per cell, then collect");
-  sweep->add_option("spec", sweep_args.spec, "sweep SPEC, YAML (README \"Sweeps\")")
+  sweep->add_option("spec", sweep_args.spec, "sweep SPEC, YAML (docs/sweeps.md)")
       ->check(kNotADirectory);
   sweep->add_option("-o,--out", sweep_args.out,
                     "sweep directory (cells, runs.csv, aggregate.csv, paired.csv, report.html)");

@@ -1,5 +1,5 @@
 // `lifelong sweep SPEC -o DIR [-j N | --slurm ...]`, `lifelong sweep collect DIR` and the
-// hidden `lifelong sweep run-cell DIR INDEX` of a Slurm array task (README "Sweeps").
+// hidden `lifelong sweep run-cell DIR INDEX` of a Slurm array task (docs/sweeps.md).
 #include "apps/sweep_command.hpp"
 
 #include <unistd.h>

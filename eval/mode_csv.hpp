@@ -1,5 +1,5 @@
 // The per-mode CSVs of the output directory beside timeline.csv: marginalizations.csv,
-// sparsifications.csv and loops.csv (README, "Output directory").
+// sparsifications.csv and loops.csv (docs/output-contract.md).
 #pragma once
 
 #include <string>

@@ -248,7 +248,7 @@ void WriteSummaryJson(const std::string& path, const RunSummary& summary) {
 }
 
 void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& rows) {
-  // The contract's columns, then this project's additions (documented in README).
+  // The contract's columns, then this project's additions (documented in docs/output-contract.md).
   std::string text =
       "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures,optimize_ms,"
       "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms\n";

@@ -197,7 +197,7 @@ std::vector<ReportLinkGroup> FileLinks(const ReportContext& c, const ReportPage&
   ReportLinkGroup run = Links(c.out_dir, "run", "", {"config.yaml"});
   // summary.json is written right after this page and is the one link made before its
   // file exists: it is the run's main output, and a run that fails in between leaves no
-  // summary.json (README), which marks the whole directory as incomplete anyway.
+  // summary.json (docs/output-contract.md), which marks the whole directory as incomplete anyway.
   run.links.insert(run.links.begin(), {"summary.json", "summary.json"});
   out.push_back(run);
   for (const std::string& mode : OrderedModes(page.summary, page.mode_order)) {

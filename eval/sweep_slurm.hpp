@@ -1,5 +1,5 @@
 // `lifelong sweep SPEC -o DIR --slurm`: the cells not up to date as one Slurm job array
-// (README "Sweeps"). DIR/sweep.sbatch holds one array task per such cell; task i runs
+// (docs/sweeps.md). DIR/sweep.sbatch holds one array task per such cell; task i runs
 // `PROGRAM sweep run-cell DIR CELL_i`, i.e. exactly what the local pool runs (the cell's
 // command and log from DIR/sweep.json, the stamp on success). It is submitted with
 // `sbatch --parsable`; then, unless told not to wait, `squeue` is polled until every task

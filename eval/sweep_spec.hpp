@@ -1,4 +1,4 @@
-// The SPEC file of `lifelong sweep` (README "Sweeps"): which scenarios and logs to map,
+// The SPEC file of `lifelong sweep` (docs/sweeps.md): which scenarios and logs to map,
 // with which seeds, modes and mapper settings. Read strictly: an unknown key, an empty
 // list, a missing scenario, world or log, an unknown mode or an unknown mapper setting is
 // a lifelong::InputError naming the SPEC file, the line and the field, before anything runs.

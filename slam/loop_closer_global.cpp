@@ -3,9 +3,11 @@
 // the estimate has drifted. Each candidate is matched by the correlative matcher's branch and
 // bound in a window of loops.global.linear_window_m around the candidate node's position, at
 // the heading the descriptors agree on, against the candidate and its graph neighbours. A
-// match must pass the local search's tests (score, ambiguity, local uniqueness) and then the
-// same group verification (slam/loop_verifier.hpp) before it enters the graph; only the test
-// against the projected uncertainty is left out, since the drift is what is being corrected.
+// match must pass the local search's tests (score, ambiguity, local uniqueness). The test
+// against the projected uncertainty is widened (plausible_sigmas) where the projection
+// reaches the candidate and left out where it does not, since the drift is what is being
+// corrected; and no other proposal far from the best may score nearly as well (cross-map
+// ambiguity). Then it goes through the same group verification (slam/loop_verifier.hpp).
 #include <algorithm>
 #include <cmath>
 #include <set>

@@ -111,7 +111,7 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
                 "nodes_max", "edges_max", "nodes_after_first_pass", "gamma_final", "scans_kept_pct",
                 "peak_rss_mb", "graph_bytes_final", "blur", "ate_rmse_m", "loop_precision",
                 "loop_recall", "relations", "kld", "map_entropy_bits", "occupied_share",
-                // our extensions of the contract (README)
+                // our extensions of the contract (docs/output-contract.md)
                 "edges_by_kind", "stage_ms"}));
   EXPECT_EQ(m["edges_by_kind"]["marginal"], 4);
   EXPECT_EQ(Keys(m["time_per_obs_ms"]),

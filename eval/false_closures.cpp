@@ -7,8 +7,9 @@
 
 namespace lifelong::eval {
 
-std::function<void(slam::LoopHypothesis*, const slam::Values&)> FalseClosureInjector(
-    double share, double dx_m, double dy_m) {
+std::function<void(slam::LoopHypothesis*, const slam::Values&)> FalseClosureInjector(double share,
+                                                                                     double dx_m,
+                                                                                     double dy_m) {
   auto seen = std::make_shared<int>(0);
   return [=](slam::LoopHypothesis* h, const slam::Values& values) {
     const int n = (*seen)++;

@@ -12,7 +12,8 @@ namespace lifelong::eval {
 
 /// The hook for `share` in (0, 1] (nothing is moved at 0), deterministic: the n-th hypothesis
 /// (0-based) is moved when floor((n + 1) share) steps up from floor(n share).
-std::function<void(slam::LoopHypothesis*, const slam::Values&)> FalseClosureInjector(
-    double share, double dx_m, double dy_m);
+std::function<void(slam::LoopHypothesis*, const slam::Values&)> FalseClosureInjector(double share,
+                                                                                     double dx_m,
+                                                                                     double dy_m);
 
 }  // namespace lifelong::eval

@@ -56,8 +56,8 @@ class LoopCloser {
   /// The global search (loops.global) when `search` (the local one closed nothing and this is
   /// a searching observation), then indexes `current`'s place. Uses the projection of the
   /// last SearchLocal, which must have been for `current`.
-  std::optional<LoopAttempt> SearchGlobal(const LoopClosingView& view, NodeId current,
-                                          bool search, std::vector<LoopHypothesis>* accepted);
+  std::optional<LoopAttempt> SearchGlobal(const LoopClosingView& view, NodeId current, bool search,
+                                          std::vector<LoopHypothesis>* accepted);
   /// A node left the graph (marginalized): its closures no longer count as evidence, and its
   /// cached surfaces and place go.
   void ForgetNode(NodeId id);

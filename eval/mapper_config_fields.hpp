@@ -151,6 +151,7 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("min_window_rad", c.min_window_rad, kWindowRad);
   v.Number("max_window_rad", c.max_window_rad, kWindowRad);
   v.Ordered("min_window_rad", c.min_window_rad, "max_window_rad", c.max_window_rad);
+  v.Int("beyond_window_every", c.beyond_window_every, 0);
   v.Int("neighbours_per_candidate", c.neighbours_per_candidate, 0);
   v.Int("submap_span", c.submap_span, 0);
   v.Number("min_score", c.min_score, kUnit);

@@ -78,12 +78,12 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
   if (m.loop_verification) {
     const slam::LoopVerifierStats& v = m.loop_verification->counts;
-    json lv = {{"proposed", v.proposed},      {"accepted", v.accepted},
-               {"rejected", v.rejected},      {"expired", v.expired},
-               {"not_unique", v.not_unique},  {"switched_off", m.loop_verification->switched_off},
-               {"attempts", v.attempts},      {"few_points", v.few_points},
-               {"low_score", v.low_score},    {"ambiguous", v.ambiguous},
-               {"implausible", v.implausible}};
+    json lv = {{"proposed", v.proposed},       {"accepted", v.accepted},
+               {"rejected", v.rejected},       {"expired", v.expired},
+               {"not_unique", v.not_unique},   {"switched_off", m.loop_verification->switched_off},
+               {"attempts", v.attempts},       {"few_points", v.few_points},
+               {"low_score", v.low_score},     {"ambiguous", v.ambiguous},
+               {"implausible", v.implausible}, {"beyond_window", v.beyond_window}};
     if (m.loop_verification->global) {
       lv["global_attempts"] = v.global_attempts;
       lv["global_proposed"] = v.global_proposed;

@@ -34,10 +34,13 @@ const Candidate& Likeliest(const std::vector<Candidate>& candidates) {
 }
 
 // The candidates inside the gate: not near the current node along the graph, and within
-// gate_chi2 of its position under their projected covariance plus the sensor overlap.
+// gate_chi2 of its position under their projected covariance plus the sensor overlap. Unless
+// `wide`, a node whose 3-sigma region exceeds the largest window is none (a clamped window
+// covers only part of where it may be, at the largest window's cost); *beyond counts those.
 std::vector<Candidate> Gate(const LoopClosingView& view, NodeId current,
                             const std::map<NodeId, ProjectedNode>& projected,
-                            const std::map<NodeId, double>& near, const LoopClosingConfig& lc) {
+                            const std::map<NodeId, double>& near, const LoopClosingConfig& lc,
+                            bool wide, int* beyond) {
   const Pose2& X_cur = view.values.at(current);
   std::vector<Candidate> out;
   for (const auto& [id, node] : projected) {
@@ -48,7 +51,13 @@ std::vector<Candidate> Gate(const LoopClosingView& view, NodeId current,
                                                                       lc.overlap_radius_m *
                                                                       Eigen::Matrix2d::Identity();
     const double m = d.dot(S.inverse() * d);
-    if (m <= lc.gate_chi2) out.push_back({id, m, node.covariance});
+    if (m > lc.gate_chi2) continue;
+    const double variance = std::max(node.covariance(0, 0), node.covariance(1, 1));
+    if (!wide && 3.0 * std::sqrt(std::max(variance, 0.0)) > lc.max_window_m) {
+      ++*beyond;
+      continue;
+    }
+    out.push_back({id, m, node.covariance});
   }
   return out;
 }
@@ -65,14 +74,23 @@ void LoopCloser::ForgetNode(NodeId id) {
 }
 
 std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, NodeId current,
+                                                   int observation,
                                                    std::vector<LoopHypothesis>* accepted) {
   const LoopClosingConfig& lc = config_;
   ProjectionConfig projection;
   projection.max_position_sigma_m = lc.max_position_sigma_m;
   projected_ = ProjectCovariances(view.graph, view.values, current, projection);
   const auto near = ExpandByPathLength(view.graph, view.values, current, lc.min_path_separation_m);
-  std::vector<Candidate> candidates = Gate(view, current, projected_, near, lc);
-  if (candidates.empty()) return std::nullopt;
+  int beyond = 0;
+  // Wide at every n-th observation, and at every one while hypotheses wait for the others
+  // that would confirm them (group verification needs several in a row).
+  const bool wide = lc.beyond_window_every > 0 &&
+                    (observation % lc.beyond_window_every == 0 || !verifier_.pending().empty());
+  std::vector<Candidate> candidates = Gate(view, current, projected_, near, lc, wide, &beyond);
+  if (candidates.empty()) {
+    if (beyond > 0) verifier_.NoteBeyondWindow();
+    return std::nullopt;
+  }
   verifier_.NoteAttempt();
   LoopAttempt attempt;
   attempt.search = LoopAttempt::Search::kLocal;

@@ -49,10 +49,12 @@ class LoopCloser {
  public:
   LoopCloser(const LoopClosingConfig& loops, const IncrementalConfig& incremental);
 
-  /// The local search around node `current`. Returns the attempt (none when no candidate lies
-  /// inside the gate) and appends the closures accepted to *accepted, in order.
+  /// The local search around node `current` at the `observation`-th observation (0-based; it
+  /// decides whether candidates beyond the largest window are searched, see
+  /// loops.beyond_window_every). Returns the attempt (none when no candidate lies inside the
+  /// gate) and appends the closures accepted to *accepted, in order.
   std::optional<LoopAttempt> SearchLocal(const LoopClosingView& view, NodeId current,
-                                         std::vector<LoopHypothesis>* accepted);
+                                         int observation, std::vector<LoopHypothesis>* accepted);
   /// The global search (loops.global) when `search` (the local one closed nothing and this is
   /// a searching observation), then indexes `current`'s place. Uses the projection of the
   /// last SearchLocal, which must have been for `current`.

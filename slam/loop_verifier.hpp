@@ -81,6 +81,9 @@ struct LoopVerifierStats {
   int low_score = 0;    ///< ...whose best match scored below the minimum
   int ambiguous = 0;    ///< ...whose best match had a close second farther away
   int implausible = 0;  ///< ...whose correction lay outside the consistency gate
+  /// Observations with no attempt whose only candidates inside the gate were uncertain
+  /// beyond the largest window, between the searches of loops.beyond_window_every.
+  int beyond_window = 0;
   /// Of the attempts, those of the global search (loops.global), and of its proposals.
   int global_attempts = 0;
   int global_proposed = 0;
@@ -107,6 +110,7 @@ class LoopVerifier {
     ++stats_.global_attempts;
   }
   void NoteGlobalProposed() { ++stats_.global_proposed; }
+  void NoteBeyondWindow() { ++stats_.beyond_window; }
   /// Counts an attempt the mapper refused before it became a hypothesis.
   void NoteRefused(MatchRefusal why) {
     // In the order of MatchRefusal.

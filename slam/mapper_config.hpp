@@ -88,6 +88,15 @@ struct LoopClosingConfig {
   double max_window_m = 6.0;
   double min_window_rad = 0.15;
   double max_window_rad = 0.5;
+  /// Candidates whose position uncertainty (3 sigma) exceeds max_window_m are searched, in
+  /// the clamped window, at every this many observations (and at every one while hypotheses
+  /// wait for confirmation); in between, an observation searches only the candidates its
+  /// windows cover. 1: at every observation; 0: never. The pruned graph projects wider
+  /// uncertainties than the full one, so most of pruned's searches grow to the largest
+  /// window: 5 makes pruned's loop closing cheaper than standard's on freiburg-079, but
+  /// loses closures on logs it was not tuned on (acapulco, the infinite corridor), so the
+  /// default stays 1 (BENCHMARKS.md "Loop closing's cost by mode").
+  int beyond_window_every = 1;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
   /// The submap is made of its nodes' surfaces, by the incremental matcher's rule
   /// (IncrementalConfig::surfaces), rather than of their return points (false before

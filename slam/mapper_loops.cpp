@@ -14,7 +14,8 @@ namespace lifelong::slam {
 
 void Mapper::State::CloseLoops(NodeId current, StepStats* stats) {
   std::vector<LoopHypothesis> accepted;
-  const std::optional<LoopAttempt> local = closer.SearchLocal(View(), current, &accepted);
+  const std::optional<LoopAttempt> local =
+      closer.SearchLocal(View(), current, observations, &accepted);
   if (local) stats->loop_attempts.push_back(*local);
   // Each closure goes in as it was accepted: AddLoopEdge may optimize before the next.
   for (const LoopHypothesis& h : accepted) AddLoopEdge(h);

@@ -65,7 +65,7 @@ TEST(LoopCloser, ClosesTheReturnOntoTheStartAndCorrectsItsOffset) {
   const Chain chain(Pose2(0.25, -0.15, 0.04));
   LoopCloser closer(Immediate(), IncrementalConfig{});
   std::vector<LoopHypothesis> accepted;
-  const auto attempt = closer.SearchLocal(chain.View(), 12, &accepted);
+  const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
   ASSERT_TRUE(attempt.has_value());
   EXPECT_EQ(attempt->search, LoopAttempt::Search::kLocal);
   EXPECT_FALSE(attempt->refused.has_value());
@@ -94,9 +94,41 @@ TEST(LoopCloser, NoCandidateNoAttempt) {
   lc.min_path_separation_m = 100.0;
   LoopCloser closer(lc, IncrementalConfig{});
   std::vector<LoopHypothesis> accepted;
-  EXPECT_FALSE(closer.SearchLocal(chain.View(), 12, &accepted).has_value());
+  EXPECT_FALSE(closer.SearchLocal(chain.View(), 12, 0, &accepted).has_value());
   EXPECT_TRUE(accepted.empty());
   EXPECT_EQ(closer.stats().attempts, 0);
+}
+
+TEST(LoopCloser, CandidatesBeyondTheLargestWindowAreSearchedAtEveryNthObservationOnly) {
+  // The chain's 12 odometry edges leave the start about 0.3 m uncertain (3 sigma beyond a
+  // 0.35 m window) relative to the return.
+  const Chain chain(Pose2(0.1, 0.05, 0.0));
+  LoopClosingConfig lc = Immediate();
+  lc.min_window_m = 0.1;
+  lc.max_window_m = 0.35;
+  lc.beyond_window_every = 3;
+  LoopCloser closer(lc, IncrementalConfig{});
+  std::vector<LoopHypothesis> accepted;
+  EXPECT_FALSE(closer.SearchLocal(chain.View(), 12, 1, &accepted).has_value());
+  EXPECT_FALSE(closer.SearchLocal(chain.View(), 12, 2, &accepted).has_value());
+  EXPECT_EQ(closer.stats().beyond_window, 2);
+  EXPECT_EQ(closer.stats().attempts, 0);
+  const auto wide = closer.SearchLocal(chain.View(), 12, 3, &accepted);
+  ASSERT_TRUE(wide.has_value());
+  EXPECT_DOUBLE_EQ(wide->window_m, 0.35);  // clamped
+  EXPECT_EQ(closer.stats().attempts, 1);
+
+  lc.beyond_window_every = 0;  // never
+  LoopCloser never(lc, IncrementalConfig{});
+  for (int obs = 0; obs < 4; ++obs) {
+    EXPECT_FALSE(never.SearchLocal(chain.View(), 12, obs, &accepted).has_value());
+  }
+  EXPECT_EQ(never.stats().beyond_window, 4);
+
+  lc.max_window_m = 6.0;  // the same uncertainty inside the window: searched every time
+  LoopCloser inside(lc, IncrementalConfig{});
+  EXPECT_TRUE(inside.SearchLocal(chain.View(), 12, 1, &accepted).has_value());
+  EXPECT_EQ(inside.stats().beyond_window, 0);
 }
 
 TEST(LoopCloser, TheHookSeesEveryHypothesisBeforeTheVerifier) {
@@ -109,7 +141,7 @@ TEST(LoopCloser, TheHookSeesEveryHypothesisBeforeTheVerifier) {
     h->injected = true;
   });
   std::vector<LoopHypothesis> accepted;
-  closer.SearchLocal(chain.View(), 12, &accepted);
+  closer.SearchLocal(chain.View(), 12, 0, &accepted);
   EXPECT_EQ(calls, 1);
   ASSERT_EQ(accepted.size(), 1u);
   EXPECT_TRUE(accepted.front().injected);

@@ -97,7 +97,7 @@ struct VideoArgs {
 
 // Mapper settings: the defaults, or a YAML file over them (configs/default.yaml).
 lifelong::slam::MapperConfig MapperSettings(const std::string& config_path) {
-  return config_path.empty() ? lifelong::slam::DefaultMapperConfig()
+  return config_path.empty() ? lifelong::slam::MapperConfig{}
                              : lifelong::eval::LoadMapperConfig(config_path);
 }
 

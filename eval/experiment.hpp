@@ -26,7 +26,7 @@ struct GroundTruth {
 
 struct ExperimentConfig {
   std::vector<slam::PruningMode> modes{slam::PruningMode::kNone, slam::PruningMode::kChowLiu};
-  slam::MapperConfig mapper = slam::DefaultMapperConfig();
+  slam::MapperConfig mapper;
   std::string out_dir;
   std::string source;                ///< scenario or log path, for the summary
   std::optional<std::int64_t> seed;  ///< simulation seed

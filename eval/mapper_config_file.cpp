@@ -11,15 +11,15 @@
 #include <set>
 #include <utility>
 
-#include "eval/mapper_config_fields.hpp"
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
+#include "slam/mapper_config_fields.hpp"
 #include "slam/scan_matcher.hpp"
 
 namespace lifelong::eval {
 namespace {
 
-using namespace config_fields;  // NOLINT: the fields are this file's vocabulary
+using namespace slam::config_fields;  // NOLINT: the fields are this file's vocabulary
 
 /// Keys that look like settings but are deliberately not in the file.
 const std::map<std::string, std::string>& Hints() {
@@ -176,65 +176,22 @@ class Reader {
   std::set<std::string> used_;
 };
 
-// The products of settings that size a matcher's allocations (slam::EstimateFootprint), for
-// the incremental matcher and for the loop closer's widest and refining searches: refused at
-// load, naming the fields, instead of a bad_alloc minutes into a run.
-void CheckMatcherFootprint(const std::string& name, const YAML::Node& at, const std::string& where,
-                           const slam::MatcherConfig& m, double window_m, const char* window_key,
-                           double window_rad, const char* window_rad_key) {
-  const slam::MatcherFootprint f = slam::EstimateFootprint(m, window_m, window_rad);
-  const auto gib = [](double bytes) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.3g GiB", bytes / 1073741824.0);
-    return std::string(buf);
-  };
-  const std::string limit = gib(slam::kMaxMatcherBytes);
-  if (f.table_bytes > slam::kMaxMatcherBytes) {
-    throw InputError(
-        name, LineOf(at),
-        std::string(window_key) + ", " + where + ".resolution_m, " + where + ".coarse_factor",
-        "the matcher's tables over this window would take " + gib(f.table_bytes) + ", more than " +
-            limit + ": a narrower window or coarser cells");
+// The line to blame for a problem Validate found: the first field it names, or the
+// deepest section of it the file has (a bound across settings may come from defaults).
+int LineOfField(const YAML::Node& root, const std::string& fields) {
+  const std::string first = fields.substr(0, fields.find(','));
+  YAML::Node at = root;
+  std::size_t start = 0;
+  while (start <= first.size()) {
+    const std::size_t dot = first.find('.', start);
+    const std::string key = first.substr(start, dot == std::string::npos ? dot : dot - start);
+    const YAML::Node next = at.IsMap() ? static_cast<const YAML::Node&>(at)[key] : YAML::Node();
+    if (!next) break;
+    at = next;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
   }
-  if (f.frontier_bytes > slam::kMaxMatcherBytes) {
-    throw InputError(name, LineOf(at),
-                     std::string(window_key) + ", " + window_rad_key + ", " + where +
-                         ".angular_step_rad, " + where + ".resolution_m",
-                     "the matcher's search frontier (rotations x blocks) would take " +
-                         gib(f.frontier_bytes) + ", more than " + limit +
-                         ": narrower windows, a coarser step or a larger coarse_factor");
-  }
-}
-
-// Every node keeps its place descriptor (rings x sectors floats) while the global search is
-// on: 10^4 bins is 40 kB a node, 400 MB for 10^4 nodes.
-constexpr int kMaxDescriptorBins = 10000;
-
-void CheckFootprints(const std::string& name, const YAML::Node& root, const slam::MapperConfig& c) {
-  const slam::PlaceDescriptorConfig& d = c.loops.global.descriptor;
-  if (static_cast<long long>(d.rings) * d.sectors > kMaxDescriptorBins) {
-    const YAML::Node loops = root["loops"];
-    throw InputError(name, LineOf(loops ? loops : root), "loops.global.rings, loops.global.sectors",
-                     "a place descriptor of " + std::to_string(d.rings) + " x " +
-                         std::to_string(d.sectors) + " bins is kept for every node: at most " +
-                         std::to_string(kMaxDescriptorBins) + " bins");
-  }
-  const YAML::Node none;
-  const YAML::Node inc = root["incremental"] ? root["incremental"] : none;
-  const YAML::Node loops = root["loops"] ? root["loops"] : none;
-  CheckMatcherFootprint(
-      name, inc ? inc : root, "incremental.matcher", c.incremental.matcher,
-      c.incremental.matcher.linear_window_m, "incremental.matcher.linear_window_m",
-      c.incremental.matcher.angular_window_rad, "incremental.matcher.angular_window_rad");
-  CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
-                        c.loops.max_window_m, "loops.max_window_m", c.loops.max_window_rad,
-                        "loops.max_window_rad");
-  CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
-                        c.loops.global.linear_window_m, "loops.global.linear_window_m",
-                        c.loops.global.angular_window_rad, "loops.global.angular_window_rad");
-  CheckMatcherFootprint(name, loops ? loops : root, "loops.matcher", c.loops.matcher,
-                        c.loops.refine_window_m, "loops.refine_window_m", c.loops.refine_window_rad,
-                        "loops.refine_window_rad");
+  return LineOf(at);
 }
 
 slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
@@ -245,7 +202,11 @@ slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
   Reader reader(name, root, "");
   VisitConfig(reader, config);
   reader.RejectUnknown();
-  CheckFootprints(name, root, config);
+  // The reader has checked every key against its range; what is left are the bounds across
+  // settings.
+  if (const std::optional<slam::ConfigProblem> problem = slam::Validate(config)) {
+    throw InputError(name, LineOfField(root, problem->fields), problem->fields, problem->message);
+  }
   return config;
 }
 

@@ -23,12 +23,12 @@ namespace lifelong::eval {
 /// Reads `path` and applies it on top of `base`: settings the file does not give keep the
 /// value of `base` (pruning.mode always does). An empty file gives `base`.
 slam::MapperConfig LoadMapperConfig(const std::string& path,
-                                    const slam::MapperConfig& base = slam::DefaultMapperConfig());
+                                    const slam::MapperConfig& base = slam::MapperConfig{});
 
 /// Same, from a YAML text; `name` stands for the file name in error messages.
 slam::MapperConfig LoadMapperConfigFromString(
     const std::string& yaml, const std::string& name,
-    const slam::MapperConfig& base = slam::DefaultMapperConfig());
+    const slam::MapperConfig& base = slam::MapperConfig{});
 
 /// Every setting of `config` (except those listed above) as a YAML document that
 /// LoadMapperConfigFromString reads back to an equal config (doubles in shortest exact form).

@@ -4,13 +4,13 @@
 #include <string>
 #include <vector>
 
-#include "eval/mapper_config_fields.hpp"
 #include "eval/mapper_config_file.hpp"
+#include "slam/mapper_config_fields.hpp"
 
 namespace lifelong::eval {
 namespace {
 
-using namespace config_fields;  // NOLINT: the fields are this file's vocabulary
+using namespace slam::config_fields;  // NOLINT: the fields are this file's vocabulary
 
 class Writer {
  public:

@@ -27,22 +27,6 @@ Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& del
 
 }  // namespace
 
-MapperConfig DefaultMapperConfig() {
-  MapperConfig c;
-  // Warm-started Gauss-Newton: near the optimum it needs no damping, and every LM trial
-  // step costs a factorization (3x the back-end time on corridor_100, BENCHMARKS.md).
-  c.optimizer.method = OptimizerMethod::kGaussNewton;
-  c.optimizer.max_iterations = 5;
-  c.optimizer.evaluate_final_chi2 = false;
-  c.optimizer.relative_tolerance = 1e-5;
-  c.optimizer.robust_kernel = RobustKernel::kCauchy;
-  c.optimizer.robust_delta = 3.0;
-  c.optimizer.linear_initialization = false;  // warm-started from the previous optimum
-  c.loops.matcher.resolution_m = 0.05;
-  c.loops.matcher.sigma_m = 0.08;
-  return c;
-}
-
 Mapper::Mapper(const MapperConfig& config) : state_(std::make_unique<State>(config)) {}
 Mapper::~Mapper() = default;
 

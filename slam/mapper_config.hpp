@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,15 @@ struct GlobalLoopConfig {
   PlaceDescriptorConfig descriptor;
 };
 
+/// The loop closer's matcher: a finer table and a wider likelihood field than the
+/// incremental one's (its windows are set per attempt).
+inline MatcherConfig LoopMatcherDefaults() {
+  MatcherConfig m;
+  m.resolution_m = 0.05;
+  m.sigma_m = 0.08;
+  return m;
+}
+
 struct LoopClosingConfig {
   bool enabled = true;
   double min_path_separation_m = 6.0;  ///< nodes closer along the graph are not candidates
@@ -119,7 +129,7 @@ struct LoopClosingConfig {
   double refine_window_rad = 0.05;
   double consistency_chi2 = 16.27;  ///< 99.9 % gate (3 dof) of the correction
   int min_reference_points = 60;    ///< submap points the search can reach, fewer: no match
-  MatcherConfig matcher;            ///< windows are set per attempt
+  MatcherConfig matcher = LoopMatcherDefaults();  ///< windows are set per attempt
   double optimize_edge_chi2 = 9.0;  ///< optimize at once when the new edge's chi2 exceeds
   int optimize_every = 10;          ///< ...and at least every this many closures
   /// Group verification: a closure enters the graph only once enough others confirm it
@@ -177,18 +187,43 @@ struct PruningConfig {
   bool robust_marginal = true;
 };
 
+/// The mapper's back-end: warm-started Gauss-Newton with a robust Cauchy kernel on the loop
+/// edges. Near the optimum it needs no damping, and every LM trial step costs a
+/// factorization (3x the back-end time on corridor_100, BENCHMARKS.md).
+inline OptimizerParams OnlineOptimizerParams() {
+  OptimizerParams p;
+  p.method = OptimizerMethod::kGaussNewton;
+  p.max_iterations = 5;
+  p.evaluate_final_chi2 = false;
+  p.relative_tolerance = 1e-5;
+  p.robust_kernel = RobustKernel::kCauchy;
+  p.robust_delta = 3.0;
+  p.linear_initialization = false;  // warm-started from the previous optimum
+  return p;
+}
+
+/// Every setting of the mapper, with its default: configs/default.yaml sets each key to the
+/// value here (a test keeps them equal). Allowed values: mapper_config_fields.hpp.
 struct MapperConfig {
   KeyframeConfig keyframes;
   IncrementalConfig incremental;
   LoopClosingConfig loops;
   PruningConfig pruning;
   GridMapConfig grid;
-  OptimizerParams optimizer;
+  OptimizerParams optimizer = OnlineOptimizerParams();
   double map_move_epsilon_m = 0.01;     ///< re-render a scan when its node moved this much...
   double map_move_epsilon_rad = 0.005;  ///< ...or turned this much
 };
 
-/// Defaults for the mapper: robust Cauchy kernel on loop edges, a few LM iterations.
-MapperConfig DefaultMapperConfig();
+/// A setting outside its allowed values: the dotted field(s) and why.
+struct ConfigProblem {
+  std::string fields;
+  std::string message;
+};
+
+/// The first setting of `config` outside its allowed values (mapper_config_fields.hpp), or a
+/// combination whose matcher tables or place descriptors would exceed their memory bounds;
+/// nothing when it is valid. The Mapper refuses an invalid config.
+std::optional<ConfigProblem> Validate(const MapperConfig& config);
 
 }  // namespace lifelong::slam

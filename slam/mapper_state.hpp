@@ -68,7 +68,8 @@ struct ScanAnchor {
 };
 
 struct Mapper::State {
-  /// std::invalid_argument when the config names an unknown policy or sparsifier.
+  /// std::invalid_argument when the config is invalid (Validate) or names an unknown policy
+  /// or sparsifier.
   explicit State(const MapperConfig& c);
 
   MapperConfig config;

@@ -21,6 +21,9 @@
 namespace lifelong::slam {
 Mapper::State::State(const MapperConfig& c)
     : config(c), closer(c.loops, c.incremental), map(c.grid) {
+  if (const std::optional<ConfigProblem> problem = Validate(c)) {
+    throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
+  }
   if (c.pruning.mode == PruningMode::kNone) return;
   prune_state.policy =
       MakeRemovalPolicy(c.pruning.policy, {c.pruning.gain_threshold_bits, c.pruning.node_budget});

@@ -155,7 +155,7 @@ void ChangeMatcher(slam::MatcherConfig* m, bool windows) {
 
 /// A valid config that differs from the defaults in every setting the file holds.
 MapperConfig AllChanged() {
-  MapperConfig c = slam::DefaultMapperConfig();
+  MapperConfig c;
   c.keyframes = {0.25, 0.2};
   c.incremental.local_map_nodes = 5;
   c.incremental.point_spacing_m = 0.04;
@@ -233,14 +233,13 @@ const std::string kDir = std::string(LIFELONG_SOURCE_DIR) + "/configs/";
 
 TEST(MapperConfigFile, DefaultYamlSetsEveryKeyToTheCodeDefaults) {
   // Loaded on top of a config where everything differs, so a key missing from the file or a
-  // value that drifted from DefaultMapperConfig() both show.
-  ExpectSameConfig(LoadMapperConfig(kDir + "default.yaml", AllChanged()),
-                   slam::DefaultMapperConfig());
+  // value that drifted from MapperConfig{} both show.
+  ExpectSameConfig(LoadMapperConfig(kDir + "default.yaml", AllChanged()), slam::MapperConfig{});
 }
 
 TEST(MapperConfigFile, PrunedBudgetExampleSetsOnlyThePruning) {
   const MapperConfig loaded = LoadMapperConfig(kDir + "pruned_budget.yaml");
-  MapperConfig expected = slam::DefaultMapperConfig();
+  MapperConfig expected;
   expected.pruning.radius_m = 8.0;
   expected.pruning.node_budget = 150;
   ExpectSameConfig(loaded, expected);
@@ -248,7 +247,7 @@ TEST(MapperConfigFile, PrunedBudgetExampleSetsOnlyThePruning) {
 
 TEST(MapperConfigFile, SeedMarginalizationExampleRestoresTheSeedsRules) {
   const MapperConfig loaded = LoadMapperConfig(kDir + "seed_marginalization.yaml");
-  MapperConfig expected = slam::DefaultMapperConfig();
+  MapperConfig expected;
   expected.pruning.gain_threshold_bits = 0.0;
   expected.pruning.max_edges_per_node = 0.0;
   expected.pruning.factor_means = slam::FactorMeans::kEstimate;
@@ -290,9 +289,8 @@ TEST(MapperConfigFile, EnumsAreReadByName) {
 }
 
 TEST(MapperConfigFile, RoundTripsTheDefaultsAndAChangedConfig) {
-  const std::string defaults = MapperConfigToYaml(slam::DefaultMapperConfig());
-  ExpectSameConfig(LoadMapperConfigFromString(defaults, "rt", AllChanged()),
-                   slam::DefaultMapperConfig());
+  const std::string defaults = MapperConfigToYaml(slam::MapperConfig{});
+  ExpectSameConfig(LoadMapperConfigFromString(defaults, "rt", AllChanged()), slam::MapperConfig{});
   const MapperConfig changed = AllChanged();
   ExpectSameConfig(LoadMapperConfigFromString(MapperConfigToYaml(changed), "rt"), changed);
 }

@@ -58,7 +58,7 @@ struct MapRun {
 };
 
 MapRun MapWith(PruningMode mode, const std::function<void(MapperConfig*)>& change = {}) {
-  MapperConfig config = DefaultMapperConfig();
+  MapperConfig config;
   config.pruning.mode = mode;
   if (change) change(&config);
   Mapper mapper(config);
@@ -90,7 +90,7 @@ TEST(Mapper, StandardKeepsEveryNodeAndTracksTheTruth) {
 
 // Every loop-closing attempt ends in exactly one place: a refusal or a proposed hypothesis.
 TEST(Mapper, LoopClosingFunnelAddsUp) {
-  Mapper mapper(DefaultMapperConfig());
+  Mapper mapper(MapperConfig{});
   for (const Observation& o : Corridor3()) mapper.AddObservation(o);
   const LoopVerifierStats& s = mapper.loop_verification();
   EXPECT_GT(s.proposed, 0);
@@ -122,7 +122,7 @@ TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {
 // pruning.round_period: nodes go only at every n-th graph node, and the gains stay exact
 // across the skipped ones.
 TEST(Mapper, PrunesOnlyAtEveryNthNode) {
-  MapperConfig config = DefaultMapperConfig();
+  MapperConfig config;
   config.pruning.mode = PruningMode::kChowLiu;
   config.pruning.round_period = 3;
   Mapper mapper(config);
@@ -147,7 +147,7 @@ TEST(Mapper, PrunesOnlyAtEveryNthNode) {
 // gains that forgot changes made while a node was outside the pruning neighbourhood failed
 // this).
 TEST(Mapper, RememberedGainsStayExact) {
-  MapperConfig config = DefaultMapperConfig();
+  MapperConfig config;
   config.pruning.mode = PruningMode::kChowLiu;
   config.pruning.radius_m = 3.0;  // nodes leave and re-enter the neighbourhood often
   Mapper mapper(config);
@@ -164,9 +164,9 @@ TEST(Mapper, RememberedGainsStayExact) {
 // (Re-rendering before every round moved each scan once per closure.) The gains stay exact
 // for the map as rendered.
 TEST(Mapper, PruningOptimizesWithoutReRenderingTheMap) {
-  MapperConfig config = DefaultMapperConfig();
+  MapperConfig config;
   config.pruning.mode = PruningMode::kChowLiu;
-  config.loops.optimize_edge_chi2 = std::numeric_limits<double>::infinity();
+  config.loops.optimize_edge_chi2 = std::numeric_limits<double>::max();  // never
   config.loops.optimize_every = 1000000;
   Mapper mapper(config);
   int closures = 0, optimized = 0, synced = 0;
@@ -225,7 +225,7 @@ TEST(WeighRobustEdges, ScalesTheLoopEdgesInsideTheSetByTheirKernelWeight) {
 // before, the graph stays connected, and a tight budget ends with fewer edges than none.
 TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {
   const auto run = [](double budget) {
-    MapperConfig config = DefaultMapperConfig();
+    MapperConfig config;
     config.pruning.mode = PruningMode::kChowLiu;
     config.pruning.max_edges_per_node = budget;
     auto mapper = std::make_unique<Mapper>(config);
@@ -274,15 +274,16 @@ TEST(Mapper, AnyPolicyWithAnySparsifier) {
 }
 
 TEST(Mapper, UnknownPolicyOrSparsifierIsRefused) {
-  MapperConfig config = DefaultMapperConfig();
+  MapperConfig config;
   config.pruning.mode = PruningMode::kChowLiu;
   config.pruning.sparsifier = "chow-lui";
   EXPECT_THROW(Mapper{config}, std::invalid_argument);
   config.pruning.sparsifier.clear();
   config.pruning.policy = "gain";
   EXPECT_THROW(Mapper{config}, std::invalid_argument);
-  config.pruning.mode = PruningMode::kNone;  // standard mode uses neither
-  EXPECT_NO_THROW(Mapper{config});
+  // Standard mode uses neither, but a config naming an unknown one is invalid (Validate).
+  config.pruning.mode = PruningMode::kNone;
+  EXPECT_THROW(Mapper{config}, std::invalid_argument);
 }
 
 TEST(Mapper, ModeNamesRoundTrip) {

@@ -1,7 +1,7 @@
-// Every mapper setting once, for the config file's reader (mapper_config_file.cpp) and
-// writer (mapper_config_writer.cpp): the Visit* functions walk the MapperConfig, calling
-// the visitor's Section, Number, Int, PowerOfTwo, Bool, Enum, Choice and Ordered for each
-// key. Internal to eval.
+// Every mapper setting once, with its key and its allowed values: the Visit* functions walk
+// the MapperConfig, calling the visitor's Section, Number, Int, PowerOfTwo, Bool, Enum,
+// Choice and Ordered for each key. Three visitors walk them: Validate (mapper_config_check.cpp),
+// and eval's config file reader and writer, which only map keys to fields and back.
 #pragma once
 
 #include <charconv>
@@ -15,7 +15,7 @@
 #include "slam/removal_policy.hpp"
 #include "slam/sparsifier.hpp"
 
-namespace lifelong::eval::config_fields {
+namespace lifelong::slam::config_fields {
 
 using slam::LinearSolver;
 using slam::OptimizerMethod;
@@ -236,4 +236,4 @@ inline std::string ShortestDouble(double v) {
   return s;
 }
 
-}  // namespace lifelong::eval::config_fields
+}  // namespace lifelong::slam::config_fields

@@ -68,7 +68,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   stats.gamma = s.graph.Gamma();
   stats.graph_bytes = s.graph.Bytes();
   stats.loop_closures_total = static_cast<int>(s.loops.size());
-  stats.nodes_removed_total = static_cast<int>(s.prune_state.marginalizations.size());
+  stats.nodes_removed_total = s.pruner ? static_cast<int>(s.pruner->marginalizations().size()) : 0;
   if (on_observation) on_observation(stats);
   return stats;
 }
@@ -240,16 +240,18 @@ void Mapper::set_hypothesis_hook(std::function<void(LoopHypothesis*, const Value
 const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return state_->loops; }
 const LoopVerifierStats& Mapper::loop_verification() const { return state_->closer.stats(); }
 const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
-  return state_->prune_state.marginalizations;
+  static const std::vector<MarginalizationRecord> kNone;
+  return state_->pruner ? state_->pruner->marginalizations() : kNone;
 }
 const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
-  return state_->prune_state.sparsifications;
+  static const std::vector<SparsificationRecord> kNone;
+  return state_->pruner ? state_->pruner->sparsifications() : kNone;
 }
 int Mapper::observations() const { return state_->observations; }
 
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
-  if (!state_->prune_state.active()) return worst;
+  if (!state_->pruner) return worst;
   for (const auto& [id, data] : state_->nodes) {
     const double fresh =
         state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));

@@ -18,6 +18,7 @@
 #include "slam/loop_closer.hpp"
 #include "slam/mapper.hpp"
 #include "slam/pose_graph.hpp"
+#include "slam/pruner.hpp"
 #include "slam/pruning_state.hpp"
 #include "slam/removal_policy.hpp"
 #include "slam/scan_matcher.hpp"
@@ -76,8 +77,9 @@ struct Mapper::State {
   LoopCloser closer;
   std::vector<LoopClosureRecord> loops;  ///< closures put into the graph, in order
   int since_optimize = 0;                ///< closures added since the last optimization
-  int since_sync = 0;  ///< closures added since the map was last re-rendered (SyncMap)
-  PruningState prune_state;
+  int since_sync = 0;            ///< closures added since the map was last re-rendered (SyncMap)
+  std::optional<Pruner> pruner;  ///< in the pruned modes: which node goes, what replaces it
+  PruningState prune_state;      ///< in the pruned modes: the scans' information gains
   PoseGraph graph;
   Values values;
   GridMap map;
@@ -139,11 +141,6 @@ struct Mapper::State {
   void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
-  /// While the graph holds more than max_edges_per_node edges per node, replaces the edges
-  /// in the Markov blanket (node + neighbours) with the most edges beyond a tree by their
-  /// Chow-Liu tree, or, when every blanket is a tree, those of the two-hop neighbourhood with
-  /// the most; at most a few per call. (The pruned graph is small: every node is considered.)
-  void KeepEdgeBudget();
 };
 
 }  // namespace lifelong::slam

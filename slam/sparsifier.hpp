@@ -84,6 +84,10 @@ class Sparsifier {
   virtual std::string Name() const = 0;
   /// Node k must exist in graph and values, with all its neighbours.
   virtual Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const = 0;
+  /// Whether its factors are the Chow-Liu tree's pose edges, so that the mapper's edge budget
+  /// (Chow-Liu trees of the densest blankets, PruningConfig::max_edges_per_node) keeps the
+  /// graph of the same kind.
+  virtual bool LeavesTrees() const { return false; }
   /// Whether ReplaceSet can replace sets (then SparsifyOffline hands it each connected set).
   virtual bool ReplacesSets() const { return false; }
   /// A method whose factors are the exact marginal (exact, glc-dense) does not depend on the

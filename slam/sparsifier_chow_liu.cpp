@@ -10,6 +10,7 @@ class ChowLiuSparsifier final : public Sparsifier {
  public:
   explicit ChowLiuSparsifier(const SparsifierConfig& config) : config_(config) {}
   std::string Name() const override { return "chow-liu"; }
+  bool LeavesTrees() const override { return true; }
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
     Replacement r = FromMarginalization(
         Marginalize(graph, values, k, MarginalizationMethod::kChowLiu, config_.blanket));

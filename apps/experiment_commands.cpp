@@ -21,6 +21,7 @@
 #include "eval/mapper_config_file.hpp"
 #include "eval/simulation.hpp"
 #include "eval/staged_output.hpp"
+#include "eval/world_state.hpp"
 #include "io/carmen_log.hpp"
 #include "io/output_path.hpp"
 #include "io/relations.hpp"
@@ -139,8 +140,7 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   if (!config.first_pass_s) {
     std::cerr << "note: the tour never visits every destination: no first pass is reported\n";
   }
-  const lifelong::eval::GroundTruth truth{
-      lifelong::eval::TrueWalls(scenario.world, run.duration_s)};
+  const lifelong::eval::GroundTruth truth = lifelong::eval::TruthOf(scenario.world, run.duration_s);
   PrintResult(lifelong::eval::RunExperiment(run.observations, truth, config), out);
   if (outcome.collided || outcome.timed_out) {
     std::cerr << (outcome.Failed() ? "error: " : "note: ") << "the robot did not drive "

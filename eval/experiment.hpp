@@ -21,7 +21,12 @@ namespace lifelong::eval {
 
 /// What is known of the truth (simulation only).
 struct GroundTruth {
-  std::vector<Segment> walls;  ///< static walls and doors, world frame
+  /// Every surface that stood during the run (TrueWalls), world frame: blur and recall.
+  std::vector<Segment> walls;
+  /// The surfaces standing at the run's end (WallsAt) and those gone by then (GoneSurfaces):
+  /// current_blur, current_recall and stale_cells. Empty gone: the world did not change.
+  std::vector<Segment> walls_now;
+  std::vector<Segment> gone;
 };
 
 struct ExperimentConfig {

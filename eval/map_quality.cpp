@@ -145,6 +145,32 @@ BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& wal
   return out;
 }
 
+double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
+                  const std::vector<Segment>& now, const Pose2& T_truth_est,
+                  const BlurConfig& config) {
+  const std::vector<cv::Point2d> occ = OccupiedCentres(map, T_truth_est, config.occupied_threshold);
+  if (occ.empty() || gone.empty()) return 0.0;
+  Box box;
+  for (const std::vector<Segment>* set : {&gone, &now}) {
+    for (const Segment& s : *set) box.Add(s.x0, s.y0), box.Add(s.x1, s.y1);
+  }
+  for (const cv::Point2d& p : occ) box.Add(p.x, p.y);
+  const double res = map.resolution_m;
+  const Raster r = MakeRaster(box, res, (config.recall_tolerance_cells + 2.0) * res, map.origin_x_m,
+                              map.origin_y_m);
+  const cv::Mat gone_dist = DistanceCells(DrawWalls(r, gone));
+  const cv::Mat now_dist = now.empty() ? cv::Mat() : DistanceCells(DrawWalls(r, now));
+  std::size_t stale = 0;
+  for (const cv::Point2d& p : occ) {
+    const cv::Point c = r.Cell(p.x, p.y);
+    const bool near_gone = gone_dist.at<float>(c) <= config.recall_tolerance_cells;
+    const bool near_now =
+        !now_dist.empty() && now_dist.at<float>(c) <= config.recall_tolerance_cells;
+    stale += (near_gone && !near_now) ? 1 : 0;
+  }
+  return static_cast<double>(stale) / static_cast<double>(occ.size());
+}
+
 OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
                              double margin_m) {
   Box box;

@@ -43,6 +43,14 @@ BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& wal
                        const Pose2& T_truth_est, const std::vector<Pose2>& true_trajectory,
                        const BlurConfig& config = {});
 
+/// The share of the map's occupied cells that show a surface gone by the end of the run
+/// (issue #35 stale_cells): within tolerance_cells of a `gone` segment (GoneSurfaces) and
+/// farther than that from every segment standing `now` (WallsAt the end). 0 when the map has
+/// no occupied cell or nothing is gone.
+double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
+                  const std::vector<Segment>& now, const Pose2& T_truth_est,
+                  const BlurConfig& config = {});
+
 /// An occupancy grid holding the true walls rasterized (p = 1 on walls, 0 elsewhere) on
 /// the given geometry. Useful as truth/map.pgm and as a perfect map in tests.
 OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,

@@ -167,6 +167,17 @@ std::optional<RpeSummary> Rpe1m(const std::vector<Pose2>& estimate,
   return RpeSummary{static_cast<std::int64_t>(r.count), r.trans_rmse_m, r.rot_rmse_deg};
 }
 
+BlurSummary Summarize(const BlurResult& blur) {
+  BlurSummary bs;
+  if (blur.occupied_cells > 0) {
+    bs.mean_cm = blur.mean_cm;
+    bs.p95_cm = blur.p95_cm;
+  }
+  bs.thickness = blur.thickness;
+  if (blur.wall_cells > 0) bs.recall = blur.recall;
+  return bs;
+}
+
 }  // namespace
 
 Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
@@ -182,15 +193,11 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   summary->ate_rmse_m = ate.rmse_m;
   summary->rpe_1m = Rpe1m(estimate, true_poses);
   const Pose2 T_truth_est = AlignSE2(estimate, true_poses);
-  const BlurResult blur = ComputeBlur(grid, truth.walls, T_truth_est, true_poses);
-  BlurSummary bs;
-  if (blur.occupied_cells > 0) {
-    bs.mean_cm = blur.mean_cm;
-    bs.p95_cm = blur.p95_cm;
+  summary->blur = Summarize(ComputeBlur(grid, truth.walls, T_truth_est, true_poses));
+  if (!truth.gone.empty()) {
+    summary->current_blur = Summarize(ComputeBlur(grid, truth.walls_now, T_truth_est, true_poses));
+    summary->stale_cells = StaleShare(grid, truth.gone, truth.walls_now, T_truth_est);
   }
-  bs.thickness = blur.thickness;
-  if (blur.wall_cells > 0) bs.recall = blur.recall;
-  summary->blur = bs;
   // Loop closures against the true poses of the observations (every node ever created,
   // in creation order: the timeline has one row per observation).
   std::map<double, int> index_of_stamp;

@@ -63,6 +63,14 @@ json ModeJson(const ModeSummary& m) {
     Put(b, "recall", m.blur->recall);
     j["blur"] = b;
   }
+  if (m.current_blur) {
+    json b;
+    Put(b, "mean_cm", m.current_blur->mean_cm);
+    Put(b, "p95_cm", m.current_blur->p95_cm);
+    j["current_blur"] = b;
+    Put(j, "current_recall", m.current_blur->recall);
+    Put(j, "stale_cells", m.stale_cells);
+  }
   Put(j, "ate_rmse_m", m.ate_rmse_m);
   if (m.rpe_1m) {
     j["rpe_1m"] = {{"count", m.rpe_1m->count},

@@ -79,7 +79,12 @@ struct ModeSummary {
   std::optional<double> scans_kept_pct;
   std::optional<double> peak_rss_mb;
   std::optional<std::int64_t> graph_bytes_final;
-  std::optional<BlurSummary> blur;   ///< ground truth only
+  std::optional<BlurSummary> blur;  ///< ground truth only
+  /// Against the world as it stands at the run's end (issue #35), when it changed during the
+  /// run: blur and recall of the present, and the share of occupied cells showing a surface
+  /// gone by then.
+  std::optional<BlurSummary> current_blur;
+  std::optional<double> stale_cells;
   std::optional<double> ate_rmse_m;  ///< ground truth or a reference trajectory
   std::optional<RpeSummary> rpe_1m;  ///< ground truth or a reference trajectory
   /// Reference trajectory: estimate poses scored against it (others had no reference pose).

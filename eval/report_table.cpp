@@ -238,6 +238,14 @@ const std::vector<TableRow>& SummaryTableRows() {
        "occupied cells per metre of true wall (thick, blurred walls score high)"},
       {kMap, "/blur/recall", "wall recall", "%", 100, false,
        "true-wall cells within 8 m of the path with an occupied cell within 1.5 cells"},
+      {kMap, "/current_blur/mean_cm", "blur of the present, mean", "cm", 1, true,
+       "as blur, against the walls, doors and boxes as they stand at the run's end (a "
+       "changing world only)"},
+      {kMap, "/current_recall", "wall recall of the present", "%", 100, false,
+       "as wall recall, against the surfaces standing at the run's end"},
+      {kMap, "/stale_cells", "stale cells", "%", 100, true,
+       "occupied cells showing a door or box that is gone by the run's end (within 1.5 "
+       "cells of it and of nothing standing then)"},
       {kMap, "/map_entropy_bits", "map entropy", "bits", 1, true,
        "sum of the binary entropy H(p) over the known cells (seed eq. 5.8)"},
       {kMap, "/occupied_share", "occupied share", "%", 100, false, "known cells with p >= 0.65"},

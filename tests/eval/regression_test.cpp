@@ -10,6 +10,7 @@
 
 #include "eval/experiment.hpp"
 #include "eval/simulation.hpp"
+#include "eval/world_state.hpp"
 #include "sim/scenario.hpp"
 
 namespace lifelong::eval {
@@ -37,8 +38,8 @@ nlohmann::json RunScenario(const std::string& name) {
   fs::remove_all(config.out_dir);
   config.source = name;
   config.first_pass_s = FirstPassEnd(scenario, run);
-  const RunSummary summary = RunExperiment(
-      run.observations, GroundTruth{TrueWalls(scenario.world, run.duration_s)}, config);
+  const RunSummary summary =
+      RunExperiment(run.observations, TruthOf(scenario.world, run.duration_s), config);
   for (const char* file : {"summary.json", "config.yaml", "standard/trajectory.tum",
                            "pruned/trajectory.tum", "pruned/map.pgm", "truth/map.pgm"}) {
     EXPECT_TRUE(fs::exists(fs::path(config.out_dir) / file)) << file;

@@ -1,0 +1,27 @@
+// The simulated world's state at a time (issue #35): which doors are closed and where the
+// boxes stand then, as segments, and the surfaces that stood during a run but are gone at
+// its end. The change-aware map metrics (current_blur, current_recall, stale_cells) score a
+// map against these.
+#pragma once
+
+#include <vector>
+
+#include "eval/experiment.hpp"
+#include "sim/world.hpp"
+#include "types/segment.hpp"
+
+namespace lifelong::eval {
+
+/// Static walls, the doors closed at t_s and the boxes where they stand at t_s.
+std::vector<Segment> WallsAt(const sim::World& world, double t_s);
+
+/// Surfaces that stood at some time in [0, end_s] and not at end_s: doors closed during the
+/// run and open at its end, and every earlier pose of a box that stands elsewhere at the end.
+/// Empty when nothing in the world changed by end_s (then the map's present is its past).
+std::vector<Segment> GoneSurfaces(const sim::World& world, double end_s);
+
+/// The ground truth of a simulated run that ends at end_s: every surface that stood
+/// (TrueWalls), those standing at the end, and those gone by then.
+GroundTruth TruthOf(const sim::World& world, double end_s);
+
+}  // namespace lifelong::eval

@@ -43,15 +43,24 @@ struct SweepArgs {
   long run_cell_index = -1;
 };
 
+/// `score --truth PATH --trajectory FILE [--map MAP.yaml] [--name NAME] -o OUT`; the last
+/// three repeat, one per system (eval/score.hpp).
+struct ScoreArgs {
+  std::string truth, out;
+  std::vector<std::string> trajectories, maps, names;
+  std::string command_line;
+};
+
 /// Each returns the process exit code (0, 1, 2 or 130) after printing any error.
 struct CommandTable {
   int (*run)(const RunArgs&);
   int (*simulate)(const SimulateArgs&);
   int (*replay)(const ReplayArgs&);
   int (*sweep)(const SweepArgs&);  ///< apps/sweep_command.cpp
+  int (*score)(const ScoreArgs&);  ///< apps/score_command.cpp
 };
 
 /// The module's one exported symbol: `extern "C" const CommandTable* <this>()`.
-inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v3";
+inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v4";
 
 }  // namespace lifelong::apps

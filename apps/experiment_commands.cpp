@@ -13,6 +13,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/score_command.hpp"
 #include "apps/sweep_command.hpp"
 #include "apps/video_module.hpp"
 #include "eval/console_table.hpp"
@@ -279,12 +280,12 @@ int ReplayCommand(const ReplayArgs& a) {
   return Command([&] { return Replay(a); });
 }
 
-const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand, SweepCommand};
+const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand, SweepCommand, ScoreCommand};
 
 }  // namespace
 }  // namespace lifelong::apps
 
 extern "C" __attribute__((visibility("default"))) const lifelong::apps::CommandTable*
-lifelong_command_table_v3() {
+lifelong_command_table_v4() {
   return &lifelong::apps::kTable;
 }

@@ -295,10 +295,24 @@ int main(int argc, char** argv) {
                      "chow-liu, glc, glc-dense, nfr-*: replace only the factors at the removed "
                      "node and keep those among its neighbours as they are");
 
+  lifelong::apps::ScoreArgs score_args;
+  score_args.command_line = command_line;
+  auto* score = app.add_subcommand(
+      "score", "score any system's trajectory (and map) on a run or a log with our metrics");
+  score
+      ->add_option("--truth", score_args.truth,
+                   "a run's directory, a truth directory, a simulated log, or a corrected log")
+      ->required();
+  score->add_option("--trajectory", score_args.trajectories, "TUM or `t x y theta` (repeatable)")
+      ->required();
+  score->add_option("--map", score_args.maps, "its map, PGM + YAML (map_server): one per system");
+  score->add_option("--name", score_args.names, "its name (default: the file's stem)");
+  score->add_option("-o,--out", score_args.out, "output directory")->required()->check(kNonEmpty);
+
   if (const auto unknown = UnknownCommand(argc, argv, app)) {
-    std::cerr
-        << "error: unknown command " << *unknown
-        << " (known: run, simulate, replay, optimize, sparsify, sweep; see lifelong --help)\n";
+    std::cerr << "error: unknown command " << *unknown
+              << " (known: run, simulate, replay, score, optimize, sparsify, sweep; see lifelong "
+                 "--help)\n";
     return 2;
   }
   try {
@@ -359,6 +373,7 @@ int main(int argc, char** argv) {
   if (*run) return commands->run(run_args);
   if (*simulate) return commands->simulate(sim_args);
   if (*sweep) return commands->sweep(sweep_args);
+  if (*score) return commands->score(score_args);
   if (*replay) {
     replay_args.offset_given = offset_option->count() > 0;
     return commands->replay(replay_args);

@@ -26,6 +26,7 @@
 #include "eval/stopwatch.hpp"
 #include "eval/trajectory_figure.hpp"
 #include "eval/video.hpp"
+#include "eval/world_state.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -59,8 +60,9 @@ void AddVideoFrame(FrameSink* sink, const Observation& obs, const std::optional<
 
 void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth,
                 const ExperimentConfig& config) {
-  WriteTruthFiles((fs::path(config.out_dir) / "truth").string(), stream, truth.walls,
-                  config.mapper.grid.resolution_m);
+  const std::string dir = (fs::path(config.out_dir) / "truth").string();
+  WriteTruthFiles(dir, stream, truth.walls, config.mapper.grid.resolution_m);
+  WriteTruthWalls(dir + "/", truth);
 }
 
 }  // namespace

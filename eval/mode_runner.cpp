@@ -16,6 +16,7 @@
 #include "eval/run_maps.hpp"
 #include "eval/stopwatch.hpp"
 #include "eval/trajectory_reference.hpp"
+#include "eval/truth_metrics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -157,29 +158,6 @@ std::vector<LoopCurvePoint> ModeRunner::LoopCurve(const LoopClosureResult& truth
   return curve;
 }
 
-namespace {
-
-// RPE over 1 m of reference path; absent when the path is shorter than that.
-std::optional<RpeSummary> Rpe1m(const std::vector<Pose2>& estimate,
-                                const std::vector<Pose2>& reference) {
-  const DistanceRpe r = ComputeRpeAtDistance(estimate, reference, 1.0);
-  if (r.count == 0) return std::nullopt;
-  return RpeSummary{static_cast<std::int64_t>(r.count), r.trans_rmse_m, r.rot_rmse_deg};
-}
-
-BlurSummary Summarize(const BlurResult& blur) {
-  BlurSummary bs;
-  if (blur.occupied_cells > 0) {
-    bs.mean_cm = blur.mean_cm;
-    bs.p95_cm = blur.p95_cm;
-  }
-  bs.thickness = blur.thickness;
-  if (blur.wall_cells > 0) bs.recall = blur.recall;
-  return bs;
-}
-
-}  // namespace
-
 Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
                                const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                                ModeSummary* summary) {
@@ -189,15 +167,7 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
     true_poses.push_back(*o.T_world_robot_true);
     true_at[o.stamp_s] = *o.T_world_robot_true;
   }
-  const AteResult ate = ComputeAte(estimate, true_poses);
-  summary->ate_rmse_m = ate.rmse_m;
-  summary->rpe_1m = Rpe1m(estimate, true_poses);
-  const Pose2 T_truth_est = AlignSE2(estimate, true_poses);
-  summary->blur = Summarize(ComputeBlur(grid, truth.walls, T_truth_est, true_poses));
-  if (!truth.gone.empty()) {
-    summary->current_blur = Summarize(ComputeBlur(grid, truth.walls_now, T_truth_est, true_poses));
-    summary->stale_cells = StaleShare(grid, truth.gone, truth.walls_now, T_truth_est);
-  }
+  const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &truth, &grid, summary);
   // Loop closures against the true poses of the observations (every node ever created,
   // in creation order: the timeline has one row per observation).
   std::map<double, int> index_of_stamp;

@@ -197,11 +197,15 @@ std::string Header(const ReportPage& page) {
     h << (i ? ", " : "") << "<span class=\"swatch\" style=\"background:" << ModeColourHex(modes[i])
       << "\"></span>" << HtmlEscape(modes[i]);
   }
-  h << "</p>\n<nav><a href=\"#plots\">Runtime</a><a href=\"#maps\">Maps</a>"
-       "<a href=\"#summary\">Key figures</a>";
+  // Links to the sections the page has.
+  h << "</p>\n<nav><a href=\"#plots\">"
+    << HtmlEscape(page.lead_heading.substr(0, page.lead_heading.find(' '))) << "</a>";
+  if (!page.map_cards.empty() || !page.maps.empty()) h << "<a href=\"#maps\">Maps</a>";
+  h << "<a href=\"#summary\">Key figures</a>";
   if (page.reference) h << "<a href=\"#published\">Published figures</a>";
-  h << "<a href=\"#more\">More plots</a><a href=\"#files\">Files</a>"
-       "<a href=\"#provenance\">Provenance</a></nav>\n";
+  if (!page.figures.empty()) h << "<a href=\"#more\">More plots</a>";
+  if (!page.files.empty()) h << "<a href=\"#files\">Files</a>";
+  h << "<a href=\"#provenance\">Provenance</a></nav>\n";
   return h.str();
 }
 
@@ -214,12 +218,14 @@ std::string ReportHtmlText(const ReportPage& page) {
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
     << HtmlEscape(page.title) << "</title>\n<style>" << kCss << "</style></head><body>\n"
     << Header(page) << ReportAlertsHtml(page);
-  h << "<h2 id=\"plots\">Runtime and graph size</h2>\n";
+  h << "<h2 id=\"plots\">" << HtmlEscape(page.lead_heading) << "</h2>\n";
   if (!page.figures_note.empty()) {
     h << "<div class=\"notice\">" << HtmlEscape(page.figures_note) << "</div>\n";
   }
   h << "<div class=\"row lead-plots\">\n" << Figures(page.lead_figures) << "</div>\n";
-  h << "<h2 id=\"maps\">Maps and graphs</h2>\n" << Legend(page) << MapGrid(page);
+  if (!page.map_cards.empty() || !page.maps.empty()) {
+    h << "<h2 id=\"maps\">Maps and graphs</h2>\n" << Legend(page) << MapGrid(page);
+  }
   if (!page.maps_note.empty()) h << "<p class=\"note\">" << HtmlEscape(page.maps_note) << "</p>\n";
   h << "<h2 id=\"summary\">Key figures</h2>\n"
     << KeyTableHtml(page.summary, page.mode_order)
@@ -230,7 +236,8 @@ std::string ReportHtmlText(const ReportPage& page) {
     h << "<h2 id=\"more\">More plots</h2>\n<div class=\"row plots\">\n"
       << Figures(page.figures) << "</div>\n";
   }
-  h << Files(page) << Provenance(page) << "</body></html>\n";
+  if (!page.files.empty()) h << Files(page);
+  h << Provenance(page) << "</body></html>\n";
   return h.str();
 }
 

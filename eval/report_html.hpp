@@ -47,22 +47,23 @@ struct ReportLinkGroup {
 struct ReportPage {
   std::string title = "lifelong report";
   RunSummary summary;
-  std::vector<std::string> mode_order;      ///< the run's --modes order; the first is the baseline
-  std::string command_line;                 ///< as typed
-  std::string working_dir;                  ///< where it was typed
-  std::string machine;                      ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
-  BuildInfo build;                          ///< version and commit of the program
-  std::string written_utc;                  ///< e.g. "2026-12-01 16:23 UTC"
-  std::vector<ReportFigure> lead_figures;   ///< time per observation, nodes, edges: first
-  std::vector<ReportFigure> figures;        ///< the other plots, further down
-  std::vector<ReportLink> failed_figures;   ///< plots gnuplot failed on: figure, its log
-  std::string figures_note;                 ///< why there is no plot at all; empty: there are
-  std::map<std::string, std::string> maps;  ///< mode -> its map image (set while running)
-  std::vector<ReportMapCard> map_cards;     ///< truth first, then the modes in order
-  int map_columns = 1;                      ///< cards per row of the maps' grid
-  std::string maps_note;                    ///< the maps' content, frame and scale
-  bool true_path_in_maps = false;           ///< the legend lists the true trajectory
-  std::vector<ReportLinkGroup> files;       ///< links to the output files
+  std::vector<std::string> mode_order;  ///< the run's --modes order; the first is the baseline
+  std::string command_line;             ///< as typed
+  std::string working_dir;              ///< where it was typed
+  std::string machine;                  ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
+  BuildInfo build;                      ///< version and commit of the program
+  std::string written_utc;              ///< e.g. "2026-12-01 16:23 UTC"
+  std::string lead_heading = "Runtime and graph size";  ///< over the lead figures
+  std::vector<ReportFigure> lead_figures;     ///< time per observation, nodes, edges: first
+  std::vector<ReportFigure> figures;          ///< the other plots, further down
+  std::vector<ReportLink> failed_figures;     ///< plots gnuplot failed on: figure, its log
+  std::string figures_note;                   ///< why there is no plot at all; empty: there are
+  std::map<std::string, std::string> maps;    ///< mode -> its map image (set while running)
+  std::vector<ReportMapCard> map_cards;       ///< truth first, then the modes in order
+  int map_columns = 1;                        ///< cards per row of the maps' grid
+  std::string maps_note;                      ///< the maps' content, frame and scale
+  bool true_path_in_maps = false;             ///< the legend lists the true trajectory
+  std::vector<ReportLinkGroup> files;         ///< links to the output files
   std::optional<ReferenceFigures> reference;  ///< published figures for this log
 };
 

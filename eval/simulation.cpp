@@ -1,5 +1,7 @@
 #include "eval/simulation.hpp"
 
+#include "eval/world_state.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include "eval/map_quality.hpp"
 #include "eval/progress.hpp"
 #include "eval/raster_limit.hpp"
+#include "eval/world_state.hpp"
 #include "io/carmen_log.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
@@ -204,8 +207,10 @@ void WriteSimulation(const std::string& log_path, const sim::Scenario& scenario,
     odom_path.poses.push_back(T_world_odom * o.T_odom_robot);
   }
   io::WriteTum(stem + ".truth.tum", truth);
-  const std::vector<Segment> walls = TrueWalls(scenario.world, run.duration_s);
+  const GroundTruth truth_walls = TruthOf(scenario.world, run.duration_s);
+  const std::vector<Segment>& walls = truth_walls.walls;
   io::WritePgmMap(stem + ".truth.pgm", RasterizeWalls(walls, resolution_m));
+  WriteTruthWalls(stem + ".truth.", truth_walls);
   DrawConfig draw;
   draw.world_resolution_m = resolution_m;
   WriteWorldPng(stem + ".png", walls, {true_path, odom_path}, draw);

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cstddef>
 
+#include <filesystem>
+
 #include "eval/simulation.hpp"
+#include "io/segments_file.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -68,6 +71,24 @@ std::vector<Segment> GoneSurfaces(const sim::World& world, double end_s) {
 
 GroundTruth TruthOf(const sim::World& world, double end_s) {
   return {TrueWalls(world, end_s), WallsAt(world, end_s), GoneSurfaces(world, end_s)};
+}
+
+void WriteTruthWalls(const std::string& prefix, const GroundTruth& truth) {
+  io::WriteSegments(prefix + "walls.tsv", truth.walls);
+  if (truth.gone.empty()) return;
+  io::WriteSegments(prefix + "walls_now.tsv", truth.walls_now);
+  io::WriteSegments(prefix + "gone.tsv", truth.gone);
+}
+
+std::optional<GroundTruth> ReadTruthWalls(const std::string& prefix) {
+  if (!std::filesystem::exists(prefix + "walls.tsv")) return std::nullopt;
+  GroundTruth truth;
+  truth.walls = io::ReadSegments(prefix + "walls.tsv");
+  if (std::filesystem::exists(prefix + "gone.tsv")) {
+    truth.walls_now = io::ReadSegments(prefix + "walls_now.tsv");
+    truth.gone = io::ReadSegments(prefix + "gone.tsv");
+  }
+  return truth;
 }
 
 }  // namespace lifelong::eval

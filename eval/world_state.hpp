@@ -4,6 +4,8 @@
 // map against these.
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "eval/experiment.hpp"
@@ -23,5 +25,12 @@ std::vector<Segment> GoneSurfaces(const sim::World& world, double end_s);
 /// The ground truth of a simulated run that ends at end_s: every surface that stood
 /// (TrueWalls), those standing at the end, and those gone by then.
 GroundTruth TruthOf(const sim::World& world, double end_s);
+
+/// Writes the truth's segments as `prefix` + walls.tsv, and, when the world changed,
+/// walls_now.tsv and gone.tsv (io/segments_file.hpp): a run's truth/ and a simulated log's
+/// LOG-stem.truth.* files.
+void WriteTruthWalls(const std::string& prefix, const GroundTruth& truth);
+/// Reads what WriteTruthWalls wrote; nothing when `prefix` + walls.tsv does not exist.
+std::optional<GroundTruth> ReadTruthWalls(const std::string& prefix);
 
 }  // namespace lifelong::eval

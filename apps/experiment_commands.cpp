@@ -88,7 +88,7 @@ int Simulate(const std::string& scenario_path, const std::string& out) {
     std::cout << "collision at t = " << c.stamp_s << " s with " << c.what << " at ("
               << c.T_world_robot.x << ", " << c.T_world_robot.y << ")\n";
   }
-  std::cout << "wrote " << out << " and its .truth.tum, .truth.pgm/.yaml and .png\n";
+  std::cout << "wrote " << out << " and its .truth.tum, .truth.pgm/.yaml, .truth.*.tsv and .png\n";
   return lifelong::eval::Outcome(scenario, run).Failed() ? 1 : 0;
 }
 

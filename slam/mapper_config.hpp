@@ -11,6 +11,7 @@
 #include "slam/marginalization.hpp"
 #include "slam/optimizer.hpp"
 #include "slam/place_descriptor.hpp"
+#include "slam/removal_policy.hpp"
 #include "slam/scan_matcher.hpp"
 #include "slam/sparsifier.hpp"
 
@@ -25,6 +26,7 @@ enum class PruningMode : std::uint8_t {
   kNaive,    ///< `pruned-naive`: delete and reconnect by composing constraints
   kGlc,      ///< `pruned-glc`: the same removal, sparse GLC factors (glc.hpp)
   kNfr,      ///< `pruned-nfr`: the same removal, NFR on the tree and joined pairs (nfr.hpp)
+  kOverlap,  ///< `pruned-overlap`: slam_toolbox's overlap rule picks the node, Chow-Liu trees
 };
 
 /// Parses a mode's name (PruningModeNames); false when unknown.
@@ -37,6 +39,8 @@ std::string PruningModeList();
 /// The sparsifier (sparsifier.hpp) a mode uses when pruning.sparsifier does not name one;
 /// empty for kNone.
 std::string ModeSparsifier(PruningMode mode);
+/// The removal policy (removal_policy.hpp) a mode uses; empty: pruning.policy's.
+std::string ModePolicy(PruningMode mode);
 
 struct KeyframeConfig {
   double min_translation_m = 0.5;  ///< an observation is taken after this much motion...
@@ -168,7 +172,8 @@ struct PruningConfig {
   double max_edges_per_node = 2.0;
   /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
   BlanketPolicy blanket = BlanketPolicy::kBlanket;
-  /// Which node goes (removal_policy.hpp): information-gain (the seed) or node-budget.
+  /// Which node goes (removal_policy.hpp): information-gain (the seed), node-budget or
+  /// overlap (slam_toolbox's rule; the mode pruned-overlap picks it whatever this says).
   std::string policy = "information-gain";
   /// What replaces its clique (sparsifier.hpp); empty: the mode's (ModeSparsifier).
   std::string sparsifier;
@@ -185,6 +190,8 @@ struct PruningConfig {
   /// gives it at the estimate (its IRLS weight), as in the objective the optimizer minimizes.
   /// false: with its full information (the seed).
   bool robust_marginal = true;
+  /// The overlap rule's settings (slam_toolbox's defaults).
+  OverlapRuleConfig overlap;
 };
 
 /// The mapper's back-end: warm-started Gauss-Newton with a robust Cauchy kernel on the loop

@@ -208,6 +208,16 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("max_edges_per_node", c.pruning.max_edges_per_node, kNonNegative);
     s.Enum("blanket", c.pruning.blanket, kBlankets);
     s.Choice("policy", c.pruning.policy, slam::RemovalPolicyNames(), false);
+    s.Section("overlap", [&](auto& o) {
+      slam::OverlapRuleConfig& r = c.pruning.overlap;
+      o.Number("iou_min", r.iou_min, kUnit);
+      o.Number("iou_match", r.iou_match, kUnit);
+      o.Number("removal_score", r.removal_score, kUnit);
+      o.Number("overlap_scale", r.overlap_scale, kUnit);
+      o.Number("constraint_scale", r.constraint_scale, kUnit);
+      o.Number("nearby_penalty", r.nearby_penalty, kUnit);
+      o.Int("scan_buffer", r.scan_buffer, 0);
+    });
     s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
     s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
     s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);

@@ -141,6 +141,8 @@ struct Mapper::State {
   void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
+  /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
+  ScanFootprint Footprint(NodeId id) const;
 };
 
 }  // namespace lifelong::slam

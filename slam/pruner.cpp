@@ -33,8 +33,10 @@ std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values
 
 Pruner::Pruner(PruningMode mode, const PruningConfig& config, const OptimizerParams& optimizer)
     : config_(config), optimizer_(optimizer) {
-  policy_ = MakeRemovalPolicy(config.policy, {config.gain_threshold_bits, config.node_budget});
-  if (!policy_) throw std::invalid_argument("unknown removal policy '" + config.policy + "'");
+  const std::string policy = ModePolicy(mode).empty() ? config.policy : ModePolicy(mode);
+  policy_ =
+      MakeRemovalPolicy(policy, {config.gain_threshold_bits, config.node_budget, config.overlap});
+  if (!policy_) throw std::invalid_argument("unknown removal policy '" + policy + "'");
   const std::string name = config.sparsifier.empty() ? ModeSparsifier(mode) : config.sparsifier;
   SparsifierConfig sc;
   sc.blanket = config.blanket;
@@ -71,8 +73,13 @@ Replacement Pruner::Marginalize(PoseGraph* graph, const Values& values, NodeId i
   return replacement;
 }
 
+void Pruner::BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) {
+  policy_->BeginRound(gains, view);
+}
+
 void Pruner::Remove(PoseGraph* graph, NodeId id, const Replacement& replacement, double gain_bits) {
   ApplyReplacement(graph, id, replacement);
+  policy_->Forget(id);
   removals_.push_back({id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
 }
 

@@ -55,6 +55,10 @@ void Mapper::State::Prune(NodeId current) {
     gains[id] = 0.0;
   }
   for (auto& [id, gain] : gains) gain = Gain(id);
+  RoundView view;
+  view.current = current;
+  view.footprint = [this](NodeId id) { return Footprint(id); };
+  pruner->BeginRound(gains, view);
 
   while (!gains.empty()) {
     const std::optional<NodeId> next = pruner->Next(gains, graph.NumNodes());
@@ -68,6 +72,18 @@ void Mapper::State::Prune(NodeId current) {
   }
   const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
   pruner->KeepEdgeBudget(&graph, values, [this] { return UnsettledNodes(); });
+}
+
+ScanFootprint Mapper::State::Footprint(NodeId id) const {
+  ScanFootprint f;
+  f.points = ToWorld(nodes.at(id).points, values.at(id));
+  for (const Eigen::Vector2d& p : f.points) {
+    f.box.extend(p);
+    f.centre += p;
+  }
+  if (!f.points.empty()) f.centre /= static_cast<double>(f.points.size());
+  f.edges = static_cast<int>(graph.Neighbours(id).size());
+  return f;
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {

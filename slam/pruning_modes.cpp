@@ -7,17 +7,20 @@
 namespace lifelong::slam {
 namespace {
 
+// A mode is a removal policy and a sparsifier; an empty policy is pruning.policy's.
 struct ModeEntry {
   const char* name;
   PruningMode mode;
   const char* sparsifier;
+  const char* policy;
 };
-constexpr ModeEntry kModes[] = {{"standard", PruningMode::kNone, ""},
-                                {"pruned", PruningMode::kChowLiu, "chow-liu"},
-                                {"pruned-exact", PruningMode::kExact, "exact"},
-                                {"pruned-naive", PruningMode::kNaive, "naive"},
-                                {"pruned-glc", PruningMode::kGlc, "glc"},
-                                {"pruned-nfr", PruningMode::kNfr, "nfr-subgraph"}};
+constexpr ModeEntry kModes[] = {{"standard", PruningMode::kNone, "", ""},
+                                {"pruned", PruningMode::kChowLiu, "chow-liu", ""},
+                                {"pruned-exact", PruningMode::kExact, "exact", ""},
+                                {"pruned-naive", PruningMode::kNaive, "naive", ""},
+                                {"pruned-glc", PruningMode::kGlc, "glc", ""},
+                                {"pruned-nfr", PruningMode::kNfr, "nfr-subgraph", ""},
+                                {"pruned-overlap", PruningMode::kOverlap, "chow-liu", "overlap"}};
 
 }  // namespace
 
@@ -53,6 +56,13 @@ std::string PruningModeList() {
 std::string ModeSparsifier(PruningMode mode) {
   for (const ModeEntry& e : kModes) {
     if (mode == e.mode) return e.sparsifier;
+  }
+  return "";
+}
+
+std::string ModePolicy(PruningMode mode) {
+  for (const ModeEntry& e : kModes) {
+    if (mode == e.mode) return e.policy;
   }
   return "";
 }

@@ -10,7 +10,8 @@ struct Entry {
   std::unique_ptr<RemovalPolicy> (*make)(const RemovalPolicyConfig&);
 };
 constexpr Entry kRegistry[] = {{"information-gain", MakeInformationGainPolicy},
-                               {"node-budget", MakeNodeBudgetPolicy}};
+                               {"node-budget", MakeNodeBudgetPolicy},
+                               {"overlap", MakeOverlapPolicy}};
 
 }  // namespace
 

@@ -8,6 +8,9 @@
 //                     and, with a node budget, also while the graph is over it
 //   node-budget       the lowest gain while the graph holds more than node_budget nodes,
 //                     whatever the gain (a fixed-size graph; gains only rank)
+//   overlap           slam_toolbox's lifelong rule (removal_policy_overlap.cpp): the newer of
+//                     two overlapping scans wins; each older scan's score decays by its
+//                     overlap with every new one, and it goes below a threshold
 // Ties in gain go to the smaller id, so a run is reproducible.
 #pragma once
 
@@ -18,13 +21,45 @@
 #include <string>
 #include <vector>
 
+#include <functional>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
 #include "slam/pose_graph.hpp"
 
 namespace lifelong::slam {
 
+/// The overlap rule's settings, slam_toolbox's `lifelong_*` parameters and defaults.
+struct OverlapRuleConfig {
+  double iou_min = 0.10;           ///< lifelong_minimum_score: less box overlap is no candidate
+  double iou_match = 0.85;         ///< lifelong_iou_match: above, a candidate goes at once...
+  double removal_score = 0.10;     ///< lifelong_node_removal_score: a score below it goes
+  double overlap_scale = 0.5;      ///< lifelong_overlap_score_scale
+  double constraint_scale = 0.05;  ///< lifelong_constraint_multiplier
+  double nearby_penalty = 0.001;   ///< lifelong_nearby_penalty
+  int scan_buffer = 10;            ///< Karto's scan_buffer_size: the newest scans keep their score
+};
+
 struct RemovalPolicyConfig {
   double gain_threshold_bits = 5.0;  ///< information-gain: remove at or below this
   int node_budget = 0;               ///< > 0: the most nodes the graph should hold
+  OverlapRuleConfig overlap;
+};
+
+/// A scan as the overlap rule sees it: its return points in the world frame, their
+/// axis-aligned bounding box and centre, and its node's number of graph neighbours.
+struct ScanFootprint {
+  std::vector<Eigen::Vector2d> points;
+  Eigen::AlignedBox2d box;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  int edges = 0;
+};
+
+/// What a round shows a policy besides the gains: the current node and any node's footprint.
+struct RoundView {
+  NodeId current = 0;
+  std::function<ScanFootprint(NodeId)> footprint;
 };
 
 class RemovalPolicy {
@@ -35,6 +70,13 @@ class RemovalPolicy {
   /// in the round to its gain (bits); num_nodes is the graph's size now.
   virtual std::optional<NodeId> Next(const std::map<NodeId, double>& gains,
                                      std::size_t num_nodes) const = 0;
+  /// Called once at the start of each round with its candidates (a policy that keeps state
+  /// across rounds updates it here).
+  virtual void BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) {
+    (void)gains, (void)view;
+  }
+  /// A node left the graph.
+  virtual void Forget(NodeId id) { (void)id; }
 };
 
 /// The policy called `name`, or nullptr when none has that name.
@@ -50,5 +92,6 @@ std::map<NodeId, double>::const_iterator LowestGain(const std::map<NodeId, doubl
 
 std::unique_ptr<RemovalPolicy> MakeInformationGainPolicy(const RemovalPolicyConfig& config);
 std::unique_ptr<RemovalPolicy> MakeNodeBudgetPolicy(const RemovalPolicyConfig& config);
+std::unique_ptr<RemovalPolicy> MakeOverlapPolicy(const RemovalPolicyConfig& config);
 
 }  // namespace lifelong::slam

@@ -127,6 +127,13 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.nfr_chord_ratio, b.pruning.nfr_chord_ratio);
   EXPECT_EQ(a.pruning.factor_means, b.pruning.factor_means);
   EXPECT_EQ(a.pruning.robust_marginal, b.pruning.robust_marginal);
+  EXPECT_EQ(a.pruning.overlap.iou_min, b.pruning.overlap.iou_min);
+  EXPECT_EQ(a.pruning.overlap.iou_match, b.pruning.overlap.iou_match);
+  EXPECT_EQ(a.pruning.overlap.removal_score, b.pruning.overlap.removal_score);
+  EXPECT_EQ(a.pruning.overlap.overlap_scale, b.pruning.overlap.overlap_scale);
+  EXPECT_EQ(a.pruning.overlap.constraint_scale, b.pruning.overlap.constraint_scale);
+  EXPECT_EQ(a.pruning.overlap.nearby_penalty, b.pruning.overlap.nearby_penalty);
+  EXPECT_EQ(a.pruning.overlap.scan_buffer, b.pruning.overlap.scan_buffer);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
@@ -209,7 +216,8 @@ MapperConfig AllChanged() {
                slam::NfrChords::kMutualInformation,
                0.5,
                slam::FactorMeans::kMarginalMean,
-               true};
+               true,
+               {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5}};
   c.grid = {0.1, 6.0, 9.5, 3};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

@@ -9,7 +9,7 @@ namespace {
 const std::map<NodeId, double> kGains{{4, 9.0}, {7, 2.0}, {9, 2.0}, {12, 30.0}};
 
 TEST(RemovalPolicy, InformationGainTakesTheLowestAtOrBelowTheThreshold) {
-  const auto policy = MakeRemovalPolicy("information-gain", {5.0, 0});
+  const auto policy = MakeRemovalPolicy("information-gain", {5.0, 0, {}});
   ASSERT_NE(policy, nullptr);
   EXPECT_EQ(policy->Name(), "information-gain");
   EXPECT_EQ(policy->Next(kGains, 100), NodeId{7});  // 7 and 9 tie: the smaller id
@@ -19,18 +19,61 @@ TEST(RemovalPolicy, InformationGainTakesTheLowestAtOrBelowTheThreshold) {
 }
 
 TEST(RemovalPolicy, InformationGainAlsoRemovesPastItsBudget) {
-  const auto policy = MakeRemovalPolicy("information-gain", {0.0, 50});
+  const auto policy = MakeRemovalPolicy("information-gain", {0.0, 50, {}});
   EXPECT_EQ(policy->Next({{4, 9.0}, {12, 30.0}}, 51), NodeId{4});
   EXPECT_EQ(policy->Next({{4, 9.0}, {12, 30.0}}, 50), std::nullopt);
 }
 
 TEST(RemovalPolicy, NodeBudgetRemovesOnlyPastTheBudgetWhateverTheGain) {
-  const auto policy = MakeRemovalPolicy("node-budget", {0.0, 50});
+  const auto policy = MakeRemovalPolicy("node-budget", {0.0, 50, {}});
   ASSERT_NE(policy, nullptr);
   EXPECT_EQ(policy->Next({{4, 9.0}, {12, 30.0}}, 51), NodeId{4});
   EXPECT_EQ(policy->Next(kGains, 50), std::nullopt);  // gains of 2 bits stay within budget
-  const auto unbounded = MakeRemovalPolicy("node-budget", {0.0, 0});
+  const auto unbounded = MakeRemovalPolicy("node-budget", {0.0, 0, {}});
   EXPECT_EQ(unbounded->Next(kGains, 1000), std::nullopt);
+}
+
+// A footprint of a box of returns [x0, x1] x [y0, y1] (its corners and centre).
+ScanFootprint Box(double x0, double y0, double x1, double y1, int edges) {
+  ScanFootprint f;
+  f.points = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {0.5 * (x0 + x1), 0.5 * (y0 + y1)}};
+  for (const auto& p : f.points) f.box.extend(p);
+  f.centre = f.box.center();
+  f.edges = edges;
+  return f;
+}
+
+// slam_toolbox's rule (removal_policy_overlap.cpp) on hand-made footprints: the current
+// scan is node 100, covering [0, 10] x [0, 4].
+TEST(RemovalPolicy, OverlapRemovesTheOlderOfTwoOverlappingScans) {
+  const auto policy = MakeRemovalPolicy("overlap", {});
+  ASSERT_NE(policy, nullptr);
+  std::map<NodeId, ScanFootprint> scans;
+  scans[100] = Box(0, 0, 10, 4, 2);
+  scans[10] = Box(0, 0, 10, 4, 2);   // the same place, lightly tied: goes at once (IoU 1)
+  scans[20] = Box(2, 0, 12, 4, 4);   // overlaps 80 %, tied by four edges: decays
+  scans[30] = Box(0, 0, 10, 4, 1);   // one edge only: never a candidate
+  scans[95] = Box(0, 0, 10, 4, 2);   // within the scan buffer: keeps its score
+  scans[40] = Box(40, 0, 50, 4, 3);  // far away
+  RoundView view;
+  view.current = 100;
+  view.footprint = [&](NodeId id) { return scans.at(id); };
+  std::map<NodeId, double> gains{{10, 0.0}, {20, 0.0}, {30, 0.0}, {95, 0.0}, {40, 0.0}};
+  policy->BeginRound(gains, view);
+  EXPECT_EQ(policy->Next(gains, 200), NodeId{10});
+  gains.erase(10);
+  policy->Forget(10);
+  EXPECT_EQ(policy->Next(gains, 199), std::nullopt);  // 20's score fell from 1 to 0.799
+  // Each new scan over the same place takes o = 0.5 min(area 0.8, readings 3/5) = 0.3 and
+  // the nearby penalty off 20's score, after the small boost of its edges
+  // (k = min(o, 0.05 * (4 - 2)) = 0.1): 1 -> 0.799 -> 0.578 -> 0.335 -> 0.067 < 0.1.
+  int rounds = 1;
+  while (!policy->Next(gains, 199) && rounds < 10) {
+    policy->BeginRound(gains, view);
+    ++rounds;
+  }
+  EXPECT_EQ(rounds, 4);
+  EXPECT_EQ(policy->Next(gains, 199), NodeId{20});
 }
 
 TEST(RemovalPolicy, NamesAreTheRegistry) {

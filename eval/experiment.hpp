@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "eval/report.hpp"
 #include "eval/video.hpp"
 #include "sensor/observation.hpp"
+#include "sim/world.hpp"
 #include "slam/grid_map.hpp"
 #include "slam/mapper_config.hpp"
 #include "types/occupancy_grid.hpp"
@@ -27,6 +29,10 @@ struct GroundTruth {
   /// current_blur, current_recall and stale_cells. Empty gone: the world did not change.
   std::vector<Segment> walls_now;
   std::vector<Segment> gone;
+  /// The simulated world and the run's end, for change_recall (eval/change_recall.hpp);
+  /// none when the truth came from files.
+  std::shared_ptr<const sim::World> world;
+  double end_s = 0.0;
 };
 
 struct ExperimentConfig {

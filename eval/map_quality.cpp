@@ -171,6 +171,40 @@ double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
   return static_cast<double>(stale) / static_cast<double>(occ.size());
 }
 
+std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Segment>& segments,
+                                 const std::vector<Segment>& exclude, const Pose2& T_truth_est,
+                                 const BlurConfig& config) {
+  if (segments.empty()) return std::nullopt;
+  const std::vector<cv::Point2d> occ = OccupiedCentres(map, T_truth_est, config.occupied_threshold);
+  Box box;
+  for (const Segment& s : segments) box.Add(s.x0, s.y0), box.Add(s.x1, s.y1);
+  const double res = map.resolution_m;
+  const double margin = (config.recall_tolerance_cells + 2.0) * res;
+  const Raster r = MakeRaster(box, res, margin, map.origin_x_m, map.origin_y_m);
+  cv::Mat occ_img = r.Blank();
+  for (const cv::Point2d& p : occ) {
+    const cv::Point c = r.Cell(p.x, p.y);
+    if (r.Inside(c)) occ_img.at<uchar>(c) = 0;
+  }
+  const cv::Mat occ_dist = DistanceCells(occ_img);
+  const cv::Mat exclude_dist = exclude.empty() ? cv::Mat() : DistanceCells(DrawWalls(r, exclude));
+  const cv::Mat cells = DrawWalls(r, segments);
+  std::size_t counted = 0, shown = 0;
+  for (int row = 0; row < r.rows; ++row) {
+    for (int col = 0; col < r.cols; ++col) {
+      if (cells.at<uchar>(row, col) != 0) continue;
+      if (!exclude_dist.empty() &&
+          exclude_dist.at<float>(row, col) <= config.recall_tolerance_cells) {
+        continue;
+      }
+      ++counted;
+      shown += (!occ.empty() && occ_dist.at<float>(row, col) <= config.recall_tolerance_cells);
+    }
+  }
+  if (counted == 0) return std::nullopt;
+  return static_cast<double>(shown) / static_cast<double>(counted);
+}
+
 OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
                              double margin_m) {
   Box box;

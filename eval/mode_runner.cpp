@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "eval/change_recall.hpp"
 #include "eval/false_closures.hpp"
 #include "eval/map_quality.hpp"
 #include "eval/mode_csv.hpp"
@@ -168,6 +169,9 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
     true_at[o.stamp_s] = *o.T_world_robot_true;
   }
   const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &truth, &grid, summary);
+  if (truth.world) {
+    summary->change = ComputeChangeRecall(*truth.world, truth.end_s, stream, grid, T_truth_est);
+  }
   // Loop closures against the true poses of the observations (every node ever created,
   // in creation order: the timeline has one row per observation).
   std::map<double, int> index_of_stamp;

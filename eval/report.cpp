@@ -71,6 +71,17 @@ json ModeJson(const ModeSummary& m) {
     Put(j, "current_recall", m.current_blur->recall);
     Put(j, "stale_cells", m.stale_cells);
   }
+  if (m.change) {
+    Put(j, "change_recall", m.change->recall);
+    j["change_recall_seen"] = m.change->recent;
+    json objects = json::object();
+    for (const auto& [name, o] : m.change->objects) {
+      json e = {{"shows_present", o.shows_present}};
+      Put(e, "since_seen_s", o.since_seen_s);
+      objects[name] = e;
+    }
+    j["changes"] = objects;
+  }
   Put(j, "ate_rmse_m", m.ate_rmse_m);
   if (m.rpe_1m) {
     j["rpe_1m"] = {{"count", m.rpe_1m->count},

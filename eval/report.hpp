@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/change_recall.hpp"
 #include "eval/types.hpp"
 #include "slam/loop_verifier.hpp"
 #include "slam/pose_graph.hpp"
@@ -85,6 +86,9 @@ struct ModeSummary {
   /// gone by then.
   std::optional<BlurSummary> current_blur;
   std::optional<double> stale_cells;
+  /// Per door or box that changed during the run: whether the map shows its state at the
+  /// end (eval/change_recall.hpp); simulated runs only.
+  std::optional<ChangeRecall> change;
   std::optional<double> ate_rmse_m;  ///< ground truth or a reference trajectory
   std::optional<RpeSummary> rpe_1m;  ///< ground truth or a reference trajectory
   /// Reference trajectory: estimate poses scored against it (others had no reference pose).

@@ -243,6 +243,9 @@ const std::vector<TableRow>& SummaryTableRows() {
        "changing world only)"},
       {kMap, "/current_recall", "wall recall of the present", "%", 100, false,
        "as wall recall, against the surfaces standing at the run's end"},
+      {kMap, "/change_recall", "changes shown", "%", 100, false,
+       "doors and boxes that changed during the run and were seen in its last 10 minutes, "
+       "whose final map shows them as they stand at the end"},
       {kMap, "/stale_cells", "stale cells", "%", 100, true,
        "occupied cells showing a door or box that is gone by the run's end (within 1.5 "
        "cells of it and of nothing standing then)"},

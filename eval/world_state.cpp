@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include <filesystem>
+#include <memory>
 
 #include "eval/simulation.hpp"
 #include "io/segments_file.hpp"
@@ -70,7 +71,8 @@ std::vector<Segment> GoneSurfaces(const sim::World& world, double end_s) {
 }
 
 GroundTruth TruthOf(const sim::World& world, double end_s) {
-  return {TrueWalls(world, end_s), WallsAt(world, end_s), GoneSurfaces(world, end_s)};
+  return {TrueWalls(world, end_s), WallsAt(world, end_s), GoneSurfaces(world, end_s),
+          std::make_shared<const sim::World>(world), end_s};
 }
 
 void WriteTruthWalls(const std::string& prefix, const GroundTruth& truth) {

@@ -5,6 +5,7 @@
 
 #include "eval/map_quality.hpp"
 #include "eval/world_state.hpp"
+#include "sim/geometry.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -17,35 +18,6 @@ struct Object {
   const sim::Door* door = nullptr;
   const sim::Box* box = nullptr;
 };
-
-std::vector<Segment> BoxAt(const sim::Box& box, double t_s) {
-  sim::World one;
-  one.boxes.push_back(box);
-  for (const sim::BoxMove& m : box.moves) {
-    if (m.t_s > t_s) break;
-    one.boxes[0].center = m.center;
-    one.boxes[0].yaw_rad = m.yaw_rad;
-  }
-  return sim::BoxSegments(one);
-}
-
-double DistanceToSegment(double px, double py, const Segment& s) {
-  const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
-  const double len2 = dx * dx + dy * dy;
-  const double t =
-      len2 > 0.0 ? std::clamp(((px - s.x0) * dx + (py - s.y0) * dy) / len2, 0.0, 1.0) : 0.0;
-  return std::hypot(px - (s.x0 + t * dx), py - (s.y0 + t * dy));
-}
-
-bool Crosses(double ax, double ay, double bx, double by, const Segment& s) {
-  const auto cross = [](double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; };
-  const double rx = bx - ax, ry = by - ay, qx = s.x1 - s.x0, qy = s.y1 - s.y0;
-  const double den = cross(rx, ry, qx, qy);
-  if (std::abs(den) < 1e-12) return false;
-  const double t = cross(s.x0 - ax, s.y0 - ay, qx, qy) / den;
-  const double u = cross(s.x0 - ax, s.y0 - ay, rx, ry) / den;
-  return t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0;
-}
 
 bool Changed(const Object& o, double end_s) {
   if (o.door)
@@ -65,17 +37,17 @@ std::optional<double> LastSeen(const Object& o, const std::vector<Observation>& 
     const Pose2 T = *it->T_world_robot_true * scan.T_robot_laser;
     const bool open_door = o.door && !o.door->IsClosed(t);
     const std::vector<Segment> shape =
-        o.door ? std::vector<Segment>{o.door->segment} : BoxAt(*o.box, t);
+        o.door ? std::vector<Segment>{o.door->segment} : BoxOutlineAt(*o.box, t);
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
       const bool hit = scan.IsReturn(i);
       const double r = hit ? scan.ranges_m[i] : scan.range_max_m;
       double x = 0.0, y = 0.0;
       T.Apply(r * std::cos(scan.Bearing(i)), r * std::sin(scan.Bearing(i)), &x, &y);
       if (open_door) {
-        if (Crosses(T.x, T.y, x, y, shape[0])) return t;
+        if (sim::SegmentsIntersect({T.x, T.y, x, y}, shape[0])) return t;
       } else if (hit) {
         for (const Segment& s : shape) {
-          if (DistanceToSegment(x, y, s) <= kSeenM) return t;
+          if (sim::PointSegmentDistance({x, y}, s) <= kSeenM) return t;
         }
       }
     }
@@ -105,19 +77,8 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
     if (o.door) {
       (o.door->IsClosed(end_s) ? present : past).push_back(o.door->segment);
     } else {
-      present = BoxAt(*o.box, end_s);
-      sim::Box initial = *o.box;
-      initial.moves.clear();
-      std::vector<sim::BoxMove> poses{{0.0, o.box->center, o.box->yaw_rad}};
-      for (const sim::BoxMove& m : o.box->moves) {
-        if (m.t_s <= end_s) poses.push_back(m);
-      }
-      for (const sim::BoxMove& m : poses) {
-        initial.center = m.center;
-        initial.yaw_rad = m.yaw_rad;
-        const std::vector<Segment> outline = BoxAt(initial, 0.0);
-        past.insert(past.end(), outline.begin(), outline.end());
-      }
+      present = BoxOutlineAt(*o.box, end_s);
+      past = PastBoxOutlines(*o.box, end_s);
     }
     std::vector<Segment> others;
     for (const Segment& s : now) {
@@ -127,13 +88,11 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
         others.push_back(s);
       }
     }
-    std::vector<Segment> standing = others;
-    standing.insert(standing.end(), present.begin(), present.end());
     const std::optional<double> shown_now = present.empty()
                                                 ? std::optional<double>(1.0)
                                                 : ShownShare(map, present, others, T_truth_est);
     const std::optional<double> shown_past =
-        past.empty() ? std::optional<double>(0.0) : ShownShare(map, past, standing, T_truth_est);
+        past.empty() ? std::optional<double>(0.0) : ShownShare(map, past, now, T_truth_est);
     p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
     if (p.since_seen_s && *p.since_seen_s <= kRecentS) {
       ++out.recent;

@@ -58,9 +58,7 @@ class Reader {
     if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) {
       Fail(n, Name(key), "expected a number, got '" + Text(n) + "'");
     }
-    const bool below = (range.min_open ? v <= range.min : v < range.min) ||
-                       (range.zero_or_from > 0.0 && v != 0.0 && v < range.zero_or_from);
-    if (!std::isfinite(v) || below || v > range.max) {
+    if (!range.Admits(v)) {
       Fail(n, Name(key), std::string("must be ") + range.text + ", got " + Text(n));
     }
     value = v;

@@ -10,30 +10,36 @@
 #include "io/segments_file.hpp"
 
 namespace lifelong::eval {
-namespace {
-
-// The box's pose at t_s: its last move at or before t_s, else its initial pose.
-sim::Box BoxAt(const sim::Box& box, double t_s) {
-  sim::Box at = box;
-  for (const sim::BoxMove& m : box.moves) {
-    if (m.t_s > t_s) break;
-    at.center = m.center;
-    at.yaw_rad = m.yaw_rad;
-  }
-  return at;
-}
-
-std::vector<Segment> OutlineOf(const sim::Box& box) {
+std::vector<Segment> BoxOutlineAt(const sim::Box& box, double t_s) {
   sim::World one;
   one.boxes.push_back(box);
+  for (const sim::BoxMove& m : box.moves) {
+    if (m.t_s > t_s) break;
+    one.boxes[0].center = m.center;
+    one.boxes[0].yaw_rad = m.yaw_rad;
+  }
   return sim::BoxSegments(one);
 }
 
-bool SamePose(const sim::Box& a, const sim::Box& b) {
-  return a.center.x == b.center.x && a.center.y == b.center.y && a.yaw_rad == b.yaw_rad;
+std::vector<Segment> PastBoxOutlines(const sim::Box& box, double end_s) {
+  const auto same = [](const std::vector<Segment>& a, const std::vector<Segment>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                      [](const Segment& p, const Segment& q) {
+                        return p.x0 == q.x0 && p.y0 == q.y0 && p.x1 == q.x1 && p.y1 == q.y1;
+                      });
+  };
+  const std::vector<Segment> last = BoxOutlineAt(box, end_s);
+  std::vector<double> times{0.0};
+  for (const sim::BoxMove& m : box.moves) {
+    if (m.t_s <= end_s) times.push_back(m.t_s);
+  }
+  std::vector<Segment> out;
+  for (double t : times) {
+    const std::vector<Segment> outline = BoxOutlineAt(box, t);
+    if (!same(outline, last)) out.insert(out.end(), outline.begin(), outline.end());
+  }
+  return out;
 }
-
-}  // namespace
 
 std::vector<Segment> WallsAt(const sim::World& world, double t_s) {
   std::vector<Segment> out = sim::WallSegments(world);
@@ -41,7 +47,7 @@ std::vector<Segment> WallsAt(const sim::World& world, double t_s) {
     if (d.IsClosed(t_s)) out.push_back(d.segment);
   }
   for (const sim::Box& b : world.boxes) {
-    const std::vector<Segment> outline = OutlineOf(BoxAt(b, t_s));
+    const std::vector<Segment> outline = BoxOutlineAt(b, t_s);
     out.insert(out.end(), outline.begin(), outline.end());
   }
   return out;
@@ -56,16 +62,8 @@ std::vector<Segment> GoneSurfaces(const sim::World& world, double end_s) {
     if (closed_once && !d.IsClosed(end_s)) out.push_back(d.segment);
   }
   for (const sim::Box& b : world.boxes) {
-    const sim::Box last = BoxAt(b, end_s);
-    std::vector<sim::Box> poses{b};
-    for (const sim::BoxMove& m : b.moves) {
-      if (m.t_s <= end_s) poses.push_back(BoxAt(b, m.t_s));
-    }
-    for (const sim::Box& pose : poses) {
-      if (SamePose(pose, last)) continue;
-      const std::vector<Segment> outline = OutlineOf(pose);
-      out.insert(out.end(), outline.begin(), outline.end());
-    }
+    const std::vector<Segment> past = PastBoxOutlines(b, end_s);
+    out.insert(out.end(), past.begin(), past.end());
   }
   return out;
 }

@@ -14,6 +14,13 @@
 
 namespace lifelong::eval {
 
+/// The outline of `box` where it stands at t_s: its last move at or before t_s, else its
+/// initial pose.
+std::vector<Segment> BoxOutlineAt(const sim::Box& box, double t_s);
+
+/// The outlines of every pose `box` takes in [0, end_s] other than the one it ends in.
+std::vector<Segment> PastBoxOutlines(const sim::Box& box, double end_s);
+
 /// Static walls, the doors closed at t_s and the boxes where they stand at t_s.
 std::vector<Segment> WallsAt(const sim::World& world, double t_s);
 

@@ -30,9 +30,7 @@ class Checker {
     problem_ = child.problem_;
   }
   void Number(const char* key, double value, const Range& range) {
-    const bool below = (range.min_open ? value <= range.min : value < range.min) ||
-                       (range.zero_or_from > 0.0 && value != 0.0 && value < range.zero_or_from);
-    if (!std::isfinite(value) || below || value > range.max) {
+    if (!range.Admits(value)) {
       Fail(key, std::string("must be ") + range.text + ", got " + ShortestDouble(value));
     }
   }

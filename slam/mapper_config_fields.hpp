@@ -31,6 +31,12 @@ struct Range {
   bool min_open;
   const char* text;
   double zero_or_from = 0.0;
+  /// Whether v is an allowed value (finite, and inside the range).
+  bool Admits(double v) const {
+    const bool below =
+        (min_open ? v <= min : v < min) || (zero_or_from > 0.0 && v != 0.0 && v < zero_or_from);
+    return std::isfinite(v) && !below && v <= max;
+  }
 };
 inline constexpr Range kAnyNumber{-kInf, kInf, false, "a finite number"};
 inline constexpr Range kNonNegative{0.0, kInf, false, ">= 0"};

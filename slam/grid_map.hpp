@@ -109,8 +109,10 @@ class GridMap {
   /// Cells a scan touches from T_world_robot, traced with Bresenham from the laser origin:
   /// misses along each beam, a hit in the end cell of a return; a "no return" beam adds
   /// misses up to max_free_range_m and no hit. Beams with range <= 0 are skipped. Each cell
-  /// appears once, ordered by (y, x).
-  std::vector<CellUpdate> TouchedCells(const LaserScan& scan, const Pose2& T_world_robot) const;
+  /// appears once, ordered by (y, x). The beams in `skip` (ascending) are left out, and only
+  /// they: the others are traced as without it (a dropout stays a dropout).
+  std::vector<CellUpdate> TouchedCells(const LaserScan& scan, const Pose2& T_world_robot,
+                                       const std::vector<std::uint32_t>& skip = {}) const;
 
   void AddScan(const LaserScan& scan, const Pose2& T_world_robot);
   /// Exactly undoes AddScan with the same arguments.

@@ -145,8 +145,8 @@ void DropoutClearRanges(const LaserScan& scan, const GridMapConfig& config,
 
 }  // namespace
 
-std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
-                                              const Pose2& T_world_robot) const {
+std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2& T_world_robot,
+                                              const std::vector<std::uint32_t>& skip) const {
   const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
   const CellIndex origin = CellOf(T_world_laser.x, T_world_laser.y);
   thread_local std::vector<double> dropout_clear;
@@ -154,7 +154,10 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan,
   std::vector<Beam> beams;
   beams.reserve(scan.ranges_m.size());
   CellIndex lo = origin, hi = origin;
+  auto skipped = skip.begin();
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    while (skipped != skip.end() && *skipped < i) ++skipped;
+    if (skipped != skip.end() && *skipped == i) continue;
     const double r = scan.ranges_m[i];
     if (!(r > 0.0)) continue;
     // Returns beyond the usable range are too sparse and too noisy to map (one beam per

@@ -218,7 +218,7 @@ void Mapper::State::SyncMap() {
       } else {
         // The cells at the old pose come from the gain index, which holds them anyway.
         const std::vector<CellUpdate>& from = Untrack(id);
-        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X);
+        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X, data.retired_beams);
         MoveInMap(from, to);
         TrackAdded(id, to);
       }
@@ -253,8 +253,8 @@ double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   if (!state_->pruner) return worst;
   for (const auto& [id, data] : state_->nodes) {
-    const double fresh =
-        state_->map.InformationGain(state_->map.TouchedCells(data.scan, data.T_world_map));
+    const double fresh = state_->map.InformationGain(
+        state_->map.TouchedCells(data.scan, data.T_world_map, data.retired_beams));
     worst = std::max(worst, std::abs(fresh - state_->Gain(id)));
   }
   return worst;

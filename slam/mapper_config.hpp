@@ -27,6 +27,7 @@ enum class PruningMode : std::uint8_t {
   kGlc,      ///< `pruned-glc`: the same removal, sparse GLC factors (glc.hpp)
   kNfr,      ///< `pruned-nfr`: the same removal, NFR on the tree and joined pairs (nfr.hpp)
   kOverlap,  ///< `pruned-overlap`: slam_toolbox's overlap rule picks the node, Chow-Liu trees
+  kDpg,      ///< `pruned-dpg`: DPG-SLAM's change detection retires beams and nodes, Chow-Liu
 };
 
 /// Parses a mode's name (PruningModeNames); false when unknown.
@@ -172,8 +173,9 @@ struct PruningConfig {
   double max_edges_per_node = 2.0;
   /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
   BlanketPolicy blanket = BlanketPolicy::kBlanket;
-  /// Which node goes (removal_policy.hpp): information-gain (the seed), node-budget or
-  /// overlap (slam_toolbox's rule; the mode pruned-overlap picks it whatever this says).
+  /// Which node goes (removal_policy.hpp): information-gain (the seed), node-budget,
+  /// overlap (slam_toolbox's rule; the mode pruned-overlap picks it whatever this says) or
+  /// dpg (DPG-SLAM's change detection; the mode pruned-dpg picks it).
   std::string policy = "information-gain";
   /// What replaces its clique (sparsifier.hpp); empty: the mode's (ModeSparsifier).
   std::string sparsifier;
@@ -192,6 +194,8 @@ struct PruningConfig {
   bool robust_marginal = true;
   /// The overlap rule's settings (slam_toolbox's defaults).
   OverlapRuleConfig overlap;
+  /// The DPG rule's settings (removal_policy_dpg.cpp).
+  DpgRuleConfig dpg;
 };
 
 /// The mapper's back-end: warm-started Gauss-Newton with a robust Cauchy kernel on the loop

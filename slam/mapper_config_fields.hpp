@@ -224,6 +224,13 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       o.Number("nearby_penalty", r.nearby_penalty, kUnit);
       o.Int("scan_buffer", r.scan_buffer, 0);
     });
+    s.Section("dpg", [&](auto& d) {
+      slam::DpgRuleConfig& r = c.pruning.dpg;
+      d.Number("margin_m", r.detection.margin_m, kNonNegative);
+      d.Number("min_agreement", r.detection.min_agreement, kUnit);
+      d.Int("min_outdated_beams", r.min_outdated_beams, 1);
+      d.Number("min_active_share", r.min_active_share, kUnit);
+    });
     s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
     s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
     s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);

@@ -141,6 +141,10 @@ struct Mapper::State {
   void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
+  /// Takes beams of node id's scan out of the map and the scan (a policy found them
+  /// outdated, SampleRetirement); the gains follow.
+  void RetireBeams(NodeId id, const std::vector<std::uint32_t>& beams);
+  std::size_t retired_beams = 0;  ///< beams RetireBeams took out, in all
   /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
   ScanFootprint Footprint(NodeId id) const;
 };

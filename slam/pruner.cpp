@@ -34,8 +34,8 @@ std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values
 Pruner::Pruner(PruningMode mode, const PruningConfig& config, const OptimizerParams& optimizer)
     : config_(config), optimizer_(optimizer) {
   const std::string policy = ModePolicy(mode).empty() ? config.policy : ModePolicy(mode);
-  policy_ =
-      MakeRemovalPolicy(policy, {config.gain_threshold_bits, config.node_budget, config.overlap});
+  policy_ = MakeRemovalPolicy(
+      policy, {config.gain_threshold_bits, config.node_budget, config.overlap, config.dpg});
   if (!policy_) throw std::invalid_argument("unknown removal policy '" + policy + "'");
   const std::string name = config.sparsifier.empty() ? ModeSparsifier(mode) : config.sparsifier;
   SparsifierConfig sc;
@@ -73,8 +73,10 @@ Replacement Pruner::Marginalize(PoseGraph* graph, const Values& values, NodeId i
   return replacement;
 }
 
-void Pruner::BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) {
+std::vector<SampleRetirement> Pruner::BeginRound(const std::map<NodeId, double>& gains,
+                                                 const RoundView& view) {
   policy_->BeginRound(gains, view);
+  return policy_->TakeRetirements();
 }
 
 void Pruner::Remove(PoseGraph* graph, NodeId id, const Replacement& replacement, double gain_bits) {

@@ -42,7 +42,9 @@ class Pruner {
   Pruner(PruningMode mode, const PruningConfig& config, const OptimizerParams& optimizer);
 
   /// Starts a round over the candidates and their gains (bits); `view` shows the scans.
-  void BeginRound(const std::map<NodeId, double>& gains, const RoundView& view);
+  /// Returns the beams the policy retires (the mapper takes them out of the map).
+  std::vector<SampleRetirement> BeginRound(const std::map<NodeId, double>& gains,
+                                           const RoundView& view);
   /// The node to remove next among the candidates and their gains (bits), or none.
   std::optional<NodeId> Next(const std::map<NodeId, double>& gains, std::size_t num_nodes) const;
   /// What replaces node `id`'s clique at `values` (its loop edges weighed as the optimizer

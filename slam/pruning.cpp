@@ -5,11 +5,14 @@
 // mapper moves what it holds of the node: its scans to a neighbour, its cells out of the map.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "slam/dijkstra.hpp"
 #include "slam/mapper_state.hpp"
@@ -58,7 +61,19 @@ void Mapper::State::Prune(NodeId current) {
   RoundView view;
   view.current = current;
   view.footprint = [this](NodeId id) { return Footprint(id); };
-  pruner->BeginRound(gains, view);
+  view.scan = [this](NodeId id) {
+    const NodeData& data = nodes.at(id);
+    return ScanAt{&data.scan, &data.retired_beams, values.at(id)};
+  };
+  std::vector<SampleRetirement> retired;
+  {
+    const ScopedMs timer = Stage(&StageTimes::gain_ms);
+    retired = pruner->BeginRound(gains, view);
+  }
+  for (const SampleRetirement& r : retired) RetireBeams(r.node, r.beams);
+  if (!retired.empty()) {
+    for (auto& [id, gain] : gains) gain = Gain(id);
+  }
 
   while (!gains.empty()) {
     const std::optional<NodeId> next = pruner->Next(gains, graph.NumNodes());
@@ -84,6 +99,20 @@ ScanFootprint Mapper::State::Footprint(NodeId id) const {
   if (!f.points.empty()) f.centre /= static_cast<double>(f.points.size());
   f.edges = static_cast<int>(graph.Neighbours(id).size());
   return f;
+}
+
+void Mapper::State::RetireBeams(NodeId id, const std::vector<std::uint32_t>& beams) {
+  NodeData& data = nodes.at(id);
+  const std::vector<CellUpdate>& from = Untrack(id);
+  std::vector<std::uint32_t> all;
+  std::set_union(data.retired_beams.begin(), data.retired_beams.end(), beams.begin(), beams.end(),
+                 std::back_inserter(all));
+  data.retired_beams = std::move(all);
+  const std::vector<CellUpdate> to =
+      map.TouchedCells(data.scan, data.T_world_map, data.retired_beams);
+  MoveInMap(from, to);
+  TrackAdded(id, to);
+  retired_beams += beams.size();
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {

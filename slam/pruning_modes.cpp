@@ -20,7 +20,8 @@ constexpr ModeEntry kModes[] = {{"standard", PruningMode::kNone, "", ""},
                                 {"pruned-naive", PruningMode::kNaive, "naive", ""},
                                 {"pruned-glc", PruningMode::kGlc, "glc", ""},
                                 {"pruned-nfr", PruningMode::kNfr, "nfr-subgraph", ""},
-                                {"pruned-overlap", PruningMode::kOverlap, "chow-liu", "overlap"}};
+                                {"pruned-overlap", PruningMode::kOverlap, "chow-liu", "overlap"},
+                                {"pruned-dpg", PruningMode::kDpg, "chow-liu", "dpg"}};
 
 }  // namespace
 

@@ -11,7 +11,8 @@ struct Entry {
 };
 constexpr Entry kRegistry[] = {{"information-gain", MakeInformationGainPolicy},
                                {"node-budget", MakeNodeBudgetPolicy},
-                               {"overlap", MakeOverlapPolicy}};
+                               {"overlap", MakeOverlapPolicy},
+                               {"dpg", MakeDpgPolicy}};
 
 }  // namespace
 

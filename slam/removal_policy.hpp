@@ -11,10 +11,15 @@
 //   overlap           slam_toolbox's lifelong rule (removal_policy_overlap.cpp): the newer of
 //                     two overlapping scans wins; each older scan's score decays by its
 //                     overlap with every new one, and it goes below a threshold
+//   dpg               DPG-SLAM's rule (removal_policy_dpg.cpp): each new scan is compared
+//                     with the older ones near it (change_detection.hpp); their beams that
+//                     show a state the world has left are retired from the map, and a node
+//                     with too few active beams left goes; otherwise the seed's rule
 // Ties in gain go to the smaller id, so a run is reproducible.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -26,6 +31,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "sensor/laser_scan.hpp"
+#include "sensor/pose2.hpp"
+#include "slam/change_detection.hpp"
 #include "slam/pose_graph.hpp"
 
 namespace lifelong::slam {
@@ -41,10 +49,22 @@ struct OverlapRuleConfig {
   int scan_buffer = 10;            ///< Karto's scan_buffer_size: the newest scans keep their score
 };
 
+/// The DPG rule's settings (removal_policy_dpg.cpp).
+struct DpgRuleConfig {
+  ChangeDetectionConfig detection;
+  /// A comparison retires the older scan's outdated beams only when it finds at least this
+  /// many (fewer is noise: a beam at an edge the poses' error moved).
+  int min_outdated_beams = 3;
+  /// A node whose active beams (returns not retired) fall below this share of its returns
+  /// goes, whatever its gain: its scan mostly shows a past state.
+  double min_active_share = 0.5;
+};
+
 struct RemovalPolicyConfig {
   double gain_threshold_bits = 5.0;  ///< information-gain: remove at or below this
   int node_budget = 0;               ///< > 0: the most nodes the graph should hold
   OverlapRuleConfig overlap;
+  DpgRuleConfig dpg;
 };
 
 /// A scan as the overlap rule sees it: its return points in the world frame, their
@@ -56,10 +76,26 @@ struct ScanFootprint {
   int edges = 0;
 };
 
-/// What a round shows a policy besides the gains: the current node and any node's footprint.
+/// A node's scan, the beams of it the map leaves out, and the node's pose.
+struct ScanAt {
+  const LaserScan* scan = nullptr;
+  const std::vector<std::uint32_t>* retired = nullptr;  ///< ascending
+  Pose2 T_world_robot;
+};
+
+/// What a round shows a policy besides the gains: the current node and any node's footprint
+/// and scan.
 struct RoundView {
   NodeId current = 0;
   std::function<ScanFootprint(NodeId)> footprint;
+  std::function<ScanAt(NodeId)> scan;
+};
+
+/// Beams of a node's scan that no longer show the world (a policy's verdict): the mapper
+/// takes them out of the map and the scan.
+struct SampleRetirement {
+  NodeId node = 0;
+  std::vector<std::uint32_t> beams;  ///< ascending
 };
 
 class RemovalPolicy {
@@ -75,6 +111,8 @@ class RemovalPolicy {
   virtual void BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) {
     (void)gains, (void)view;
   }
+  /// The beams this round's BeginRound found outdated, once (then cleared).
+  virtual std::vector<SampleRetirement> TakeRetirements() { return {}; }
   /// A node left the graph.
   virtual void Forget(NodeId id) { (void)id; }
 };
@@ -93,5 +131,6 @@ std::map<NodeId, double>::const_iterator LowestGain(const std::map<NodeId, doubl
 std::unique_ptr<RemovalPolicy> MakeInformationGainPolicy(const RemovalPolicyConfig& config);
 std::unique_ptr<RemovalPolicy> MakeNodeBudgetPolicy(const RemovalPolicyConfig& config);
 std::unique_ptr<RemovalPolicy> MakeOverlapPolicy(const RemovalPolicyConfig& config);
+std::unique_ptr<RemovalPolicy> MakeDpgPolicy(const RemovalPolicyConfig& config);
 
 }  // namespace lifelong::slam

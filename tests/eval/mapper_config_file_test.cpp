@@ -134,6 +134,10 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.overlap.constraint_scale, b.pruning.overlap.constraint_scale);
   EXPECT_EQ(a.pruning.overlap.nearby_penalty, b.pruning.overlap.nearby_penalty);
   EXPECT_EQ(a.pruning.overlap.scan_buffer, b.pruning.overlap.scan_buffer);
+  EXPECT_EQ(a.pruning.dpg.detection.margin_m, b.pruning.dpg.detection.margin_m);
+  EXPECT_EQ(a.pruning.dpg.detection.min_agreement, b.pruning.dpg.detection.min_agreement);
+  EXPECT_EQ(a.pruning.dpg.min_outdated_beams, b.pruning.dpg.min_outdated_beams);
+  EXPECT_EQ(a.pruning.dpg.min_active_share, b.pruning.dpg.min_active_share);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
@@ -217,7 +221,8 @@ MapperConfig AllChanged() {
                0.5,
                slam::FactorMeans::kMarginalMean,
                true,
-               {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5}};
+               {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5},
+               {{0.25, 0.7}, 4, 0.4}};
   c.grid = {0.1, 6.0, 9.5, 3};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

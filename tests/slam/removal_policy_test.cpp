@@ -3,13 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_scans.hpp"
+
 namespace lifelong::slam {
 namespace {
 
 const std::map<NodeId, double> kGains{{4, 9.0}, {7, 2.0}, {9, 2.0}, {12, 30.0}};
 
 TEST(RemovalPolicy, InformationGainTakesTheLowestAtOrBelowTheThreshold) {
-  const auto policy = MakeRemovalPolicy("information-gain", {5.0, 0, {}});
+  const auto policy = MakeRemovalPolicy("information-gain", {5.0, 0, {}, {}});
   ASSERT_NE(policy, nullptr);
   EXPECT_EQ(policy->Name(), "information-gain");
   EXPECT_EQ(policy->Next(kGains, 100), NodeId{7});  // 7 and 9 tie: the smaller id
@@ -19,17 +21,17 @@ TEST(RemovalPolicy, InformationGainTakesTheLowestAtOrBelowTheThreshold) {
 }
 
 TEST(RemovalPolicy, InformationGainAlsoRemovesPastItsBudget) {
-  const auto policy = MakeRemovalPolicy("information-gain", {0.0, 50, {}});
+  const auto policy = MakeRemovalPolicy("information-gain", {0.0, 50, {}, {}});
   EXPECT_EQ(policy->Next({{4, 9.0}, {12, 30.0}}, 51), NodeId{4});
   EXPECT_EQ(policy->Next({{4, 9.0}, {12, 30.0}}, 50), std::nullopt);
 }
 
 TEST(RemovalPolicy, NodeBudgetRemovesOnlyPastTheBudgetWhateverTheGain) {
-  const auto policy = MakeRemovalPolicy("node-budget", {0.0, 50, {}});
+  const auto policy = MakeRemovalPolicy("node-budget", {0.0, 50, {}, {}});
   ASSERT_NE(policy, nullptr);
   EXPECT_EQ(policy->Next({{4, 9.0}, {12, 30.0}}, 51), NodeId{4});
   EXPECT_EQ(policy->Next(kGains, 50), std::nullopt);  // gains of 2 bits stay within budget
-  const auto unbounded = MakeRemovalPolicy("node-budget", {0.0, 0, {}});
+  const auto unbounded = MakeRemovalPolicy("node-budget", {0.0, 0, {}, {}});
   EXPECT_EQ(unbounded->Next(kGains, 1000), std::nullopt);
 }
 
@@ -74,6 +76,48 @@ TEST(RemovalPolicy, OverlapRemovesTheOlderOfTwoOverlappingScans) {
   }
   EXPECT_EQ(rounds, 4);
   EXPECT_EQ(policy->Next(gains, 199), NodeId{20});
+}
+
+// DPG-SLAM's rule (removal_policy_dpg.cpp): the door of a room seen closed by nodes 1 and 2,
+// open by node 9 (the current one). The door fills 29 % of node 1's view, 16 % of node 2's.
+TEST(RemovalPolicy, DpgRetiresTheOutdatedBeamsAndTheNodesThatMostlyShowThePast) {
+  testing::World closed, open;
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &closed);
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &open);
+  closed.push_back({6.0, 2.0, 6.0, 4.0});
+  std::map<NodeId, LaserScan> scans;
+  std::map<NodeId, Pose2> poses{{1, {4.0, 3.0, 0.0}}, {2, {2.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
+  scans[1] = testing::SimulateScan(closed, poses[1]);
+  scans[2] = testing::SimulateScan(closed, poses[2]);
+  scans[9] = testing::SimulateScan(open, poses[9]);
+  std::map<NodeId, std::vector<std::uint32_t>> retired;
+  RoundView view;
+  view.current = 9;
+  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &retired[id], poses.at(id)}; };
+  RemovalPolicyConfig config;
+  config.dpg.min_active_share = 0.75;
+  const auto policy = MakeRemovalPolicy("dpg", config);
+  ASSERT_NE(policy, nullptr);
+  std::map<NodeId, double> gains{{1, 50.0}, {2, 60.0}};  // both far above the threshold
+  policy->BeginRound(gains, view);
+  const std::vector<SampleRetirement> out = policy->TakeRetirements();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].node, NodeId{1});
+  EXPECT_EQ(out[1].node, NodeId{2});
+  EXPECT_GT(out[0].beams.size(), 46u);  // of 181 returns: under 75 % left
+  EXPECT_GT(out[1].beams.size(), 20u);
+  EXPECT_LT(out[1].beams.size(), 40u);
+  EXPECT_TRUE(policy->TakeRetirements().empty());  // taken once
+  // Node 1 has under 75 % of its returns left: it goes whatever its gain; node 2 stays.
+  EXPECT_EQ(policy->Next(gains, 100), NodeId{1});
+  gains.erase(1);
+  EXPECT_EQ(policy->Next(gains, 100), std::nullopt);
+  // The retired beams are no evidence: the next round retires nothing more of node 2.
+  for (const SampleRetirement& r : out) retired[r.node] = r.beams;
+  policy->BeginRound(gains, view);
+  EXPECT_TRUE(policy->TakeRetirements().empty());
+  // A scan that shows no change is judged by the seed's rule.
+  EXPECT_EQ(policy->Next({{2, 4.0}}, 100), NodeId{2});
 }
 
 TEST(RemovalPolicy, NamesAreTheRegistry) {

@@ -1,0 +1,122 @@
+// Scan-to-scan change detection (change_detection.hpp).
+#include "slam/change_detection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace lifelong::slam {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+/// Where a return of one scan falls in another: the beam at its bearing and its distance
+/// from that scan's laser; beam < 0 when it is outside the field of view or too close.
+struct Seen {
+  long beam = -1;
+  double distance_m = 0.0;
+  double x = 0.0, y = 0.0;  ///< in that scan's laser frame
+};
+
+Seen SeenFrom(const LaserScan& scan, const Pose2& T_laser_world, double wx, double wy) {
+  double x = 0.0, y = 0.0;
+  T_laser_world.Apply(wx, wy, &x, &y);
+  Seen s;
+  s.x = x;
+  s.y = y;
+  s.distance_m = std::hypot(x, y);
+  if (s.distance_m < 1e-3 || scan.angle_increment_rad <= 0.0) return s;
+  double rel = std::atan2(y, x) - scan.angle_min_rad;
+  rel -= kTwoPi * std::floor(rel / kTwoPi);
+  const long k = std::lround(rel / scan.angle_increment_rad);
+  // The beams on both sides must exist too (three beams judge a point).
+  if (k >= 1 && k + 1 < static_cast<long>(scan.ranges_m.size())) s.beam = k;
+  return s;
+}
+
+enum class Verdict { kNone, kAgree, kSeenThrough };
+
+/// How `scan` sees a point: a return along its beam within margin of it (agree), or all
+/// three beams k-1, k, k+1 returns beyond d + margin and no return of the scan within margin
+/// of the point (seen through). The last condition keeps the edge of an object, which a
+/// small error of the poses moves off the object's outline, from reading as a change.
+Verdict Judge(const LaserScan& scan, const Seen& p, double margin) {
+  const auto i = static_cast<std::size_t>(p.beam);
+  const double d = p.distance_m;
+  if (scan.IsReturn(i) && std::abs(scan.ranges_m[i] - d) <= margin) return Verdict::kAgree;
+  for (std::size_t j = i - 1; j <= i + 1; ++j) {
+    if (!scan.IsReturn(j) || scan.ranges_m[j] <= d + margin) return Verdict::kNone;
+  }
+  // The beams whose returns could lie within margin of the point: those within
+  // asin(margin / d) of its bearing (all of them when it is that close).
+  const std::size_t n = scan.ranges_m.size();
+  const double half = d > margin ? std::asin(margin / d) : kTwoPi;
+  const auto w = static_cast<std::size_t>(std::ceil(half / scan.angle_increment_rad)) + 1;
+  const std::size_t lo = i > w ? i - w : 0, hi = std::min(n - 1, i + w);
+  for (std::size_t j = lo; j <= hi; ++j) {
+    if (!scan.IsReturn(j)) continue;
+    const double r = scan.ranges_m[j], b = scan.Bearing(j);
+    if (std::hypot(r * std::cos(b) - p.x, r * std::sin(b) - p.y) <= margin) return Verdict::kNone;
+  }
+  return Verdict::kSeenThrough;
+}
+
+/// Judges every return of `from` as `to` sees it; f(from_beam, to_beam) for those seen
+/// through. Counts agreement into *c.
+template <typename F>
+void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
+           const Pose2& T_world_to, double margin, ScanComparison* c, F&& seen_through) {
+  const Pose2 T_to_world = T_world_to.Inverse();
+  for (std::size_t i = 0; i < from.ranges_m.size(); ++i) {
+    if (!from.IsReturn(i)) continue;
+    const double r = from.ranges_m[i], b = from.Bearing(i);
+    double wx = 0.0, wy = 0.0;
+    T_world_from.Apply(r * std::cos(b), r * std::sin(b), &wx, &wy);
+    const Seen s = SeenFrom(to, T_to_world, wx, wy);
+    if (s.beam < 0) continue;
+    const Verdict v = Judge(to, s, margin);
+    ++c->judged;
+    if (v == Verdict::kAgree) ++c->agree;
+    if (v == Verdict::kSeenThrough) {
+      ++c->disagree;
+      seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam));
+    }
+  }
+}
+
+void SortUnique(std::vector<std::uint32_t>* v) {
+  std::sort(v->begin(), v->end());
+  v->erase(std::unique(v->begin(), v->end()), v->end());
+}
+
+}  // namespace
+
+ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
+                            const LaserScan& newer, const Pose2& T_world_newer,
+                            const ChangeDetectionConfig& config) {
+  const Pose2 T_world_old_laser = T_world_older * older.T_robot_laser;
+  const Pose2 T_world_new_laser = T_world_newer * newer.T_robot_laser;
+  ScanComparison c;
+  // The older scan's returns that the newer one sees through: removed objects.
+  Judge(older, T_world_old_laser, newer, T_world_new_laser, config.margin_m, &c,
+        [&](std::uint32_t old_beam, std::uint32_t new_beam) {
+          c.outdated.push_back(old_beam);
+          c.news.push_back(new_beam);
+        });
+  // The newer scan's returns that the older one saw through: added objects.
+  Judge(newer, T_world_new_laser, older, T_world_old_laser, config.margin_m, &c,
+        [&](std::uint32_t new_beam, std::uint32_t old_beam) {
+          c.outdated.push_back(old_beam);
+          c.news.push_back(new_beam);
+        });
+  c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;
+  if (!c.compared) {
+    c.outdated.clear();
+    c.news.clear();
+  }
+  SortUnique(&c.outdated);
+  SortUnique(&c.news);
+  return c;
+}
+
+}  // namespace lifelong::slam

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
+
+#include <Eigen/Core>
 
 namespace lifelong::slam {
 namespace {
@@ -65,19 +68,35 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin) {
 /// through. Counts agreement into *c.
 template <typename F>
 void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
-           const Pose2& T_world_to, double margin, ScanComparison* c, F&& seen_through) {
+           const Pose2& T_world_to, const ChangeDetectionConfig& config, ScanComparison* c,
+           F&& seen_through) {
   const Pose2 T_to_world = T_world_to.Inverse();
-  for (std::size_t i = 0; i < from.ranges_m.size(); ++i) {
-    if (!from.IsReturn(i)) continue;
+  const std::size_t n = from.ranges_m.size();
+  const auto end_point = [&](std::size_t i) {
     const double r = from.ranges_m[i], b = from.Bearing(i);
-    double wx = 0.0, wy = 0.0;
-    T_world_from.Apply(r * std::cos(b), r * std::sin(b), &wx, &wy);
-    const Seen s = SeenFrom(to, T_to_world, wx, wy);
+    Eigen::Vector2d p;
+    T_world_from.Apply(r * std::cos(b), r * std::sin(b), &p.x(), &p.y());
+    return p;
+  };
+  const double min_sin = std::sin(config.min_incidence_rad);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!from.IsReturn(i)) continue;
+    const Eigen::Vector2d p = end_point(i);
+    const Seen s = SeenFrom(to, T_to_world, p.x(), p.y());
     if (s.beam < 0) continue;
-    const Verdict v = Judge(to, s, margin);
+    const Verdict v = Judge(to, s, config.margin_m);
     ++c->judged;
     if (v == Verdict::kAgree) ++c->agree;
-    if (v == Verdict::kSeenThrough) {
+    if (v != Verdict::kSeenThrough) continue;
+    // The surface at the point, from its neighbours: a beam of `to` that meets it at a
+    // grazing angle passes it by a range error of (pose error) / sin(angle), no change.
+    if (i == 0 || i + 1 >= n || !from.IsReturn(i - 1) || !from.IsReturn(i + 1)) continue;
+    const Eigen::Vector2d t = end_point(i + 1) - end_point(i - 1);
+    if (t.norm() > 4.0 * config.margin_m || t.norm() < 1e-9) continue;
+    const Eigen::Vector2d origin(T_world_to.x, T_world_to.y);
+    const Eigen::Vector2d u = (p - origin).normalized();
+    if (std::abs(u.x() * t.y() - u.y() * t.x()) / t.norm() < min_sin) continue;
+    {
       ++c->disagree;
       seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam));
     }
@@ -89,6 +108,19 @@ void SortUnique(std::vector<std::uint32_t>* v) {
   v->erase(std::unique(v->begin(), v->end()), v->end());
 }
 
+/// Keeps the beams (ascending) that lie in runs of at least min_run beams, a run allowing
+/// gaps of one beam: a change covers neighbouring beams, noise single ones.
+void KeepRuns(std::size_t min_run, std::vector<std::uint32_t>* v) {
+  std::vector<std::uint32_t> kept;
+  std::size_t start = 0;
+  for (std::size_t i = 1; i <= v->size(); ++i) {
+    if (i < v->size() && (*v)[i] - (*v)[i - 1] <= 2) continue;
+    if (i - start >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
+    start = i;
+  }
+  *v = std::move(kept);
+}
+
 }  // namespace
 
 ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
@@ -98,13 +130,13 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   const Pose2 T_world_new_laser = T_world_newer * newer.T_robot_laser;
   ScanComparison c;
   // The older scan's returns that the newer one sees through: removed objects.
-  Judge(older, T_world_old_laser, newer, T_world_new_laser, config.margin_m, &c,
+  Judge(older, T_world_old_laser, newer, T_world_new_laser, config, &c,
         [&](std::uint32_t old_beam, std::uint32_t new_beam) {
           c.outdated.push_back(old_beam);
           c.news.push_back(new_beam);
         });
   // The newer scan's returns that the older one saw through: added objects.
-  Judge(newer, T_world_new_laser, older, T_world_old_laser, config.margin_m, &c,
+  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, &c,
         [&](std::uint32_t new_beam, std::uint32_t old_beam) {
           c.outdated.push_back(old_beam);
           c.news.push_back(new_beam);
@@ -116,6 +148,8 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   }
   SortUnique(&c.outdated);
   SortUnique(&c.news);
+  KeepRuns(static_cast<std::size_t>(config.min_run_beams), &c.outdated);
+  KeepRuns(static_cast<std::size_t>(config.min_run_beams), &c.news);
   return c;
 }
 

@@ -8,10 +8,13 @@
 // outdated. The newer scan's beams that showed it are its news.
 //
 // A beam counts only when the beams on both sides of it agree (three beams beyond the
-// point), so a corner or a grazing wall, hit by one beam and missed by its neighbour, is no
-// change. And two scans are compared only when they agree where they overlap: when fewer
-// than min_agreement of the returns they both see lie within `margin_m` of each other, their
-// poses disagree (drift before a loop closure) and nothing is marked.
+// point), no return of the other scan lies within the margin of the point, the other
+// scan's beam meets the point's surface at min_incidence_rad or more, and it lies in a run
+// of min_run_beams: a corner, an object's edge or a grazing wall, hit by one beam and
+// missed by its neighbour or moved along the beam by a small pose error, is no change. And two
+// scans are compared only when they agree where they overlap: when fewer than min_agreement of the
+// returns they both see lie within `margin_m` of each other, their poses disagree (drift before a
+// loop closure) and nothing is marked.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +27,13 @@ namespace lifelong::slam {
 
 struct ChangeDetectionConfig {
   double margin_m = 0.3;  ///< a beam must pass a point by this much to see through it
+  /// A point is seen through only by a beam that meets its surface (the line through the
+  /// neighbouring returns) at this angle or more: at a grazing angle a pose error of e
+  /// moves the surface by e / sin(angle) along the beam.
+  double min_incidence_rad = 0.35;
+  /// Outdated beams count only in runs of at least this many (a run may skip one beam): a
+  /// change covers neighbouring beams, noise and pose error single ones.
+  int min_run_beams = 4;
   /// The share of the returns within each other's field of view that must agree (within
   /// margin_m) for the two scans to be compared at all.
   double min_agreement = 0.6;

@@ -248,6 +248,7 @@ const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
   return state_->pruner ? state_->pruner->sparsifications() : kNone;
 }
 int Mapper::observations() const { return state_->observations; }
+std::size_t Mapper::retired_beams() const { return state_->retired_beams; }
 
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;

@@ -228,7 +228,8 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       slam::DpgRuleConfig& r = c.pruning.dpg;
       d.Number("margin_m", r.detection.margin_m, kNonNegative);
       d.Number("min_agreement", r.detection.min_agreement, kUnit);
-      d.Int("min_outdated_beams", r.min_outdated_beams, 1);
+      d.Number("min_incidence_rad", r.detection.min_incidence_rad, kNonNegative);
+      d.Int("min_run_beams", r.detection.min_run_beams, 1);
       d.Number("min_active_share", r.min_active_share, kUnit);
     });
     s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);

@@ -52,9 +52,6 @@ struct OverlapRuleConfig {
 /// The DPG rule's settings (removal_policy_dpg.cpp).
 struct DpgRuleConfig {
   ChangeDetectionConfig detection;
-  /// A comparison retires the older scan's outdated beams only when it finds at least this
-  /// many (fewer is noise: a beam at an edge the poses' error moved).
-  int min_outdated_beams = 3;
   /// A node whose active beams (returns not retired) fall below this share of its returns
   /// goes, whatever its gain: its scan mostly shows a past state.
   double min_active_share = 0.5;

@@ -42,7 +42,7 @@ class DpgPolicy final : public RemovalPolicy {
                                             now.T_world_robot, config_.dpg.detection);
       // Retired beams are no evidence, so a comparison never finds one of them again.
       std::size_t retired = old.retired->size();
-      if (static_cast<int>(c.outdated.size()) >= config_.dpg.min_outdated_beams) {
+      if (!c.outdated.empty()) {
         retired += c.outdated.size();
         retired_.push_back({id, c.outdated});
       }

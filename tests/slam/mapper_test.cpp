@@ -273,6 +273,37 @@ TEST(Mapper, AnyPolicyWithAnySparsifier) {
   EXPECT_LT(AnchoredRmse(budget.trajectory, Corridor3()), 0.15);
 }
 
+// DPG-SLAM's rule (removal_policy_dpg.cpp) on the changing corridor, whose doors flip while
+// the robot patrols: beams are retired, the gains the index keeps stay exact through the
+// retirements (each one re-renders a scan), and the graph stays connected and accurate. On
+// the static corridor_3 it retires (almost) nothing.
+TEST(Mapper, DpgRetiresOutdatedBeamsAndKeepsTheGainsExact) {
+  const std::vector<Observation> changing =
+      Simulate(std::string(LIFELONG_SOURCE_DIR) + "/scenarios/changing_corridor_10min.yaml");
+  MapperConfig config;
+  config.pruning.mode = PruningMode::kDpg;
+  Mapper mapper(config);
+  double worst = 0.0;
+  bool connected = true;
+  mapper.on_observation = [&](const StepStats& s) {
+    if (s.observation_index % 20 == 0) {
+      worst = std::max(worst, mapper.MaxGainCacheError());
+      connected = connected && IsConnected(mapper.graph());
+    }
+  };
+  for (const Observation& o : changing) mapper.AddObservation(o);
+  mapper.Finish();
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_TRUE(connected);
+  EXPECT_GT(mapper.retired_beams(), 100u);
+  EXPECT_GT(mapper.marginalizations().size(), 0u);
+  EXPECT_LT(AnchoredRmse(mapper.Trajectory(), changing), 0.10);
+
+  Mapper still(config);
+  for (const Observation& o : Corridor3()) still.AddObservation(o);
+  EXPECT_LT(still.retired_beams(), 20u);
+}
+
 TEST(Mapper, UnknownPolicyOrSparsifierIsRefused) {
   MapperConfig config;
   config.pruning.mode = PruningMode::kChowLiu;

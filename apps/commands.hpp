@@ -51,16 +51,26 @@ struct ScoreArgs {
   std::string command_line;
 };
 
+/// `reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]` (eval/book.hpp).
+struct ReproduceArgs {
+  std::string book, profile = "quick", out;
+  int jobs = 0;  ///< 0: the number of cores
+  bool slurm = false;
+  std::string partition, time;
+  std::vector<std::string> sbatch_args;
+};
+
 /// Each returns the process exit code (0, 1, 2 or 130) after printing any error.
 struct CommandTable {
   int (*run)(const RunArgs&);
   int (*simulate)(const SimulateArgs&);
   int (*replay)(const ReplayArgs&);
-  int (*sweep)(const SweepArgs&);  ///< apps/sweep_command.cpp
-  int (*score)(const ScoreArgs&);  ///< apps/score_command.cpp
+  int (*sweep)(const SweepArgs&);          ///< apps/sweep_command.cpp
+  int (*score)(const ScoreArgs&);          ///< apps/score_command.cpp
+  int (*reproduce)(const ReproduceArgs&);  ///< apps/reproduce_command.cpp
 };
 
 /// The module's one exported symbol: `extern "C" const CommandTable* <this>()`.
-inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v4";
+inline constexpr const char* kCommandTableSymbol = "lifelong_command_table_v5";
 
 }  // namespace lifelong::apps

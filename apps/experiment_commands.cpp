@@ -13,6 +13,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
+#include "apps/reproduce_command.hpp"
 #include "apps/score_command.hpp"
 #include "apps/sweep_command.hpp"
 #include "apps/video_module.hpp"
@@ -280,12 +281,13 @@ int ReplayCommand(const ReplayArgs& a) {
   return Command([&] { return Replay(a); });
 }
 
-const CommandTable kTable{RunCommand, SimulateCommand, ReplayCommand, SweepCommand, ScoreCommand};
+const CommandTable kTable{RunCommand,   SimulateCommand, ReplayCommand,
+                          SweepCommand, ScoreCommand,    ReproduceCommand};
 
 }  // namespace
 }  // namespace lifelong::apps
 
 extern "C" __attribute__((visibility("default"))) const lifelong::apps::CommandTable*
-lifelong_command_table_v4() {
+lifelong_command_table_v5() {
   return &lifelong::apps::kTable;
 }

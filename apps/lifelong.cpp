@@ -18,6 +18,7 @@
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
 #include "apps/module_loader.hpp"
+#include "apps/reproduce_cli.hpp"
 #include "apps/sparsify_command.hpp"
 #include "io/graph_file.hpp"
 #include "io/output_path.hpp"
@@ -34,6 +35,7 @@ using lifelong::InputError;
 using lifelong::apps::CommandTable;
 
 constexpr const char* kDefaultScenario = LIFELONG_SOURCE_DIR "/scenarios/corridor_100.yaml";
+constexpr const char* kDefaultBook = LIFELONG_SOURCE_DIR "/book/chapter6.yaml";
 constexpr const char* kCommandsModule = "liblifelong_commands.so";
 
 std::string CommandLine(int argc, char** argv) {
@@ -211,6 +213,9 @@ int main(int argc, char** argv) {
                             ->check(kFiniteNumber)
                             ->default_str("detected");
 
+  lifelong::apps::ReproduceArgs reproduce_args;
+  auto* reproduce = lifelong::apps::AddReproduceCommand(app, &reproduce_args, kDefaultBook);
+
   lifelong::apps::SweepArgs sweep_args;
   std::string collect_dir;
   auto* sweep = app.add_subcommand(
@@ -311,7 +316,8 @@ int main(int argc, char** argv) {
 
   if (const auto unknown = UnknownCommand(argc, argv, app)) {
     std::cerr << "error: unknown command " << *unknown
-              << " (known: run, simulate, replay, score, optimize, sparsify, sweep; see lifelong "
+              << " (known: run, simulate, replay, score, optimize, sparsify, sweep, reproduce; see "
+                 "lifelong "
                  "--help)\n";
     return 2;
   }
@@ -332,6 +338,10 @@ int main(int argc, char** argv) {
   }
   if (unused) {
     std::cerr << "error: " << *unused << "\n";
+    return 2;
+  }
+  if (*reproduce && !lifelong::apps::ReproduceArgsProblem(reproduce_args).empty()) {
+    std::cerr << "error: " << lifelong::apps::ReproduceArgsProblem(reproduce_args) << "\n";
     return 2;
   }
   const bool slurm_only = !sweep_args.partition.empty() || !sweep_args.time.empty() ||
@@ -374,6 +384,7 @@ int main(int argc, char** argv) {
   if (*simulate) return commands->simulate(sim_args);
   if (*sweep) return commands->sweep(sweep_args);
   if (*score) return commands->score(score_args);
+  if (*reproduce) return commands->reproduce(reproduce_args);
   if (*replay) {
     replay_args.offset_given = offset_option->count() > 0;
     return commands->replay(replay_args);

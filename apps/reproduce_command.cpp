@@ -1,0 +1,117 @@
+// `lifelong reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]`:
+// each experiment of the BOOK runs as a sweep in DIR/<id>/ (resumed like any sweep: cells
+// up to date are not run again), each claim is judged on its sweep's cells, and the book
+// is written to DIR/index.html and DIR/results.md (eval/book.hpp, docs/reproduce.md).
+#include "apps/reproduce_command.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "apps/exit_codes.hpp"
+#include "eval/book.hpp"
+#include "eval/build_info.hpp"
+#include "eval/interrupt.hpp"
+#include "eval/progress.hpp"
+#include "eval/sweep_run.hpp"
+#include "eval/sweep_slurm.hpp"
+
+namespace lifelong::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Today() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buf[16];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d", &utc);
+  return buf;
+}
+
+/// The sweep report's charts of an experiment, relative to the book's directory.
+std::vector<std::string> Charts(const std::string& out, const std::string& id) {
+  std::vector<std::string> charts;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(fs::path(out) / id, ec)) {
+    if (e.path().extension() == ".png") charts.push_back(id + "/" + e.path().filename().string());
+  }
+  std::sort(charts.begin(), charts.end());
+  return charts;
+}
+
+eval::SweepOutcome RunExperiment(const ReproduceArgs& a, const eval::SweepOptions& o) {
+  if (!a.slurm) return eval::RunSweep(o);
+  eval::SlurmOptions slurm;
+  slurm.partition = a.partition;
+  slurm.time = a.time;
+  slurm.sbatch_args = a.sbatch_args;
+  return eval::RunSlurmSweep(o, slurm).sweep;
+}
+
+int Reproduce(const ReproduceArgs& a) {
+  const eval::Book book = eval::LoadBook(a.book);
+  fs::create_directories(a.out);
+  const eval::BuildInfo build = eval::GetBuildInfo();
+  eval::BookOutcome outcome;
+  outcome.profile = a.profile;
+  outcome.commit = build.commit;
+  outcome.day = Today();
+  int failed = 0;
+  for (const eval::BookExperiment& e : book.experiments) {
+    std::cout << "experiment " << e.id << ": " << e.title << "\n";
+    eval::ExperimentResult& er = outcome.experiments.emplace_back();
+    er.experiment = &e;
+    const std::string spec = a.profile == "full" ? e.full_spec : e.quick_spec;
+    if (spec.empty()) {
+      std::cout << "  not in the " << a.profile << " profile\n";
+      continue;
+    }
+    // Experiments that name the same SPEC share its sweep (its cells run once).
+    er.dir = fs::path(spec).stem().string();
+    eval::SweepOptions o;
+    o.spec = spec;
+    o.out_dir = (fs::path(a.out) / er.dir).string();
+    o.program = fs::read_symlink("/proc/self/exe").string();
+    o.program_id = build.version + " " + build.commit;
+    o.parallel =
+        a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    o.progress = &std::cerr;
+    o.terminal = ::isatty(STDERR_FILENO) == 1;
+    eval::SweepOutcome r = RunExperiment(a, o);
+    for (const eval::FailedCell& f : r.failed) {
+      std::cout << "  failed: " << f.name << " (exit " << f.exit_code << "), log " << f.log << "\n";
+    }
+    failed += static_cast<int>(r.failed.size());
+    er.tables = std::move(r.tables);
+    er.charts = Charts(a.out, er.dir);
+    for (const eval::BookClaim& c : e.claims) {
+      for (eval::ClaimResult& cr : eval::JudgeClaim(c, er.tables)) {
+        std::cout << "  " << c.claim << " [" << cr.source << "]: " << eval::VerdictText(cr.verdict)
+                  << " (" << cr.difference.n << " seeds)\n";
+        er.claims.push_back(std::move(cr));
+      }
+    }
+  }
+  eval::WriteBook(outcome, a.out);
+  std::cout << "wrote " << a.out << "/index.html and results.md\n";
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int ReproduceCommand(const ReproduceArgs& args) {
+  eval::InstallInterruptHandler(3.0);
+  return Guarded([&] { return Reproduce(args); },
+                 [](const std::exception& e) {
+                   return dynamic_cast<const eval::Interrupted*>(&e) != nullptr;
+                 });
+}
+
+}  // namespace lifelong::apps

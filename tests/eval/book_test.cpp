@@ -1,0 +1,164 @@
+// The results book of `lifelong reproduce` (eval/book.hpp): a BOOK's bad input names its
+// file, line and field; the shipped book loads in both profiles; a claim's verdict follows
+// the 95 % interval of the per-seed differences; the markdown says the profile.
+#include "eval/book.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "sensor/input_error.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSource = LIFELONG_SOURCE_DIR;
+
+std::string Write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "book_test";
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// A SPEC with standard and pruned on corridor_3.
+std::string Spec() {
+  return Write("spec.yaml", "scenarios: [" + kSource +
+                                "/scenarios/corridor_3.yaml]\nseeds: [1, 2]\n"
+                                "modes: [standard, pruned]\n");
+}
+
+std::string Experiment(const std::string& claim_extra, const std::string& experiment_extra = "") {
+  Spec();
+  return "experiments:\n"
+         "  - id: corridor\n"
+         "    title: the corridor\n"
+         "    quick: spec.yaml\n" +
+         experiment_extra +
+         "    claims:\n"
+         "      - claim: fewer nodes\n"
+         "        figure: nodes_final\n"
+         "        mode: pruned\n"
+         "        expect: lower\n" +
+         claim_extra;
+}
+
+void ExpectError(const std::string& text, int line, const std::string& field,
+                 const std::string& words) {
+  const std::string path = Write("book.yaml", text);
+  try {
+    LoadBook(path);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(Book, BadInputNamesFileLineAndField) {
+  ExpectError(Experiment("        colour: red\n"), 10, "experiments[0].claims[0].colour",
+              "unknown");
+  ExpectError(Experiment("        baseline: pruned-exact\n"), 10,
+              "experiments[0].claims[0].baseline", "runs no mode pruned-exact");
+  ExpectError(Experiment("").replace(Experiment("").find("lower"), 5, "smaller"), 9,
+              "experiments[0].claims[0].expect", "lower, higher or report");
+  ExpectError(Experiment("", "    full: missing.yaml\n"), 5, "experiments[0].full",
+              "no such sweep SPEC");
+  ExpectError(Experiment("").replace(Experiment("").find("id: corridor"), 12, "id: Corridor!"), 2,
+              "experiments[0].id", "[a-z0-9_-]+");
+  ExpectError("experiments: []\n", 1, "experiments", "non-empty");
+}
+
+TEST(Book, TheShippedBookLoadsInBothProfiles) {
+  const Book book = LoadBook(kSource + "/book/chapter6.yaml");
+  ASSERT_GE(book.experiments.size(), 5u);
+  int quick = 0, full = 0, claims = 0;
+  for (const BookExperiment& e : book.experiments) {
+    quick += e.quick_spec.empty() ? 0 : 1;
+    full += e.full_spec.empty() ? 0 : 1;
+    claims += static_cast<int>(e.claims.size());
+  }
+  EXPECT_GE(quick, 4);
+  EXPECT_EQ(full, static_cast<int>(book.experiments.size()));
+  EXPECT_GE(claims, 12);
+}
+
+// Tables of a sweep: pruned's nodes are 10 below standard's on each of three seeds, give or
+// take one; its blur is the same give or take noise.
+SweepTables Tables() {
+  SweepTables t;
+  const double nodes_diff[] = {-10.0, -11.0, -9.0};
+  const double blur_diff[] = {0.2, -0.3, 0.1};
+  for (int seed = 0; seed < 3; ++seed) {
+    const std::string cell = "corridor_3-seed" + std::to_string(seed);
+    t.runs.push_back({cell,
+                      "corridor_3",
+                      "standard",
+                      seed,
+                      {},
+                      {{"nodes_final", 100.0 + seed}, {"blur/mean_cm", 3.0}}});
+    t.runs.push_back({cell,
+                      "corridor_3",
+                      "pruned",
+                      seed,
+                      {},
+                      {{"nodes_final", 100.0 + seed + nodes_diff[seed]},
+                       {"blur/mean_cm", 3.0 + blur_diff[seed]}}});
+  }
+  return t;
+}
+
+TEST(Book, AVerdictFollowsTheIntervalOfThePairedDifferences) {
+  const SweepTables t = Tables();
+  BookClaim fewer{"fewer nodes", "nodes_final", "pruned", "standard", "", "", Expect::kLower, 0};
+  std::vector<ClaimResult> r = JudgeClaim(fewer, t);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].source, "corridor_3");
+  EXPECT_EQ(r[0].difference.n, 3);
+  EXPECT_NEAR(*r[0].difference.mean, -10.0, 1e-12);
+  EXPECT_EQ(r[0].verdict, Verdict::kHolds);
+  BookClaim more = fewer;
+  more.expect = Expect::kHigher;
+  EXPECT_EQ(JudgeClaim(more, t)[0].verdict, Verdict::kDoesNotHold);
+  BookClaim sharper{"sharper", "blur/mean_cm", "pruned", "standard", "", "", Expect::kLower, 0};
+  EXPECT_EQ(JudgeClaim(sharper, t)[0].verdict, Verdict::kInconclusive);
+  BookClaim report = fewer;
+  report.expect = Expect::kReport;
+  EXPECT_EQ(JudgeClaim(report, t)[0].verdict, Verdict::kReported);
+  // One seed has no interval: inconclusive, whatever the difference.
+  SweepTables one = t;
+  one.runs.resize(2);
+  EXPECT_EQ(JudgeClaim(fewer, one)[0].verdict, Verdict::kInconclusive);
+  BookClaim absent = fewer;
+  absent.figure = "relations/trans_mean_m";
+  EXPECT_TRUE(JudgeClaim(absent, t).empty());
+}
+
+TEST(Book, TheMarkdownNamesTheProfileAndEachVerdict) {
+  const BookExperiment e{"corridor", "§6.1 the corridor", "q.yaml", "f.yaml", {}};
+  const BookClaim fewer{"fewer nodes", "nodes_final", "pruned",       "standard",
+                        "constant",    "Fig. 6.1",    Expect::kLower, 0};
+  BookOutcome o;
+  o.profile = "quick";
+  o.commit = "abc1234";
+  o.day = "2026-12-03";
+  ExperimentResult& r = o.experiments.emplace_back();
+  r.experiment = &e;
+  r.dir = "corridor";
+  r.tables = Tables();
+  r.claims = JudgeClaim(fewer, r.tables);
+  const std::string md = BookMarkdown(o);
+  EXPECT_NE(md.find("profile quick: fewer seeds"), std::string::npos) << md;
+  EXPECT_NE(md.find("holds at 95 %"), std::string::npos) << md;
+  EXPECT_NE(md.find("constant (Fig. 6.1)"), std::string::npos) << md;
+  EXPECT_NE(md.find("abc1234, 2026-12-03"), std::string::npos) << md;
+}
+
+}  // namespace
+}  // namespace lifelong::eval

@@ -64,8 +64,8 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin) {
   return Verdict::kSeenThrough;
 }
 
-/// Judges every return of `from` as `to` sees it; f(from_beam, to_beam) for those seen
-/// through. Counts agreement into *c.
+/// Judges every return of `from` as `to` sees it; f(from_beam, to_beam, distance from
+/// to's laser) for those seen through. Counts agreement into *c.
 template <typename F>
 void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
            const Pose2& T_world_to, const ChangeDetectionConfig& config, ScanComparison* c,
@@ -98,7 +98,7 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     if (std::abs(u.x() * t.y() - u.y() * t.x()) / t.norm() < min_sin) continue;
     {
       ++c->disagree;
-      seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam));
+      seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam), s.distance_m);
     }
   }
 }
@@ -108,13 +108,27 @@ void SortUnique(std::vector<std::uint32_t>* v) {
   v->erase(std::unique(v->begin(), v->end()), v->end());
 }
 
+/// By beam, each beam once with the shortest free range given for it.
+void SortUnique(std::vector<BeamCut>* v) {
+  std::sort(v->begin(), v->end(), [](const BeamCut& a, const BeamCut& b) {
+    return a.beam < b.beam || (a.beam == b.beam && a.free_to_m < b.free_to_m);
+  });
+  v->erase(std::unique(v->begin(), v->end(),
+                       [](const BeamCut& a, const BeamCut& b) { return a.beam == b.beam; }),
+           v->end());
+}
+
+std::uint32_t BeamOf(std::uint32_t b) { return b; }
+std::uint32_t BeamOf(const BeamCut& c) { return c.beam; }
+
 /// Keeps the beams (ascending) that lie in runs of at least min_run beams, a run allowing
 /// gaps of one beam: a change covers neighbouring beams, noise single ones.
-void KeepRuns(std::size_t min_run, std::vector<std::uint32_t>* v) {
-  std::vector<std::uint32_t> kept;
+template <typename T>
+void KeepRuns(std::size_t min_run, std::vector<T>* v) {
+  std::vector<T> kept;
   std::size_t start = 0;
   for (std::size_t i = 1; i <= v->size(); ++i) {
-    if (i < v->size() && (*v)[i] - (*v)[i - 1] <= 2) continue;
+    if (i < v->size() && BeamOf((*v)[i]) - BeamOf((*v)[i - 1]) <= 2) continue;
     if (i - start >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
     start = i;
   }
@@ -131,14 +145,15 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   ScanComparison c;
   // The older scan's returns that the newer one sees through: removed objects.
   Judge(older, T_world_old_laser, newer, T_world_new_laser, config, &c,
-        [&](std::uint32_t old_beam, std::uint32_t new_beam) {
-          c.outdated.push_back(old_beam);
+        [&](std::uint32_t old_beam, std::uint32_t new_beam, double) {
+          c.outdated.push_back({old_beam, older.ranges_m[old_beam]});
           c.news.push_back(new_beam);
         });
   // The newer scan's returns that the older one saw through: added objects.
   Judge(newer, T_world_new_laser, older, T_world_old_laser, config, &c,
-        [&](std::uint32_t new_beam, std::uint32_t old_beam) {
-          c.outdated.push_back(old_beam);
+        [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+          c.outdated.push_back(
+              {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m))});
           c.news.push_back(new_beam);
         });
   c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;

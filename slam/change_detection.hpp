@@ -22,6 +22,7 @@
 
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
+#include "slam/grid_map.hpp"
 
 namespace lifelong::slam {
 
@@ -45,8 +46,11 @@ struct ScanComparison {
   int agree = 0;          ///< of them, those the other sees within margin_m
   int disagree = 0;       ///< returns of either scan that the other sees through
   bool compared = false;  ///< the scans overlap and agree enough (min_agreement) to judge
-  std::vector<std::uint32_t> outdated;  ///< the older scan's outdated beams, ascending
-  std::vector<std::uint32_t> news;      ///< the newer scan's beams that showed a change, ascending
+  /// The older scan's outdated beams, ascending, each with how far it still shows free
+  /// space: up to its return for a return seen through (the space was free, the object is
+  /// gone), up to short of the newer surface for a beam that passed where an object stands.
+  std::vector<BeamCut> outdated;
+  std::vector<std::uint32_t> news;  ///< the newer scan's beams that showed a change, ascending
 };
 
 /// Compares `older` (taken at robot pose T_world_older) with `newer` (at T_world_newer).

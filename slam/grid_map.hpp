@@ -57,6 +57,14 @@ struct CellChange {
   CellState before, after;
 };
 
+/// A beam of a scan traced as free space up to free_to_m, without its return: the part of
+/// a beam that still shows the world when its return (or its end) no longer does (a removal
+/// policy's verdict, removal_policy_dpg.cpp). free_to_m <= 0 leaves the beam out.
+struct BeamCut {
+  std::uint32_t beam = 0;
+  float free_to_m = 0.0f;
+};
+
 /// Inclusive cell-index box. `empty` when the map holds no counts.
 struct CellBounds {
   CellIndex min;
@@ -109,10 +117,11 @@ class GridMap {
   /// Cells a scan touches from T_world_robot, traced with Bresenham from the laser origin:
   /// misses along each beam, a hit in the end cell of a return; a "no return" beam adds
   /// misses up to max_free_range_m and no hit. Beams with range <= 0 are skipped. Each cell
-  /// appears once, ordered by (y, x). The beams in `skip` (ascending) are left out, and only
-  /// they: the others are traced as without it (a dropout stays a dropout).
+  /// appears once, ordered by (y, x). The beams in `cuts` (ascending by beam) are traced as
+  /// BeamCut says, and only they change: the others are traced as without them (a dropout
+  /// stays a dropout).
   std::vector<CellUpdate> TouchedCells(const LaserScan& scan, const Pose2& T_world_robot,
-                                       const std::vector<std::uint32_t>& skip = {}) const;
+                                       const std::vector<BeamCut>& cuts = {}) const;
 
   void AddScan(const LaserScan& scan, const Pose2& T_world_robot);
   /// Exactly undoes AddScan with the same arguments.

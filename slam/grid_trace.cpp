@@ -146,7 +146,7 @@ void DropoutClearRanges(const LaserScan& scan, const GridMapConfig& config,
 }  // namespace
 
 std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2& T_world_robot,
-                                              const std::vector<std::uint32_t>& skip) const {
+                                              const std::vector<BeamCut>& cuts) const {
   const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
   const CellIndex origin = CellOf(T_world_laser.x, T_world_laser.y);
   thread_local std::vector<double> dropout_clear;
@@ -154,16 +154,17 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2
   std::vector<Beam> beams;
   beams.reserve(scan.ranges_m.size());
   CellIndex lo = origin, hi = origin;
-  auto skipped = skip.begin();
+  auto cut = cuts.begin();
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    while (skipped != skip.end() && *skipped < i) ++skipped;
-    if (skipped != skip.end() && *skipped == i) continue;
+    while (cut != cuts.end() && cut->beam < i) ++cut;
+    const bool is_cut = cut != cuts.end() && cut->beam == i;
     const double r = scan.ranges_m[i];
     if (!(r > 0.0)) continue;
     // Returns beyond the usable range are too sparse and too noisy to map (one beam per
     // cell at best): like "no return" beams they only clear space, up to max_free_range_m.
-    const bool hit = scan.IsReturn(i) && r <= config_.max_hit_range_m;
-    const double range = hit ? r : std::min({r, config_.max_free_range_m, dropout_clear[i]});
+    const bool hit = !is_cut && scan.IsReturn(i) && r <= config_.max_hit_range_m;
+    double range = hit ? r : std::min({r, config_.max_free_range_m, dropout_clear[i]});
+    if (is_cut) range = std::min(range, static_cast<double>(cut->free_to_m));
     if (!(range > 0.0)) continue;
     const double a = scan.Bearing(i);
     double x = 0.0, y = 0.0;

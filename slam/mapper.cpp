@@ -218,7 +218,7 @@ void Mapper::State::SyncMap() {
       } else {
         // The cells at the old pose come from the gain index, which holds them anyway.
         const std::vector<CellUpdate>& from = Untrack(id);
-        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X, data.retired_beams);
+        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X, data.cuts);
         MoveInMap(from, to);
         TrackAdded(id, to);
       }
@@ -248,14 +248,14 @@ const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
   return state_->pruner ? state_->pruner->sparsifications() : kNone;
 }
 int Mapper::observations() const { return state_->observations; }
-std::size_t Mapper::retired_beams() const { return state_->retired_beams; }
+std::size_t Mapper::cut_beams() const { return state_->cut_beams; }
 
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   if (!state_->pruner) return worst;
   for (const auto& [id, data] : state_->nodes) {
     const double fresh = state_->map.InformationGain(
-        state_->map.TouchedCells(data.scan, data.T_world_map, data.retired_beams));
+        state_->map.TouchedCells(data.scan, data.T_world_map, data.cuts));
     worst = std::max(worst, std::abs(fresh - state_->Gain(id)));
   }
   return worst;

@@ -107,8 +107,8 @@ class Mapper {
   const std::vector<MarginalizationRecord>& marginalizations() const;
   const std::vector<SparsificationRecord>& sparsifications() const;
   int observations() const;
-  /// Beams the removal policy retired from the map (pruning.policy dpg), in all.
-  std::size_t retired_beams() const;
+  /// Beams the removal policy cut in the map (pruning.policy dpg, BeamCut), in all.
+  std::size_t cut_beams() const;
   /// Self-check of the pruned modes' remembered information gains: the largest difference
   /// (bits) between a remembered gain that would be reused (valid, and no pending map change
   /// overlaps its scan) and the gain computed afresh from the map now. 0 when the

@@ -141,10 +141,11 @@ struct Mapper::State {
   void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
-  /// Takes beams of node id's scan out of the map and the scan (a policy found them
-  /// outdated, SampleRetirement); the gains follow.
-  void RetireBeams(NodeId id, const std::vector<std::uint32_t>& beams);
-  std::size_t retired_beams = 0;  ///< beams RetireBeams took out, in all
+  /// Traces beams of node id's scan cut in the map from now on (a policy found them
+  /// outdated, SampleRetirement; a beam is cut once: a cut beam is no evidence); the gains
+  /// follow.
+  void CutBeams(NodeId id, const std::vector<BeamCut>& cuts);
+  std::size_t cut_beams = 0;  ///< beams CutBeams cut, in all
   /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
   ScanFootprint Footprint(NodeId id) const;
 };

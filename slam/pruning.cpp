@@ -63,14 +63,14 @@ void Mapper::State::Prune(NodeId current) {
   view.footprint = [this](NodeId id) { return Footprint(id); };
   view.scan = [this](NodeId id) {
     const NodeData& data = nodes.at(id);
-    return ScanAt{&data.scan, &data.retired_beams, values.at(id)};
+    return ScanAt{&data.scan, &data.cuts, values.at(id)};
   };
   std::vector<SampleRetirement> retired;
   {
     const ScopedMs timer = Stage(&StageTimes::gain_ms);
     retired = pruner->BeginRound(gains, view);
   }
-  for (const SampleRetirement& r : retired) RetireBeams(r.node, r.beams);
+  for (const SampleRetirement& r : retired) CutBeams(r.node, r.cuts);
   if (!retired.empty()) {
     for (auto& [id, gain] : gains) gain = Gain(id);
   }
@@ -101,18 +101,17 @@ ScanFootprint Mapper::State::Footprint(NodeId id) const {
   return f;
 }
 
-void Mapper::State::RetireBeams(NodeId id, const std::vector<std::uint32_t>& beams) {
+void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts) {
   NodeData& data = nodes.at(id);
   const std::vector<CellUpdate>& from = Untrack(id);
-  std::vector<std::uint32_t> all;
-  std::set_union(data.retired_beams.begin(), data.retired_beams.end(), beams.begin(), beams.end(),
-                 std::back_inserter(all));
-  data.retired_beams = std::move(all);
-  const std::vector<CellUpdate> to =
-      map.TouchedCells(data.scan, data.T_world_map, data.retired_beams);
+  std::vector<BeamCut> all;
+  std::merge(data.cuts.begin(), data.cuts.end(), cuts.begin(), cuts.end(), std::back_inserter(all),
+             [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
+  data.cuts = std::move(all);
+  const std::vector<CellUpdate> to = map.TouchedCells(data.scan, data.T_world_map, data.cuts);
   MoveInMap(from, to);
   TrackAdded(id, to);
-  retired_beams += beams.size();
+  cut_beams += cuts.size();
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {

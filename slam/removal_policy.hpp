@@ -73,10 +73,10 @@ struct ScanFootprint {
   int edges = 0;
 };
 
-/// A node's scan, the beams of it the map leaves out, and the node's pose.
+/// A node's scan, the beams of it the map traces cut (BeamCut), and the node's pose.
 struct ScanAt {
   const LaserScan* scan = nullptr;
-  const std::vector<std::uint32_t>* retired = nullptr;  ///< ascending
+  const std::vector<BeamCut>* cut = nullptr;  ///< ascending by beam
   Pose2 T_world_robot;
 };
 
@@ -88,11 +88,11 @@ struct RoundView {
   std::function<ScanAt(NodeId)> scan;
 };
 
-/// Beams of a node's scan that no longer show the world (a policy's verdict): the mapper
-/// takes them out of the map and the scan.
+/// Beams of a node's scan that no longer show the world as far as they reach (a policy's
+/// verdict): the mapper traces them cut (BeamCut) in the map from now on.
 struct SampleRetirement {
   NodeId node = 0;
-  std::vector<std::uint32_t> beams;  ///< ascending
+  std::vector<BeamCut> cuts;  ///< ascending by beam
 };
 
 class RemovalPolicy {

@@ -41,7 +41,7 @@ class DpgPolicy final : public RemovalPolicy {
       const ScanComparison c = CompareScans(old_active, old.T_world_robot, now_active,
                                             now.T_world_robot, config_.dpg.detection);
       // Retired beams are no evidence, so a comparison never finds one of them again.
-      std::size_t retired = old.retired->size();
+      std::size_t retired = old.cut->size();
       if (!c.outdated.empty()) {
         retired += c.outdated.size();
         retired_.push_back({id, c.outdated});
@@ -70,10 +70,10 @@ class DpgPolicy final : public RemovalPolicy {
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) n += scan.IsReturn(i) ? 1 : 0;
     return n;
   }
-  /// The scan without its retired beams (read as 0: no evidence).
+  /// The scan without its cut beams (read as 0: no evidence).
   static LaserScan Active(const ScanAt& at) {
     LaserScan scan = *at.scan;
-    for (std::uint32_t b : *at.retired) scan.ranges_m.at(b) = 0.0f;
+    for (const BeamCut& c : *at.cut) scan.ranges_m.at(c.beam) = 0.0f;
     return scan;
   }
 

@@ -24,9 +24,9 @@ struct NodeData {
   Pose2 T_odom_robot;                   ///< odometry at the scan
   int scan_index = 0;
   double travelled_m = 0.0;  ///< robot path length (odometry) at this scan
-  /// Beams of `scan` a removal policy retired (SampleRetirement), ascending: the map leaves
-  /// them out (GridMap::TouchedCells' skip).
-  std::vector<std::uint32_t> retired_beams;
+  /// Beams of `scan` a removal policy found outdated (SampleRetirement), ascending by beam:
+  /// the map traces them cut (GridMap::TouchedCells).
+  std::vector<BeamCut> cuts;
 };
 
 /// The graph's nodes by id.

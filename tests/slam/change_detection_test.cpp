@@ -45,7 +45,9 @@ TEST(ChangeDetection, AnOpenedDoorOutdatesTheReturnsOnIt) {
   const ScanComparison c = CompareScans(older, kOld, newer, kNew, {});
   ASSERT_TRUE(c.compared);
   ASSERT_GE(c.outdated.size(), 20u);  // the 2 m door spans 28 of the 1-degree beams at 4 m
-  for (std::uint32_t b : c.outdated) {
+  for (const BeamCut& cut : c.outdated) {
+    const std::uint32_t b = cut.beam;
+    EXPECT_EQ(cut.free_to_m, older.ranges_m[b]);  // the space up to the door was free, and is
     const double a = kOld.theta + older.Bearing(b), r = older.ranges_m[b];
     const double x = kOld.x + r * std::cos(a), y = kOld.y + r * std::sin(a);
     EXPECT_NEAR(x, 6.0, 0.01) << "beam " << b;  // on the door, nowhere else
@@ -63,7 +65,12 @@ TEST(ChangeDetection, AClosedDoorOutdatesTheBeamsThatPassedIt) {
   const ScanComparison c = CompareScans(older, kOld, newer, kNew, {});
   ASSERT_TRUE(c.compared);
   ASSERT_GE(c.outdated.size(), 20u);
-  for (std::uint32_t b : c.outdated) EXPECT_GT(older.ranges_m[b], 7.0) << "beam " << b;
+  for (const BeamCut& cut : c.outdated) {
+    EXPECT_GT(older.ranges_m[cut.beam], 7.0) << "beam " << cut.beam;
+    // Free only up to short of the door now standing at x = 6, 3.5-4.3 m along these beams.
+    EXPECT_GT(cut.free_to_m, 3.0f);
+    EXPECT_LT(cut.free_to_m, 4.1f);
+  }
 }
 
 // Scans of an unchanged room whose poses disagree by 0.4-0.8 m (drift before a loop

@@ -295,13 +295,13 @@ TEST(Mapper, DpgRetiresOutdatedBeamsAndKeepsTheGainsExact) {
   mapper.Finish();
   EXPECT_LT(worst, 1e-9);
   EXPECT_TRUE(connected);
-  EXPECT_GT(mapper.retired_beams(), 100u);
+  EXPECT_GT(mapper.cut_beams(), 100u);
   EXPECT_GT(mapper.marginalizations().size(), 0u);
   EXPECT_LT(AnchoredRmse(mapper.Trajectory(), changing), 0.10);
 
   Mapper still(config);
   for (const Observation& o : Corridor3()) still.AddObservation(o);
-  EXPECT_LT(still.retired_beams(), 20u);
+  EXPECT_LT(still.cut_beams(), 20u);
 }
 
 TEST(Mapper, UnknownPolicyOrSparsifierIsRefused) {

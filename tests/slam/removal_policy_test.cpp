@@ -90,10 +90,10 @@ TEST(RemovalPolicy, DpgRetiresTheOutdatedBeamsAndTheNodesThatMostlyShowThePast) 
   scans[1] = testing::SimulateScan(closed, poses[1]);
   scans[2] = testing::SimulateScan(closed, poses[2]);
   scans[9] = testing::SimulateScan(open, poses[9]);
-  std::map<NodeId, std::vector<std::uint32_t>> retired;
+  std::map<NodeId, std::vector<BeamCut>> cut;
   RoundView view;
   view.current = 9;
-  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &retired[id], poses.at(id)}; };
+  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
   RemovalPolicyConfig config;
   config.dpg.min_active_share = 0.75;
   const auto policy = MakeRemovalPolicy("dpg", config);
@@ -104,16 +104,16 @@ TEST(RemovalPolicy, DpgRetiresTheOutdatedBeamsAndTheNodesThatMostlyShowThePast) 
   ASSERT_EQ(out.size(), 2u);
   EXPECT_EQ(out[0].node, NodeId{1});
   EXPECT_EQ(out[1].node, NodeId{2});
-  EXPECT_GT(out[0].beams.size(), 46u);  // of 181 returns: under 75 % left
-  EXPECT_GT(out[1].beams.size(), 20u);
-  EXPECT_LT(out[1].beams.size(), 40u);
+  EXPECT_GT(out[0].cuts.size(), 46u);  // of 181 returns: under 75 % left
+  EXPECT_GT(out[1].cuts.size(), 20u);
+  EXPECT_LT(out[1].cuts.size(), 40u);
   EXPECT_TRUE(policy->TakeRetirements().empty());  // taken once
   // Node 1 has under 75 % of its returns left: it goes whatever its gain; node 2 stays.
   EXPECT_EQ(policy->Next(gains, 100), NodeId{1});
   gains.erase(1);
   EXPECT_EQ(policy->Next(gains, 100), std::nullopt);
   // The retired beams are no evidence: the next round retires nothing more of node 2.
-  for (const SampleRetirement& r : out) retired[r.node] = r.beams;
+  for (const SampleRetirement& r : out) cut[r.node] = r.cuts;
   policy->BeginRound(gains, view);
   EXPECT_TRUE(policy->TakeRetirements().empty());
   // A scan that shows no change is judged by the seed's rule.

@@ -2,6 +2,7 @@
 // (eval/book.hpp). Every table names its profile; a quick book says it rests on fewer seeds
 // and shorter scenarios than the seed's experiments.
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "eval/book.hpp"
@@ -10,6 +11,8 @@
 
 namespace lifelong::eval {
 namespace {
+
+namespace fs = std::filesystem;
 
 std::string Num(double v) {
   char buf[32];
@@ -36,6 +39,12 @@ std::string ProfileNote(const BookOutcome& o) {
   return "profile " + o.profile;
 }
 
+/// A scenario's or log's file name without its folder and .yaml.
+std::string SourceName(const std::string& source) {
+  const fs::path p(source);
+  return p.extension() == ".yaml" ? p.stem().string() : p.filename().string();
+}
+
 /// The table of one experiment's claims: one row per claim and source.
 struct Row {
   std::string claim, source, seed, expect, baseline, mode, difference, n, verdict;
@@ -48,7 +57,7 @@ std::vector<Row> Rows(const ExperimentResult& e) {
     std::string seed = c.seed_value;
     if (!c.seed_where.empty())
       seed += (seed.empty() ? "" : " (") + c.seed_where + (seed.empty() ? "" : ")");
-    rows.push_back({c.claim + " (" + c.figure + ")", r.source, seed,
+    rows.push_back({c.claim + " (" + c.figure + ")", SourceName(r.source), seed,
                     c.mode + " " + ExpectText(c.expect) + " than " + c.baseline,
                     c.baseline + ": " + Stats(r.baseline), c.mode + ": " + Stats(r.mode),
                     Stats(r.difference), std::to_string(r.difference.n), VerdictText(r.verdict)});

@@ -137,24 +137,6 @@ void KeepRuns(std::size_t min_run, std::vector<T>* v) {
 
 }  // namespace
 
-std::vector<std::uint32_t> SeenAgain(const LaserScan& older, const Pose2& T_world_older,
-                                     const std::vector<BeamCut>& cut, const LaserScan& newer,
-                                     const Pose2& T_world_newer,
-                                     const ChangeDetectionConfig& config) {
-  const Pose2 T_world_old_laser = T_world_older * older.T_robot_laser;
-  const Pose2 T_new_world = (T_world_newer * newer.T_robot_laser).Inverse();
-  std::vector<std::uint32_t> again;
-  for (const BeamCut& c : cut) {
-    if (!older.IsReturn(c.beam)) continue;
-    const double r = older.ranges_m[c.beam], b = older.Bearing(c.beam);
-    double wx = 0.0, wy = 0.0;
-    T_world_old_laser.Apply(r * std::cos(b), r * std::sin(b), &wx, &wy);
-    const Seen s = SeenFrom(newer, T_new_world, wx, wy);
-    if (s.beam >= 0 && Judge(newer, s, config.margin_m) == Verdict::kAgree) again.push_back(c.beam);
-  }
-  return again;
-}
-
 ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
                             const LaserScan& newer, const Pose2& T_world_newer,
                             const ChangeDetectionConfig& config) {

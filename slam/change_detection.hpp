@@ -53,15 +53,6 @@ struct ScanComparison {
   std::vector<std::uint32_t> news;  ///< the newer scan's beams that showed a change, ascending
 };
 
-/// Of the `cut` beams of `older` (whose ranges still hold the return they had), those
-/// whose return `newer` sees again: a return of `newer` along its beam within margin_m of
-/// it. A state the world left and came back to (a door closed, opened and closed again)
-/// is shown again by them.
-std::vector<std::uint32_t> SeenAgain(const LaserScan& older, const Pose2& T_world_older,
-                                     const std::vector<BeamCut>& cut, const LaserScan& newer,
-                                     const Pose2& T_world_newer,
-                                     const ChangeDetectionConfig& config);
-
 /// Compares `older` (taken at robot pose T_world_older) with `newer` (at T_world_newer).
 /// Beams with a range <= 0 or at range_max (no return) are no evidence either way.
 ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,

@@ -249,7 +249,6 @@ const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
 }
 int Mapper::observations() const { return state_->observations; }
 std::size_t Mapper::cut_beams() const { return state_->cut_beams; }
-std::size_t Mapper::restored_beams() const { return state_->restored_beams; }
 
 double Mapper::MaxGainCacheError() const {
   double worst = 0.0;

@@ -109,8 +109,6 @@ class Mapper {
   int observations() const;
   /// Beams the removal policy cut in the map (pruning.policy dpg, BeamCut), in all.
   std::size_t cut_beams() const;
-  /// Cut beams restored since (the world came back to the state they show), in all.
-  std::size_t restored_beams() const;
   /// Self-check of the pruned modes' remembered information gains: the largest difference
   /// (bits) between a remembered gain that would be reused (valid, and no pending map change
   /// overlaps its scan) and the gain computed afresh from the map now. 0 when the

@@ -142,12 +142,10 @@ struct Mapper::State {
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// Traces beams of node id's scan cut in the map from now on (a policy found them
-  /// outdated, SampleRetirement; a cut beam is no evidence) and whole again those
-  /// `restored` (ascending); the gains follow.
-  void CutBeams(NodeId id, const std::vector<BeamCut>& cuts,
-                const std::vector<std::uint32_t>& restored);
-  std::size_t cut_beams = 0;       ///< beams CutBeams cut, in all
-  std::size_t restored_beams = 0;  ///< cut beams it restored (the state came back), in all
+  /// outdated, SampleRetirement; a beam is cut once: a cut beam is no evidence); the gains
+  /// follow.
+  void CutBeams(NodeId id, const std::vector<BeamCut>& cuts);
+  std::size_t cut_beams = 0;  ///< beams CutBeams cut, in all
   /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
   ScanFootprint Footprint(NodeId id) const;
 };

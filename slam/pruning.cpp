@@ -70,7 +70,7 @@ void Mapper::State::Prune(NodeId current) {
     const ScopedMs timer = Stage(&StageTimes::gain_ms);
     retired = pruner->BeginRound(gains, view);
   }
-  for (const SampleRetirement& r : retired) CutBeams(r.node, r.cuts, r.restored);
+  for (const SampleRetirement& r : retired) CutBeams(r.node, r.cuts);
   if (!retired.empty()) {
     for (auto& [id, gain] : gains) gain = Gain(id);
   }
@@ -101,25 +101,17 @@ ScanFootprint Mapper::State::Footprint(NodeId id) const {
   return f;
 }
 
-void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts,
-                             const std::vector<std::uint32_t>& restored) {
+void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts) {
   NodeData& data = nodes.at(id);
   const std::vector<CellUpdate>& from = Untrack(id);
   std::vector<BeamCut> all;
-  const auto kept = [&](const BeamCut& c) {
-    return !std::binary_search(restored.begin(), restored.end(), c.beam);
-  };
-  const auto by_beam = [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; };
-  std::vector<BeamCut> still;
-  std::copy_if(data.cuts.begin(), data.cuts.end(), std::back_inserter(still), kept);
-  std::merge(still.begin(), still.end(), cuts.begin(), cuts.end(), std::back_inserter(all),
-             by_beam);
+  std::merge(data.cuts.begin(), data.cuts.end(), cuts.begin(), cuts.end(), std::back_inserter(all),
+             [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
   data.cuts = std::move(all);
   const std::vector<CellUpdate> to = map.TouchedCells(data.scan, data.T_world_map, data.cuts);
   MoveInMap(from, to);
   TrackAdded(id, to);
   cut_beams += cuts.size();
-  restored_beams += restored.size();
 }
 
 void Mapper::State::RemoveNode(NodeId id, double gain_bits) {

@@ -92,8 +92,7 @@ struct RoundView {
 /// verdict): the mapper traces them cut (BeamCut) in the map from now on.
 struct SampleRetirement {
   NodeId node = 0;
-  std::vector<BeamCut> cuts;            ///< new cuts, ascending by beam
-  std::vector<std::uint32_t> restored;  ///< cut beams the present shows again, ascending
+  std::vector<BeamCut> cuts;  ///< ascending by beam
 };
 
 class RemovalPolicy {

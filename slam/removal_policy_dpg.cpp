@@ -40,17 +40,11 @@ class DpgPolicy final : public RemovalPolicy {
       const LaserScan old_active = Active(old);
       const ScanComparison c = CompareScans(old_active, old.T_world_robot, now_active,
                                             now.T_world_robot, config_.dpg.detection);
-      // Cut beams are no evidence, so a comparison never finds one of them again; but the
-      // world may come back to the state they show (a door closes again).
-      std::vector<std::uint32_t> again;
-      if (c.compared && !old.cut->empty()) {
-        again = SeenAgain(*old.scan, old.T_world_robot, *old.cut, *now.scan, now.T_world_robot,
-                          config_.dpg.detection);
-      }
-      std::size_t retired = old.cut->size() - again.size();
-      if (!c.outdated.empty() || !again.empty()) {
+      // Retired beams are no evidence, so a comparison never finds one of them again.
+      std::size_t retired = old.cut->size();
+      if (!c.outdated.empty()) {
         retired += c.outdated.size();
-        retired_.push_back({id, c.outdated, std::move(again)});
+        retired_.push_back({id, c.outdated});
       }
       const double returns = Returns(*old.scan);
       if (retired > 0 &&

@@ -296,8 +296,6 @@ TEST(Mapper, DpgRetiresOutdatedBeamsAndKeepsTheGainsExact) {
   EXPECT_LT(worst, 1e-9);
   EXPECT_TRUE(connected);
   EXPECT_GT(mapper.cut_beams(), 100u);
-  EXPECT_GT(mapper.restored_beams(), 0u);  // doors close again
-  EXPECT_LT(mapper.restored_beams(), mapper.cut_beams());
   EXPECT_GT(mapper.marginalizations().size(), 0u);
   EXPECT_LT(AnchoredRmse(mapper.Trajectory(), changing), 0.10);
 

@@ -93,8 +93,9 @@ int Reproduce(const ReproduceArgs& a) {
     er.charts = Charts(a.out, er.dir);
     for (const eval::BookClaim& c : e.claims) {
       for (eval::ClaimResult& cr : eval::JudgeClaim(c, er.tables)) {
-        std::cout << "  " << c.claim << " [" << cr.source << "]: " << eval::VerdictText(cr.verdict)
-                  << " (" << cr.difference.n << " seeds)\n";
+        std::cout << "  " << c.claim << " [" << eval::SourceName(cr.source)
+                  << "]: " << eval::VerdictText(cr.verdict) << " (" << cr.difference.n
+                  << " seeds)\n";
         er.claims.push_back(std::move(cr));
       }
     }

@@ -86,6 +86,9 @@ struct BookOutcome {
   std::vector<ExperimentResult> experiments;
 };
 
+/// A scenario's or log's file name without its folder and .yaml: how the book names it.
+std::string SourceName(const std::string& source);
+
 /// DIR/results.md and DIR/index.html (each atomically).
 void WriteBook(const BookOutcome& outcome, const std::string& dir);
 /// The markdown of results.md.

@@ -39,12 +39,6 @@ std::string ProfileNote(const BookOutcome& o) {
   return "profile " + o.profile;
 }
 
-/// A scenario's or log's file name without its folder and .yaml.
-std::string SourceName(const std::string& source) {
-  const fs::path p(source);
-  return p.extension() == ".yaml" ? p.stem().string() : p.filename().string();
-}
-
 /// The table of one experiment's claims: one row per claim and source.
 struct Row {
   std::string claim, source, seed, expect, baseline, mode, difference, n, verdict;
@@ -76,6 +70,11 @@ const char* kHeader[] = {"claim (figure)",
                          "verdict"};
 
 }  // namespace
+
+std::string SourceName(const std::string& source) {
+  const fs::path p(source);
+  return p.extension() == ".yaml" ? p.stem().string() : p.filename().string();
+}
 
 std::string BookMarkdown(const BookOutcome& o) {
   std::ostringstream md;

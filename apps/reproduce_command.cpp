@@ -35,14 +35,25 @@ std::string Today() {
   return buf;
 }
 
-/// The sweep report's charts of an experiment, relative to the book's directory.
-std::vector<std::string> Charts(const std::string& out, const std::string& id) {
-  std::vector<std::string> charts;
+/// The charts of an experiment, relative to the book's directory: the sweep report's (each
+/// mode's mean and interval per figure), then the first finished cell's time per observation
+/// and nodes over the run, which read like the seed's Fig. 6.1 to 6.4.
+std::vector<std::string> Charts(const std::string& out, const std::string& dir) {
+  std::vector<std::string> charts, cells;
   std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(fs::path(out) / id, ec)) {
-    if (e.path().extension() == ".png") charts.push_back(id + "/" + e.path().filename().string());
+  for (const fs::directory_entry& e : fs::directory_iterator(fs::path(out) / dir, ec)) {
+    if (e.path().extension() == ".png") charts.push_back(dir + "/" + e.path().filename().string());
   }
   std::sort(charts.begin(), charts.end());
+  for (const fs::directory_entry& e : fs::directory_iterator(fs::path(out) / dir / "cells", ec)) {
+    if (fs::exists(e.path() / "sweep_cell.json")) cells.push_back(e.path().filename().string());
+  }
+  std::sort(cells.begin(), cells.end());
+  for (const char* name : {"time_per_obs.png", "nodes.png"}) {
+    if (!cells.empty() && fs::exists(fs::path(out) / dir / "cells" / cells.front() / name)) {
+      charts.push_back(dir + "/cells/" + cells.front() + "/" + name);
+    }
+  }
   return charts;
 }
 

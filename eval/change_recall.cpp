@@ -94,6 +94,8 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
     const std::optional<double> shown_past =
         past.empty() ? std::optional<double>(0.0) : ShownShare(map, past, now, T_truth_est);
     p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
+    p.present = present;
+    p.past = past;
     if (p.since_seen_s && *p.since_seen_s <= kRecentS) {
       ++out.recent;
       shown_recent += p.shows_present ? 1 : 0;

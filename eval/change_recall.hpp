@@ -24,6 +24,7 @@ namespace lifelong::eval {
 struct ObjectPresent {
   bool shows_present = false;          ///< the map shows its state at the end
   std::optional<double> since_seen_s;  ///< end minus the last scan that saw it; none: never
+  std::vector<Segment> present, past;  ///< its outline at the end, and its earlier ones
 };
 
 struct ChangeRecall {

@@ -170,6 +170,9 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
       reference_tracks.push_back({r->name(), r->aligned_to_reference()});
     }
     page.maps[r->name()] = map_png;
+    if (!r->changes_png().empty()) {
+      page.change_strips.push_back({r->changes_png(), r->name() + ": " + r->changes_caption()});
+    }
     r->Release();
   };
   if (sink) {  // lockstep: every mode sees scan i before any sees scan i + 1

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "eval/change_recall.hpp"
+#include "eval/change_tiles.hpp"
 #include "eval/false_closures.hpp"
 #include "eval/map_quality.hpp"
 #include "eval/mode_csv.hpp"
@@ -236,6 +237,11 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   }
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
+  if (summary.change && T_truth_est) {
+    changes_caption_ =
+        WriteChangeTiles((dir / "changes.png").string(), *summary.change, grid, *T_truth_est);
+    if (!changes_caption_.empty()) changes_png_ = name_ + "/changes.png";
+  }
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
   if (!config_.reference.empty()) {
     const ReferencePairs pairs = config_.reference_per_scan

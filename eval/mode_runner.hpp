@@ -56,6 +56,7 @@ class ModeRunner {
   std::vector<TimelineRow> timeline_;
   std::vector<LoopCurvePoint> loop_curve_;
   std::vector<Pose2> aligned_to_reference_;
+  std::string changes_png_, changes_caption_;  ///< the changed objects' strip (change_tiles)
   SequentialSummary sequential_;
   std::optional<int> first_pass_end_;
   double seconds_ = 0.0;
@@ -67,6 +68,10 @@ class ModeRunner {
   /// The estimate at the reference's poses, moved onto it by the ATE alignment (replay with
   /// a reference; empty otherwise).
   const std::vector<Pose2>& aligned_to_reference() const { return aligned_to_reference_; }
+  /// The strip of changed doors and boxes (eval/change_tiles.hpp), relative to the run's
+  /// directory, and its caption; empty when nothing changed.
+  const std::string& changes_png() const { return changes_png_; }
+  const std::string& changes_caption() const { return changes_caption_; }
 };
 
 }  // namespace lifelong::eval

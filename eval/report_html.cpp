@@ -227,6 +227,13 @@ std::string ReportHtmlText(const ReportPage& page) {
     h << "<h2 id=\"maps\">Maps and graphs</h2>\n" << Legend(page) << MapGrid(page);
   }
   if (!page.maps_note.empty()) h << "<p class=\"note\">" << HtmlEscape(page.maps_note) << "</p>\n";
+  if (!page.change_strips.empty()) {
+    h << "<h2 id=\"changes\">Doors and boxes that changed</h2>\n<p class=\"note\">Each mode's "
+         "map around each changed object, in the truth's frame: its outline at the end in "
+         "green, its earlier outlines in red. A map that follows the building is black under "
+         "the green and white under the red.</p>\n"
+      << Figures(page.change_strips);
+  }
   h << "<h2 id=\"summary\">Key figures</h2>\n"
     << KeyTableHtml(page.summary, page.mode_order)
     << "<details><summary>All figures, with their definitions</summary>\n"

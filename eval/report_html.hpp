@@ -63,6 +63,7 @@ struct ReportPage {
   int map_columns = 1;                        ///< cards per row of the maps' grid
   std::string maps_note;                      ///< the maps' content, frame and scale
   bool true_path_in_maps = false;             ///< the legend lists the true trajectory
+  std::vector<ReportFigure> change_strips;    ///< per mode, its changed objects (change_tiles)
   std::vector<ReportLinkGroup> files;         ///< links to the output files
   std::optional<ReferenceFigures> reference;  ///< published figures for this log
 };

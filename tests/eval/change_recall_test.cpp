@@ -2,9 +2,13 @@
 #include "eval/change_recall.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
+#include "eval/change_tiles.hpp"
 #include "eval/map_quality.hpp"
 
 namespace lifelong::eval {
@@ -63,6 +67,30 @@ TEST(ChangeRecall, AnOpenDoorShownClosedIsNotThePresent) {
   ASSERT_TRUE(unseen.has_value());
   EXPECT_FALSE(unseen->recall.has_value());
   EXPECT_FALSE(unseen->objects.at("door d").since_seen_s.has_value());
+}
+
+// The report's strip: the door that opened, as a map that still shows it closed draws it:
+// black cells under the red past outline; its caption says it is not shown as it stands.
+TEST(ChangeTiles, DrawEachChangedObjectOverTheMap) {
+  const sim::World w = DoorWorld();
+  const std::vector<Segment> walls{{0, 0, 4, 0}, {5, 0, 9, 0}, {4, 0, 5, 0}};
+  const OccupancyGrid stale = RasterizeWalls(walls, 0.05);
+  const auto change = ComputeChangeRecall(w, 20.0, {LookThrough(15.0)}, stale, Pose2());
+  ASSERT_TRUE(change.has_value());
+  ASSERT_EQ(change->objects.at("door d").past.size(), 1u);  // open at the end: the door is past
+  EXPECT_TRUE(change->objects.at("door d").present.empty());
+  const std::string path = ::testing::TempDir() + "/change_tiles.png";
+  std::remove(path.c_str());
+  const std::string caption = WriteChangeTiles(path, *change, stale, Pose2());
+  EXPECT_EQ(caption, "door d: not shown as it stands, seen 5 s before the end");
+  std::ifstream png(path, std::ios::binary);
+  ASSERT_TRUE(png.good());
+  char magic[4] = {};
+  png.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  // Nothing changed: no strip.
+  ChangeRecall none;
+  EXPECT_EQ(WriteChangeTiles(path + ".none", none, stale, Pose2()), "");
 }
 
 }  // namespace

@@ -12,8 +12,9 @@ namespace lifelong::apps {
 
 struct RunArgs {
   std::string scenario, out, modes, config;
-  std::string video, frames;  ///< optional outputs; empty: none
-  int stride = 20;            ///< render every this many scans
+  std::string video, frames;       ///< optional outputs; empty: none
+  int stride = 20;                 ///< render every this many scans
+  std::vector<double> present_at;  ///< s: also score the map of the present at these times
   std::string command_line;
 };
 

@@ -121,9 +121,12 @@ lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
 }
 
 int Run(const std::string& scenario_path, const std::string& out, const std::string& modes,
-        const std::string& config_path, const VideoArgs& video, const std::string& command_line) {
+        const std::string& config_path, const VideoArgs& video, std::vector<double> present_at,
+        const std::string& command_line) {
   lifelong::eval::ExperimentConfig config =
       ExperimentSettings(out, modes, config_path, command_line);
+  std::sort(present_at.begin(), present_at.end());
+  config.present_at_s = std::move(present_at);
   config.video_path = video.video;
   config.frames_dir = video.frames;
   config.video_stride = video.stride;
@@ -141,6 +144,12 @@ int Run(const std::string& scenario_path, const std::string& out, const std::str
   config.first_pass_s = lifelong::eval::FirstPassEnd(scenario, run);
   if (!config.first_pass_s) {
     std::cerr << "note: the tour never visits every destination: no first pass is reported\n";
+  }
+  for (const double t : config.present_at_s) {
+    if (t > run.duration_s) {
+      std::cerr << "note: --present-at " << t << " s is after the run's end (" << run.duration_s
+                << " s): not scored\n";
+    }
   }
   const lifelong::eval::GroundTruth truth = lifelong::eval::TruthOf(scenario.world, run.duration_s);
   PrintResult(lifelong::eval::RunExperiment(run.observations, truth, config), out);
@@ -271,7 +280,7 @@ int Command(F&& f) {
 int RunCommand(const RunArgs& a) {
   return Command([&] {
     return Run(a.scenario, a.out, a.modes, a.config, VideoArgs{a.video, a.frames, a.stride},
-               a.command_line);
+               a.present_at, a.command_line);
   });
 }
 int SimulateCommand(const SimulateArgs& a) {

@@ -163,6 +163,10 @@ int main(int argc, char** argv) {
       "comma-separated, of " + lifelong::slam::PruningModeList() + "; the first is the baseline");
   run->add_option("--config", run_args.config, "mapper settings, YAML (see configs/default.yaml)")
       ->check(kNotADirectory);
+  run->add_option("--present-at", run_args.present_at,
+                  "s, comma-separated: also score each mode's map of the present at these times")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
   run->add_option("--video", run_args.video, "write a video of the run (mp4)")->check(kNonEmpty);
   run->add_option("--frames", run_args.frames, "write PNG frames of the run into this directory")
       ->check(kNonEmpty);

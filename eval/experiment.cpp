@@ -179,7 +179,10 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, "all modes"));
     for (std::size_t i = 0; i < n; ++i) {
       ThrowIfInterrupted();
-      for (auto& r : runners) r->Step(stream[i]);
+      for (auto& r : runners) {
+        r->Step(stream[i]);
+        r->ScorePresentAt(stream, i, truth);
+      }
       if (sink->Wants(static_cast<int>(i))) AddVideoFrame(sink.get(), stream[i], truth, runners);
       meter.Update(static_cast<double>(i + 1), span.Covered(i + 1),
                    runners.front()->ProgressDetail());
@@ -194,6 +197,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
       for (std::size_t i = 0; i < n; ++i) {
         ThrowIfInterrupted();
         r->Step(stream[i]);
+        r->ScorePresentAt(stream, i, truth);
         meter.Update(static_cast<double>(i + 1), span.Covered(i + 1), r->ProgressDetail());
       }
       meter.Finish(span.Covered(n), r->ProgressDetail());

@@ -52,6 +52,9 @@ struct ExperimentConfig {
   std::optional<LogInfo> log;                   ///< replay: what was read from the log
   std::optional<SimulationOutcome> simulation;  ///< run: what happened in the simulator
   std::optional<double> first_pass_s;  ///< observations before this time form the first pass
+  /// run --present-at: times (s) at which each mode's map of the present is scored too
+  /// (ModeSummary::present_at); ascending.
+  std::vector<double> present_at_s;
   std::string command_line;
   std::ostream* progress = nullptr;  ///< progress lines; nullptr: quiet
   bool progress_terminal = false;    ///< progress goes to a terminal: redraw one line

@@ -19,6 +19,7 @@
 #include "eval/stopwatch.hpp"
 #include "eval/trajectory_reference.hpp"
 #include "eval/truth_metrics.hpp"
+#include "eval/world_state.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
 #include "io/map_file.hpp"
@@ -194,6 +195,39 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   return T_truth_est;
 }
 
+void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::size_t i,
+                                const std::optional<GroundTruth>& truth) {
+  if (!truth || !truth->world) return;
+  const double stamp = stream[i].stamp_s;
+  for (const double t : config_.present_at_s) {
+    // stream[i] is the first scan at or after t.
+    if (stamp < t || (i > 0 && stream[i - 1].stamp_s >= t)) continue;
+    const std::vector<StampedPose> trajectory = mapper_->Trajectory();
+    std::vector<Pose2> estimate, true_poses;
+    for (std::size_t k = 0; k < trajectory.size() && k <= i; ++k) {
+      estimate.push_back(trajectory[k].T_world_robot);
+      true_poses.push_back(*stream[k].T_world_robot_true);
+    }
+    const OccupancyGrid grid = ToOccupancyGrid(mapper_->map());
+    const GroundTruth then = TruthOf(*truth->world, t);
+    ModeSummary s;
+    const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &then, &grid, &s);
+    PresentAt p;
+    p.t_s = t;
+    p.ate_rmse_m = s.ate_rmse_m;
+    // Before anything changed the present is every wall there is.
+    p.current_blur = s.current_blur ? s.current_blur : s.blur;
+    p.stale_cells = s.current_blur ? s.stale_cells : 0.0;
+    const std::vector<Observation> seen(stream.begin(),
+                                        stream.begin() + static_cast<std::ptrdiff_t>(i + 1));
+    if (const auto change = ComputeChangeRecall(*truth->world, t, seen, grid, T_truth_est)) {
+      p.change_recall = change->recall;
+      p.change_recall_seen = change->recent;
+    }
+    present_at_.push_back(p);
+  }
+}
+
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                const std::optional<GroundTruth>& truth,
                                const std::vector<Relation>& relations, std::vector<double>* kld,
@@ -237,6 +271,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   }
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
+  summary.present_at = present_at_;
   if (summary.change && T_truth_est) {
     changes_caption_ =
         WriteChangeTiles((dir / "changes.png").string(), *summary.change, grid, *T_truth_est);

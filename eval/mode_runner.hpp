@@ -24,6 +24,10 @@ class ModeRunner {
   void Release() { mapper_.reset(); }
 
   void Step(const Observation& obs);
+  /// After Step(stream[i]): scores the map of the present (PresentAt) at each of the
+  /// config's present_at_s times that stream[i] is the first scan at or after.
+  void ScorePresentAt(const std::vector<Observation>& stream, std::size_t i,
+                      const std::optional<GroundTruth>& truth);
 
   /// Counts for the progress line.
   std::string ProgressDetail() const;
@@ -57,6 +61,7 @@ class ModeRunner {
   std::vector<LoopCurvePoint> loop_curve_;
   std::vector<Pose2> aligned_to_reference_;
   std::string changes_png_, changes_caption_;  ///< the changed objects' strip (change_tiles)
+  std::vector<PresentAt> present_at_;          ///< ScorePresentAt's, in time order
   SequentialSummary sequential_;
   std::optional<int> first_pass_end_;
   double seconds_ = 0.0;

@@ -71,6 +71,22 @@ json ModeJson(const ModeSummary& m) {
     Put(j, "current_recall", m.current_blur->recall);
     Put(j, "stale_cells", m.stale_cells);
   }
+  if (!m.present_at.empty()) {
+    json list = json::array();
+    for (const PresentAt& p : m.present_at) {
+      json e = {{"t_s", p.t_s}};
+      Put(e, "ate_rmse_m", p.ate_rmse_m);
+      if (p.current_blur) {
+        Put(e, "current_blur_cm", p.current_blur->mean_cm);
+        Put(e, "current_recall", p.current_blur->recall);
+      }
+      Put(e, "stale_cells", p.stale_cells);
+      Put(e, "change_recall", p.change_recall);
+      Put(e, "change_recall_seen", p.change_recall_seen);
+      list.push_back(e);
+    }
+    j["present_at"] = list;
+  }
   if (m.change) {
     Put(j, "change_recall", m.change->recall);
     j["change_recall_seen"] = m.change->recent;

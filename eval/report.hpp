@@ -65,6 +65,19 @@ struct KldSummary {
   double mean_finite = 0.0;      ///< mean over the others (0 when there are none)
 };
 
+/// The map of the present at a time the user asked for (`run --present-at`): the figures
+/// the end has (current_blur, current_recall, stale_cells, change_recall), against the world
+/// as it stood at t_s, of the map and trajectory as they were at the first scan at or after
+/// it.
+struct PresentAt {
+  double t_s = 0.0;
+  std::optional<double> ate_rmse_m;
+  std::optional<BlurSummary> current_blur;
+  std::optional<double> stale_cells;
+  std::optional<double> change_recall;
+  std::optional<std::int64_t> change_recall_seen;
+};
+
 /// One entry of "modes" in summary.json; the names match the JSON keys.
 struct ModeSummary {
   std::optional<std::int64_t> observations;
@@ -89,8 +102,9 @@ struct ModeSummary {
   /// Per door or box that changed during the run: whether the map shows its state at the
   /// end (eval/change_recall.hpp); simulated runs only.
   std::optional<ChangeRecall> change;
-  std::optional<double> ate_rmse_m;  ///< ground truth or a reference trajectory
-  std::optional<RpeSummary> rpe_1m;  ///< ground truth or a reference trajectory
+  std::vector<PresentAt> present_at;  ///< run --present-at, in time order
+  std::optional<double> ate_rmse_m;   ///< ground truth or a reference trajectory
+  std::optional<RpeSummary> rpe_1m;   ///< ground truth or a reference trajectory
   /// Reference trajectory: estimate poses scored against it (others had no reference pose).
   std::optional<std::int64_t> reference_matched;
   std::optional<double> loop_precision;  ///< ground truth only, >= 1 closure accepted

@@ -1,23 +1,20 @@
 // `lifelong reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]`:
-// each experiment of the BOOK runs as a sweep in DIR/<id>/ (resumed like any sweep: cells
-// up to date are not run again), each claim is judged on its sweep's cells, and the book
-// is written to DIR/index.html and DIR/results.md (eval/book.hpp, docs/reproduce.md).
+// each experiment of the BOOK runs as a sweep in DIR/<its SPEC's stem>/ (resumed like any
+// sweep: cells up to date are not run again), each claim is judged on its sweep's cells, and the
+// book is written to DIR/index.html and DIR/results.md (eval/book.hpp, docs/reproduce.md).
 #include "apps/reproduce_command.hpp"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 #include "apps/exit_codes.hpp"
+#include "apps/sweep_command.hpp"
 #include "eval/book.hpp"
 #include "eval/build_info.hpp"
 #include "eval/interrupt.hpp"
-#include "eval/progress.hpp"
 #include "eval/sweep_run.hpp"
 #include "eval/sweep_slurm.hpp"
 
@@ -86,15 +83,7 @@ int Reproduce(const ReproduceArgs& a) {
     }
     // Experiments that name the same SPEC share its sweep (its cells run once).
     er.dir = fs::path(spec).stem().string();
-    eval::SweepOptions o;
-    o.spec = spec;
-    o.out_dir = (fs::path(a.out) / er.dir).string();
-    o.program = fs::read_symlink("/proc/self/exe").string();
-    o.program_id = build.version + " " + build.commit;
-    o.parallel =
-        a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    o.progress = &std::cerr;
-    o.terminal = ::isatty(STDERR_FILENO) == 1;
+    const eval::SweepOptions o = SweepOptionsFor(spec, (fs::path(a.out) / er.dir).string(), a.jobs);
     eval::SweepOutcome r = RunExperiment(a, o);
     for (const eval::FailedCell& f : r.failed) {
       std::cout << "  failed: " << f.name << " (exit " << f.exit_code << "), log " << f.log << "\n";

@@ -73,16 +73,8 @@ int Sweep(const SweepArgs& a) {
     PrintTables(eval::CollectSweep(a.out), a.out);
     return 0;
   }
-  eval::SweepOptions o;
-  o.spec = a.spec;
-  o.out_dir = a.out;
-  o.program = fs::read_symlink("/proc/self/exe").string();
-  o.program_id = ProgramId();
-  o.progress = &std::cerr;
-  o.terminal = ::isatty(STDERR_FILENO) == 1;
+  const eval::SweepOptions o = SweepOptionsFor(a.spec, a.out, a.jobs);
   if (a.slurm) return SlurmSweep(a, o);
-  o.parallel =
-      a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const eval::SweepOutcome r = eval::RunSweep(o);
   std::cout << "ran " << r.ran << " of " << r.cells << " cells (" << r.up_to_date
             << " up to date) in " << eval::FormatDuration(r.wall_s) << " with -j " << o.parallel
@@ -93,6 +85,19 @@ int Sweep(const SweepArgs& a) {
 }
 
 }  // namespace
+
+eval::SweepOptions SweepOptionsFor(const std::string& spec, const std::string& out, int jobs) {
+  eval::SweepOptions o;
+  o.spec = spec;
+  o.out_dir = out;
+  o.program = fs::read_symlink("/proc/self/exe").string();
+  o.program_id = ProgramId();
+  o.progress = &std::cerr;
+  o.terminal = ::isatty(STDERR_FILENO) == 1;
+  o.parallel =
+      jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return o;
+}
 
 int SweepCommand(const SweepArgs& args) {
   // The cells are told to stop at once and answer within their own 1 s grace; the sweep waits

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "eval/map_quality.hpp"
 #include "eval/world_state.hpp"
@@ -28,9 +29,11 @@ bool Changed(const Object& o, double end_s) {
                      [&](const sim::BoxMove& m) { return m.t_s <= end_s; });
 }
 
-// The last stamp at which a scan saw the object.
-std::optional<double> LastSeen(const Object& o, const std::vector<Observation>& stream) {
-  for (auto it = stream.rbegin(); it != stream.rend(); ++it) {
+// The last stamp at which one of the first `scans` scans saw the object.
+std::optional<double> LastSeen(const Object& o, const std::vector<Observation>& stream,
+                               std::size_t scans) {
+  const auto end = stream.begin() + static_cast<std::ptrdiff_t>(std::min(scans, stream.size()));
+  for (auto it = std::make_reverse_iterator(end); it != stream.rend(); ++it) {
     if (!it->T_world_robot_true) continue;
     const double t = it->stamp_s;
     const LaserScan& scan = it->scan;
@@ -59,8 +62,8 @@ std::optional<double> LastSeen(const Object& o, const std::vector<Observation>& 
 
 std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double end_s,
                                                 const std::vector<Observation>& stream,
-                                                const OccupancyGrid& map,
-                                                const Pose2& T_truth_est) {
+                                                const OccupancyGrid& map, const Pose2& T_truth_est,
+                                                std::size_t scans) {
   std::vector<Object> objects;
   for (const sim::Door& d : world.doors) objects.push_back({"door " + d.name, &d, nullptr});
   for (const sim::Box& b : world.boxes) objects.push_back({"box " + b.name, nullptr, &b});
@@ -70,7 +73,7 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
   for (const Object& o : objects) {
     if (!Changed(o, end_s)) continue;
     ObjectPresent p;
-    const std::optional<double> seen = LastSeen(o, stream);
+    const std::optional<double> seen = LastSeen(o, stream, scans);
     if (seen) p.since_seen_s = std::max(0.0, end_s - *seen);
     // Its present and its past, each against the rest of what stands at the end.
     std::vector<Segment> present, past;

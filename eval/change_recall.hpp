@@ -9,6 +9,8 @@
 // 10 minutes whose map shows their present state.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -33,9 +35,11 @@ struct ChangeRecall {
   int recent = 0;                                ///< how many those are
 };
 
-/// Nothing when no door or box changed during [0, end_s].
+/// Nothing when no door or box changed during [0, end_s]. The robot has seen the first
+/// `scans` observations of `stream` (all of them by default).
 std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double end_s,
                                                 const std::vector<Observation>& stream,
-                                                const OccupancyGrid& map, const Pose2& T_truth_est);
+                                                const OccupancyGrid& map, const Pose2& T_truth_est,
+                                                std::size_t scans = SIZE_MAX);
 
 }  // namespace lifelong::eval

@@ -218,9 +218,8 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
     // Before anything changed the present is every wall there is.
     p.current_blur = s.current_blur ? s.current_blur : s.blur;
     p.stale_cells = s.current_blur ? s.stale_cells : 0.0;
-    const std::vector<Observation> seen(stream.begin(),
-                                        stream.begin() + static_cast<std::ptrdiff_t>(i + 1));
-    if (const auto change = ComputeChangeRecall(*truth->world, t, seen, grid, T_truth_est)) {
+    if (const auto change =
+            ComputeChangeRecall(*truth->world, t, stream, grid, T_truth_est, i + 1)) {
       p.change_recall = change->recall;
       p.change_recall_seen = change->recent;
     }

@@ -40,7 +40,7 @@ class DpgPolicy final : public RemovalPolicy {
       const LaserScan old_active = Active(old);
       const ScanComparison c = CompareScans(old_active, old.T_world_robot, now_active,
                                             now.T_world_robot, config_.dpg.detection);
-      // Retired beams are no evidence, so a comparison never finds one of them again.
+      // Cut beams are no evidence, so a comparison never finds one of them again.
       std::size_t retired = old.cut->size();
       if (!c.outdated.empty()) {
         retired += c.outdated.size();

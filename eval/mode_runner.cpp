@@ -93,6 +93,7 @@ void ModeRunner::Record(const slam::StepStats& s) {
   if (s.observation_index > 0) {  // the first observation has nothing to match against
     ++sequential_.count;
     if (s.incremental_match_ok) ++sequential_.matched;
+    if (s.incremental_match_degenerate) ++sequential_.degenerate;
   }
   if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
 }

@@ -106,7 +106,9 @@ json ModeJson(const ModeSummary& m) {
   }
   Put(j, "reference_matched", m.reference_matched);
   if (m.sequential) {
-    j["sequential"] = {{"count", m.sequential->count}, {"matched", m.sequential->matched}};
+    j["sequential"] = {{"count", m.sequential->count},
+                       {"matched", m.sequential->matched},
+                       {"degenerate", m.sequential->degenerate}};
   }
   Put(j, "loop_precision", m.loop_precision);
   Put(j, "loop_recall", m.loop_recall);

@@ -57,6 +57,8 @@ struct RpeSummary {
 struct SequentialSummary {
   std::int64_t count = 0;    ///< observations after the first
   std::int64_t matched = 0;  ///< of those, matched (the rest keep odometry alone)
+  /// of the matched, ambiguous along one direction, which their odometry measured
+  std::int64_t degenerate = 0;
 };
 struct KldSummary {
   std::int64_t count = 0;

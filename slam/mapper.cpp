@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "slam/mapper_state.hpp"
+#include "slam/match_degeneracy.hpp"
 #include "slam/optimizer.hpp"
 #include "slam/scan_matcher.hpp"
 
@@ -102,7 +103,13 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
       const MatchResult match = Match(match_grid, data.points, guess, inc.matcher);
       if (match.ok) {
         X_new = match.T_ref_cur;
-        edge.information = RotateIntoFrame(match.information, X_new.theta);
+        Eigen::Matrix3d information = match.information;  // in the world frame
+        if (match.ambiguity > inc.max_ambiguity) {
+          TakeDegenerateDirectionFromGuess(guess, OdometryInformation(inc, delta), match, &X_new,
+                                           &information);
+          stats->incremental_match_degenerate = true;
+        }
+        edge.information = RotateIntoFrame(information, X_new.theta);
         stats->incremental_match_ok = true;
       }
     }

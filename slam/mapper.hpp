@@ -40,6 +40,8 @@ struct StepStats {
   int loop_closures_total = 0;
   int nodes_removed_total = 0;
   bool incremental_match_ok = false;
+  /// ...and ambiguous along a direction, which the odometry measured (max_ambiguity)
+  bool incremental_match_degenerate = false;
   bool loop_closed = false;
   bool optimized = false;
   double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update

@@ -110,6 +110,7 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Number("odom_sigma_xy_per_m", c.odom_sigma_xy_per_m, kNonNegative);
   v.Number("odom_sigma_rad", c.odom_sigma_rad, kPositive);
   v.Number("odom_sigma_rad_per_rad", c.odom_sigma_rad_per_rad, kNonNegative);
+  v.Number("max_ambiguity", c.max_ambiguity, kUnit);
 }
 
 template <class V>

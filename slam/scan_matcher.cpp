@@ -338,6 +338,9 @@ MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& 
   result.score = best.score;
   result.ok = best.score >= config.min_score;
   result.ambiguity = best.score > 0.0 ? rival.score / best.score : 0.0;
+  result.T_ref_rival =
+      Pose2(T_ref_cur_guess.x + rival.i * l.res_m, T_ref_cur_guess.y + rival.j * l.res_m,
+            T_ref_cur_guess.theta + rival.k * l.step_rad);
   result.covariance = Covariance(s.evals(), best, l, config);
   result.information = result.covariance.inverse();
   result.evaluations = static_cast<int>(s.evals().size());

@@ -124,6 +124,7 @@ struct MatchResult {
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< covariance^-1
   bool ok = false;                                            ///< score >= min_score
   double ambiguity = 0.0;     ///< best distinct competitor's score / score; 0 if none
+  Pose2 T_ref_rival;          ///< that competitor's pose (lattice), when ambiguity > 0
   int evaluations = 0;        ///< fine poses scored
   int bound_evaluations = 0;  ///< coarser bounds computed
 };

@@ -112,6 +112,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.odom_sigma_xy_per_m, ib.odom_sigma_xy_per_m);
   EXPECT_EQ(ia.odom_sigma_rad, ib.odom_sigma_rad);
   EXPECT_EQ(ia.odom_sigma_rad_per_rad, ib.odom_sigma_rad_per_rad);
+  EXPECT_EQ(ia.max_ambiguity, ib.max_ambiguity);
   ExpectSameLoops(a.loops, b.loops);
   EXPECT_EQ(a.pruning.mode, b.pruning.mode);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
@@ -177,6 +178,7 @@ MapperConfig AllChanged() {
   c.incremental.odom_sigma_xy_per_m = 0.2;
   c.incremental.odom_sigma_rad = 0.03;
   c.incremental.odom_sigma_rad_per_rad = 0.15;
+  c.incremental.max_ambiguity = 0.8;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;
@@ -252,11 +254,10 @@ TEST(MapperConfigFile, DefaultYamlSetsEveryKeyToTheCodeDefaults) {
 }
 
 TEST(MapperConfigFile, PrunedBudgetExampleSetsOnlyThePruning) {
-  const MapperConfig loaded = LoadMapperConfig(kDir + "pruned_budget.yaml");
   MapperConfig expected;
   expected.pruning.radius_m = 8.0;
   expected.pruning.node_budget = 150;
-  ExpectSameConfig(loaded, expected);
+  ExpectSameConfig(LoadMapperConfig(kDir + "pruned_budget.yaml"), expected);
 }
 
 TEST(MapperConfigFile, SeedMarginalizationExampleRestoresTheSeedsRules) {
@@ -267,6 +268,12 @@ TEST(MapperConfigFile, SeedMarginalizationExampleRestoresTheSeedsRules) {
   expected.pruning.factor_means = slam::FactorMeans::kEstimate;
   expected.pruning.robust_marginal = false;
   ExpectSameConfig(loaded, expected);
+}
+
+TEST(MapperConfigFile, DenseKeyframesExampleSetsOnlyTheKeyframes) {
+  MapperConfig expected;
+  expected.keyframes = {0.25, 0.2};
+  ExpectSameConfig(LoadMapperConfig(kDir + "dense_keyframes.yaml"), expected);
 }
 
 TEST(MapperConfigFile, OverridesApplyAndTheRestStaysAtBase) {

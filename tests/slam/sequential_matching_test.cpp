@@ -1,0 +1,87 @@
+// The incremental matcher on real odometry (BENCHMARKS.md "Sequential matching on real
+// odometry"): a wheel slip that turns the odometry by more than the old 0.26 rad window between
+// two observations is matched, not handed to the odometry fallback (csail bent by it); a match
+// ambiguous along one direction takes the odometry's position along it (simulated corridors
+// slipped by it).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "slam/mapper.hpp"
+#include "slam/match_degeneracy.hpp"
+#include "synthetic_scans.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+struct SlipResult {
+  bool matched = false;
+  double heading_error_rad = 0.0;  ///< second pose's heading against the truth
+};
+
+// Two observations in the room 0.4 m apart; the odometry of the second turned by `slip_rad`
+// that the robot did not turn.
+SlipResult MapThroughSlip(const MapperConfig& config, double slip_rad) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 first(3.0, 2.5, 0.0), second(3.4, 2.5, 0.0);
+  Mapper mapper(config);
+  Observation a;
+  a.stamp_s = 0.0;
+  a.T_odom_robot = first;
+  a.scan = testing::SimulateScan(room, first);
+  mapper.AddObservation(a);
+  Observation b;
+  b.stamp_s = 1.0;
+  b.T_odom_robot = Pose2(second.x, second.y, second.theta + slip_rad);
+  b.scan = testing::SimulateScan(room, second);
+  const StepStats stats = mapper.AddObservation(b);
+  // The mapper's frame is the first pose's, which is the world's here up to the offset.
+  const StampedPose last = mapper.LastScanPose();
+  return {stats.incremental_match_ok, NormalizeAngle(last.T_world_robot.theta - second.theta)};
+}
+
+TEST(SequentialMatching, RecoversAWheelSlipOfTwentyThreeDegrees) {
+  const SlipResult r = MapThroughSlip(MapperConfig{}, -0.4);
+  EXPECT_TRUE(r.matched);
+  EXPECT_LT(std::abs(r.heading_error_rad), 0.01);
+}
+
+TEST(SequentialMatching, TheOldWindowLeftTheSlipInTheMap) {
+  MapperConfig config;
+  config.incremental.matcher.angular_window_rad = 0.26;  // the default before 2026-12-04
+  const SlipResult r = MapThroughSlip(config, -0.4);
+  EXPECT_GT(std::abs(r.heading_error_rad), 0.1);
+}
+
+// A match at the origin whose rival lies 0.5 m along x; the odometry guess says 0.25 m on.
+TEST(SequentialMatching, AnAmbiguousDirectionTakesTheOdometry) {
+  MatchResult match;
+  match.T_ref_cur = Pose2(0.0, 0.02, 0.01);
+  match.T_ref_rival = Pose2(0.5, 0.02, 0.01);
+  const Eigen::Matrix3d matched = Eigen::Vector3d(1e4, 2e4, 3e4).asDiagonal();
+  const Eigen::Matrix3d odometry = Eigen::Vector3d(100.0, 100.0, 400.0).asDiagonal();
+  Pose2 X = match.T_ref_cur;
+  Eigen::Matrix3d information = matched;
+  TakeDegenerateDirectionFromGuess(Pose2(0.25, 0.0, 0.0), odometry, match, &X, &information);
+  EXPECT_NEAR(X.x, 0.25, 1e-12);  // along the rival: the guess
+  EXPECT_NEAR(X.y, 0.02, 1e-12);  // across it: the match
+  EXPECT_NEAR(X.theta, 0.01, 1e-12);
+  EXPECT_NEAR(information(0, 0), 100.0, 1e-9);
+  EXPECT_NEAR(information(1, 1), 2e4, 1e-9);
+  EXPECT_NEAR(information(2, 2), 3e4, 1e-9);
+  EXPECT_NEAR(information(0, 1), 0.0, 1e-9);
+}
+
+TEST(SequentialMatching, ARivalByHeadingAloneChangesNothing) {
+  MatchResult match;
+  match.T_ref_cur = Pose2(0.1, 0.2, 0.0);
+  match.T_ref_rival = Pose2(0.1, 0.2, 0.3);
+  Pose2 X = match.T_ref_cur;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Identity() * 50.0;
+  TakeDegenerateDirectionFromGuess(Pose2(), Eigen::Matrix3d::Identity(), match, &X, &information);
+  EXPECT_EQ(X.x, 0.1);
+  EXPECT_EQ(information(0, 0), 50.0);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

@@ -210,25 +210,4 @@ World LoadWorldFromString(const std::string& yaml, const std::string& name) {
   return ParseWorld(ParseYamlString(yaml, name), name);
 }
 
-void ValidateWorld(const World& world) {
-  const std::string& file = world.source;
-  if (world.walls.empty()) throw InputError(file, 0, "walls", "world has no walls");
-  for (std::size_t i = 0; i < world.walls.size(); ++i) {
-    const Wall& wall = world.walls[i];
-    const std::string field = "walls[" + std::to_string(i) + "]";
-    if (wall.points.size() < (wall.closed ? 3u : 2u))
-      throw InputError(file, 0, field, "too few points");
-    if (wall.closed && ZeroArea(wall.points)) {
-      throw InputError(file, 0, field, "polygon has zero area (collinear points)");
-    }
-    if (wall.closed && PolygonSelfIntersects(wall.points)) {
-      throw InputError(file, 0, field, "polygon is self-intersecting");
-    }
-  }
-  for (const Place& p : world.places) {
-    const std::string why = CheckFree(world, p.at, world.clearance_m);
-    if (!why.empty()) throw InputError(file, 0, "places", "place '" + p.name + "' " + why);
-  }
-}
-
 }  // namespace lifelong::sim

@@ -21,8 +21,4 @@ World LoadWorld(const std::string& path);
 /// The same from YAML text; `name` stands in for the file name in errors.
 World LoadWorldFromString(const std::string& yaml, const std::string& name);
 
-/// Checks the geometry of a world built in code (same rules as the loader); throws
-/// InputError naming world.source.
-void ValidateWorld(const World& world);
-
 }  // namespace lifelong::sim

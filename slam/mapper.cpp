@@ -96,7 +96,8 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     edge.to = id;
     edge.kind = EdgeKind::kOdometry;
     Pose2 X_new = guess;
-    edge.information = OdometryInformation(inc, delta);
+    const Eigen::Matrix3d odometry = OdometryInformation(inc, delta);  // the same in any frame
+    edge.information = odometry;
     CropToSearch(data.points, guess, inc.matcher, &reference);
     if (reference.size() >= 10 && data.points.size() >= 10) {
       match_grid.Build(reference, inc.matcher);
@@ -105,8 +106,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
         X_new = match.T_ref_cur;
         Eigen::Matrix3d information = match.information;  // in the world frame
         if (match.ambiguity > inc.max_ambiguity) {
-          TakeDegenerateDirectionFromGuess(guess, OdometryInformation(inc, delta), match, &X_new,
-                                           &information);
+          TakeDegenerateDirectionFromGuess(guess, odometry, match, &X_new, &information);
           stats->incremental_match_degenerate = true;
         }
         edge.information = RotateIntoFrame(information, X_new.theta);

@@ -81,8 +81,8 @@ struct IncrementalConfig {
   double odom_sigma_rad = 0.02;      ///< ...heading base sigma
   double odom_sigma_rad_per_rad = 0.1;
   /// A match whose best distinct rival scores above this share of it does not measure the
-  /// direction towards the rival: the odometry does (slam/mapper.cpp,
-  /// TakeDegenerateDirectionFromGuess). 1: off, the match alone (before 2026-12-04).
+  /// direction towards the rival: the odometry does (slam/match_degeneracy.hpp). 1: off, the
+  /// match alone (before 2026-12-04).
   double max_ambiguity = 0.95;
 };
 

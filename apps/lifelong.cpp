@@ -24,9 +24,9 @@
 #include "io/output_path.hpp"
 #include "lifelong_build_info.hpp"  // generated: LIFELONG_VERSION, LIFELONG_COMMIT
 #include "sensor/input_error.hpp"
-#include "slam/mapper_config.hpp"
-#include "slam/optimizer.hpp"
-#include "slam/sparsifier.hpp"
+#include "slam/backend/optimizer.hpp"
+#include "slam/mapping/mapper_config.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 
 namespace {
 

@@ -13,10 +13,10 @@
 #include "io/graph_file.hpp"
 #include "io/output_path.hpp"
 #include "sensor/input_error.hpp"
-#include "slam/global_kl.hpp"
-#include "slam/offline_sparsify.hpp"
-#include "slam/optimizer.hpp"
-#include "slam/sparsifier.hpp"
+#include "slam/backend/optimizer.hpp"
+#include "slam/sparsify/global_kl.hpp"
+#include "slam/sparsify/offline_sparsify.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::apps {
 namespace {

@@ -1,5 +1,6 @@
 // `lifelong sparsify`: the offline sparsification protocol on a g2o/TORO pose graph
-// (slam/offline_sparsify.hpp, slam/global_kl.hpp); slam + io only, like `optimize`.
+// (slam/sparsify/offline_sparsify.hpp, slam/sparsify/global_kl.hpp); slam + io only, like
+// `optimize`.
 #pragma once
 
 #include <optional>

@@ -25,7 +25,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "io/graph_file.hpp"
-#include "slam/optimizer.hpp"
+#include "slam/backend/optimizer.hpp"
 
 namespace lifelong {
 namespace {

@@ -5,7 +5,7 @@
 //   ceres_pose_graph_2d GRAPH.g2o
 //
 // prints vertices, edges, initial_chi2, final_chi2, iterations and solve_time_s, as
-// `lifelong optimize` does. The problem is ours (DESIGN.md, slam/se2.hpp):
+// `lifelong optimize` does. The problem is ours (DESIGN.md, slam/graph/se2.hpp):
 //   - one parameter block (x, y, theta) per VERTEX_SE2, updated additively with theta
 //     wrapped into [-pi, pi) (as our optimizer and g2o's VertexSE2);
 //   - per EDGE_SE2 the error e = t2v(Z^-1 (Xi^-1 Xj)):

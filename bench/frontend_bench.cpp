@@ -3,9 +3,9 @@
 // windows) on the synthetic room of the tests.
 #include <benchmark/benchmark.h>
 
-#include "slam/gain_index.hpp"
-#include "slam/grid_map.hpp"
-#include "slam/scan_matcher.hpp"
+#include "slam/grid/gain_index.hpp"
+#include "slam/grid/grid_map.hpp"
+#include "slam/matching/scan_matcher.hpp"
 #include "tests/slam/synthetic_scans.hpp"
 
 namespace lifelong::slam {

@@ -7,7 +7,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "slam/marginalization.hpp"
+#include "slam/sparsify/marginalization.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "sensor/pose2.hpp"
-#include "slam/pose_graph.hpp"
+#include "slam/graph/pose_graph.hpp"
 #include "types/edge_kind.hpp"
 #include "types/image.hpp"
 #include "types/occupancy_grid.hpp"

@@ -32,7 +32,7 @@
 #include "io/map_file.hpp"
 #include "io/relations.hpp"
 #include "io/tum.hpp"
-#include "slam/mapper.hpp"
+#include "slam/mapping/mapper.hpp"
 
 namespace lifelong::eval {
 namespace {

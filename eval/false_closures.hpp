@@ -6,7 +6,7 @@
 
 #include <functional>
 
-#include "slam/loop_verifier.hpp"
+#include "slam/loops/loop_verifier.hpp"
 
 namespace lifelong::eval {
 

@@ -13,8 +13,8 @@
 
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
-#include "slam/mapper_config_fields.hpp"
-#include "slam/scan_matcher.hpp"
+#include "slam/mapping/mapper_config_fields.hpp"
+#include "slam/matching/scan_matcher.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -16,7 +16,7 @@
 
 #include <string>
 
-#include "slam/mapper_config.hpp"
+#include "slam/mapping/mapper_config.hpp"
 
 namespace lifelong::eval {
 

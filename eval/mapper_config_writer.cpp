@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "eval/mapper_config_file.hpp"
-#include "slam/mapper_config_fields.hpp"
+#include "slam/mapping/mapper_config_fields.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "slam/mapper.hpp"
+#include "slam/mapping/mapper.hpp"
 
 namespace lifelong::eval {
 

@@ -10,7 +10,7 @@
 #include "eval/experiment.hpp"
 #include "eval/metrics.hpp"
 #include "eval/report.hpp"
-#include "slam/mapper.hpp"
+#include "slam/mapping/mapper.hpp"
 
 namespace lifelong::eval {
 

@@ -12,8 +12,8 @@
 
 #include "eval/change_recall.hpp"
 #include "eval/types.hpp"
-#include "slam/loop_verifier.hpp"
-#include "slam/pose_graph.hpp"
+#include "slam/graph/pose_graph.hpp"
+#include "slam/loops/loop_verifier.hpp"
 
 namespace lifelong::eval {
 
@@ -36,7 +36,7 @@ struct RelationsSummary {
   std::int64_t count = 0;
   double trans_mean_m = 0.0, trans_std_m = 0.0, rot_mean_deg = 0.0, rot_std_deg = 0.0;
 };
-/// Loop-closure verification counts (slam/loop_verifier.hpp); summary.json's
+/// Loop-closure verification counts (slam/loops/loop_verifier.hpp); summary.json's
 /// "loop_verification".
 struct LoopVerificationSummary {
   slam::LoopVerifierStats counts;

@@ -11,7 +11,7 @@
 #include "eval/mode_colors.hpp"
 #include "eval/report_table.hpp"
 #include "eval/run_maps.hpp"
-#include "slam/mapper_config.hpp"
+#include "slam/mapping/mapper_config.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -11,7 +11,7 @@
 #include "eval/mapper_config_file.hpp"
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
-#include "slam/mapper_config.hpp"
+#include "slam/mapping/mapper_config.hpp"
 
 namespace lifelong::eval {
 namespace {

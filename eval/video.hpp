@@ -16,7 +16,7 @@
 #include "render/scene.hpp"
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
-#include "slam/pose_graph.hpp"
+#include "slam/graph/pose_graph.hpp"
 #include "types/occupancy_grid.hpp"
 #include "types/segment.hpp"
 

@@ -18,7 +18,6 @@
 #include "io/atomic_file.hpp"
 #include "sensor/input_bounds.hpp"
 #include "sensor/input_error.hpp"
-#include "slam/dense_lapack.hpp"
 
 namespace lifelong::io {
 namespace {
@@ -179,7 +178,9 @@ void ReadClique(Parsed* p, LineReader* r) {
     }
   }
   r->ExpectEnd();
-  const Eigen::VectorXd ev = slam::SymmetricEigenvalues(c.information);
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(c.information, Eigen::EigenvaluesOnly)
+          .eigenvalues();
   const double max_ev = ev.cwiseAbs().maxCoeff();
   if (ev.minCoeff() < -1e-9 * max_ev) {
     r->Fail("information", "clique information is not positive semidefinite");

@@ -98,9 +98,9 @@ TEST(SparsifyCli, PrintsOneJsonObjectAndWritesTheKeptGraph) {
 
 TEST(SparsifyCli, NfrTreeIsNoWorseThanChowLiuAndTheSubgraphNoWorseThanTheTree) {
   // NFR's tree informations are KL-optimal for the Chow-Liu tree, which chow-liu's exact pair
-  // conditionals already are (slam/nfr.hpp step 4): the two agree to rounding; the subgraph's
-  // extra edges (--nfr-chords mi: the ring's cliques are trees before each removal, so the
-  // joined pairs are all tree pairs) lower the KL.
+  // conditionals already are (slam/sparsify/nfr.hpp step 4): the two agree to rounding; the
+  // subgraph's extra edges (--nfr-chords mi: the ring's cliques are trees before each removal, so
+  // the joined pairs are all tree pairs) lower the KL.
   const fs::path graph = Ring();
   const auto run = [&](const std::string& method) {
     const Result r =

@@ -1,6 +1,6 @@
-// Scan-to-scan change detection (slam/change_detection.hpp) on hand-made worlds with an exact
+// Scan-to-scan change detection (slam/grid/change_detection.hpp) on hand-made worlds with an exact
 // ray caster: a door that opens, a box that appears, a static room, and poses that disagree.
-#include "slam/change_detection.hpp"
+#include "slam/grid/change_detection.hpp"
 
 #include <gtest/gtest.h>
 

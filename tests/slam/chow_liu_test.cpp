@@ -1,4 +1,4 @@
-#include "slam/chow_liu.hpp"
+#include "slam/sparsify/chow_liu.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "slam/dense_lapack.hpp"
+#include "slam/backend/dense_lapack.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>

@@ -1,4 +1,4 @@
-#include "slam/dijkstra.hpp"
+#include "slam/graph/dijkstra.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // GainIndex keeps the information gains (seed eq. 5.11) of tracked scans exact through every
 // change of the map, bit for bit equal to the gains computed afresh, including where it skips
 // the cells of pure counts.
-#include "slam/gain_index.hpp"
+#include "slam/grid/gain_index.hpp"
 
 #include <map>
 #include <random>

@@ -1,4 +1,4 @@
-#include "slam/glc.hpp"
+#include "slam/sparsify/glc.hpp"
 
 #include <cmath>
 #include <random>
@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
-#include "slam/marginalization.hpp"
-#include "slam/se2.hpp"
-#include "slam/sparsifier.hpp"
+#include "slam/graph/se2.hpp"
+#include "slam/sparsify/marginalization.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

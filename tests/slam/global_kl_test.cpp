@@ -1,4 +1,4 @@
-#include "slam/global_kl.hpp"
+#include "slam/sparsify/global_kl.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "io/graph_file.hpp"
-#include "slam/offline_sparsify.hpp"
-#include "slam/optimizer.hpp"
-#include "slam/sparsifier.hpp"
+#include "slam/backend/optimizer.hpp"
+#include "slam/sparsify/offline_sparsify.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

@@ -1,5 +1,5 @@
 // Counting grid map (seed eq. 3.10), entropy and information gain (seed eqs. 5.10, 5.11).
-#include "slam/grid_map.hpp"
+#include "slam/grid/grid_map.hpp"
 
 #include <algorithm>
 #include <cmath>

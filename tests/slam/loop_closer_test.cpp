@@ -1,6 +1,6 @@
 // The loop closer on its own, without a Mapper: a chain of nodes that crosses a room and
 // comes back, with the return's estimate off by a known amount.
-#include "slam/loop_closer.hpp"
+#include "slam/loops/loop_closer.hpp"
 
 #include <cmath>
 #include <vector>

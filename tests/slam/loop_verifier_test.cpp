@@ -1,11 +1,11 @@
-// Group verification of loop closures (slam/loop_verifier.hpp) on a second pass along a
+// Group verification of loop closures (slam/loops/loop_verifier.hpp) on a second pass along a
 // corridor: old nodes 0..9 at x = 0..9 m, current nodes 100..109 at the same places, the
 // estimate of the second pass drifted by 0.3 m sideways (what a closure corrects).
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 
-#include "slam/loop_verifier.hpp"
+#include "slam/loops/loop_verifier.hpp"
 
 namespace lifelong::slam {
 namespace {

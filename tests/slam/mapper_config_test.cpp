@@ -1,6 +1,6 @@
 // Validate(MapperConfig): the allowed values declared once in mapper_config_fields.hpp,
 // enforced in slam whoever builds the config.
-#include "slam/mapper_config.hpp"
+#include "slam/mapping/mapper_config.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/mapper.hpp"
+#include "slam/mapping/mapper.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -1,5 +1,5 @@
 // Mapper properties on a short simulated corridor run (sim is used only as a data source).
-#include "slam/mapper.hpp"
+#include "slam/mapping/mapper.hpp"
 
 #include <cmath>
 #include <functional>
@@ -12,8 +12,8 @@
 
 #include "sim/scenario.hpp"
 #include "sim/simulator.hpp"
-#include "slam/dijkstra.hpp"
-#include "slam/mapper_state.hpp"
+#include "slam/graph/dijkstra.hpp"
+#include "slam/mapping/mapper_state.hpp"
 
 namespace lifelong::slam {
 namespace {

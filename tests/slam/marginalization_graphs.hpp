@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "slam/pose_graph.hpp"
-#include "slam/se2.hpp"
+#include "slam/graph/pose_graph.hpp"
+#include "slam/graph/se2.hpp"
 
 namespace lifelong::slam::test_util {
 

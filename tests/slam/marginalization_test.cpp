@@ -1,4 +1,4 @@
-#include "slam/marginalization.hpp"
+#include "slam/sparsify/marginalization.hpp"
 
 #include <cmath>
 #include <random>
@@ -9,8 +9,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
-#include "slam/chow_liu.hpp"
-#include "slam/se2.hpp"
+#include "slam/graph/se2.hpp"
+#include "slam/sparsify/chow_liu.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

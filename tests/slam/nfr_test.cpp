@@ -1,6 +1,6 @@
-// Nonlinear factor recovery (slam/nfr.hpp): the tree's closed form, the subgraph's projected
-// Newton solver and the two sparsifiers against chow-liu.
-#include "slam/nfr.hpp"
+// Nonlinear factor recovery (slam/sparsify/nfr.hpp): the tree's closed form, the subgraph's
+// projected Newton solver and the two sparsifiers against chow-liu.
+#include "slam/sparsify/nfr.hpp"
 
 #include <cmath>
 #include <random>
@@ -11,9 +11,9 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
-#include "slam/marginalization.hpp"
-#include "slam/se2.hpp"
-#include "slam/sparsifier.hpp"
+#include "slam/graph/se2.hpp"
+#include "slam/sparsify/marginalization.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

@@ -1,4 +1,4 @@
-#include "slam/optimizer.hpp"
+#include "slam/backend/optimizer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "io/graph_file.hpp"
-#include "slam/se2.hpp"
+#include "slam/graph/se2.hpp"
 #include "test_graphs.hpp"
 
 namespace lifelong::slam {

@@ -1,5 +1,5 @@
-// Scan Context in 2D (slam/place_descriptor.hpp) and the index over its ring keys
-// (slam/place_index.hpp).
+// Scan Context in 2D (slam/loops/place_descriptor.hpp) and the index over its ring keys
+// (slam/loops/place_index.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "slam/place_descriptor.hpp"
-#include "slam/place_index.hpp"
+#include "slam/loops/place_descriptor.hpp"
+#include "slam/loops/place_index.hpp"
 
 namespace lifelong::slam {
 namespace {

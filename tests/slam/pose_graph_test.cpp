@@ -1,4 +1,4 @@
-#include "slam/pose_graph.hpp"
+#include "slam/graph/pose_graph.hpp"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 // The pruner on hand-made graphs: which node its policy picks, what a removal leaves in the
 // graph and its records, and when the edge budget applies.
-#include "slam/pruner.hpp"
+#include "slam/mapping/pruner.hpp"
 
 #include <cmath>
 #include <map>
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/dijkstra.hpp"
+#include "slam/graph/dijkstra.hpp"
 #include "test_graphs.hpp"
 
 namespace lifelong::slam {

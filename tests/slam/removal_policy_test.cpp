@@ -1,5 +1,5 @@
-// Removal policies (slam/removal_policy.hpp): which node goes, by name.
-#include "slam/removal_policy.hpp"
+// Removal policies (slam/mapping/removal_policy.hpp): which node goes, by name.
+#include "slam/mapping/removal_policy.hpp"
 
 #include <gtest/gtest.h>
 

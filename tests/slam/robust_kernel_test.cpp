@@ -1,13 +1,13 @@
-// Robust kernels on loop edges (slam/optimizer.hpp): Huber, Cauchy and dynamic covariance
+// Robust kernels on loop edges (slam/backend/optimizer.hpp): Huber, Cauchy and dynamic covariance
 // scaling against a wrong loop closure.
 #include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "slam/optimizer.hpp"
-#include "slam/optimizer_problem.hpp"
-#include "slam/se2.hpp"
+#include "slam/backend/optimizer.hpp"
+#include "slam/backend/optimizer_problem.hpp"
+#include "slam/graph/se2.hpp"
 #include "test_graphs.hpp"
 
 namespace lifelong::slam {

@@ -1,6 +1,6 @@
 // Correlative multi-resolution scan matcher (Olson 2009) on hand-made scans of a room with
 // two boxes, a featureless corridor and an unrelated lattice of posts.
-#include "slam/scan_matcher.hpp"
+#include "slam/matching/scan_matcher.hpp"
 
 #include <algorithm>
 #include <cmath>

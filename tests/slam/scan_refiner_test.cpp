@@ -1,5 +1,5 @@
-// Sub-cell refinement after the correlative lattice search (slam/scan_refiner.hpp).
-#include "slam/scan_refiner.hpp"
+// Sub-cell refinement after the correlative lattice search (slam/matching/scan_refiner.hpp).
+#include "slam/matching/scan_refiner.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/scan_matcher.hpp"
+#include "slam/matching/scan_matcher.hpp"
 #include "tests/slam/synthetic_scans.hpp"
 
 namespace lifelong::slam {

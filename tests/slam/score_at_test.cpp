@@ -1,10 +1,10 @@
-// ScoreAt (slam/scan_matcher.hpp): the score of one pose, and what the loop closer's local
+// ScoreAt (slam/matching/scan_matcher.hpp): the score of one pose, and what the loop closer's local
 // uniqueness test reads from it: a corridor scores alike along its axis, not across it.
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "slam/scan_matcher.hpp"
+#include "slam/matching/scan_matcher.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/mapper.hpp"
-#include "slam/match_degeneracy.hpp"
+#include "slam/mapping/mapper.hpp"
+#include "slam/matching/match_degeneracy.hpp"
 #include "synthetic_scans.hpp"
 
 namespace lifelong::slam {

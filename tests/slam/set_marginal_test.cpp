@@ -1,4 +1,4 @@
-#include "slam/set_marginal.hpp"
+#include "slam/sparsify/set_marginal.hpp"
 
 #include <algorithm>
 #include <random>
@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/LU>
 
-#include "slam/marginalization.hpp"
-#include "slam/offline_sparsify.hpp"
-#include "slam/sparsifier.hpp"
+#include "slam/sparsify/marginalization.hpp"
+#include "slam/sparsify/offline_sparsify.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

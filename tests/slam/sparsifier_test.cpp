@@ -1,4 +1,4 @@
-#include "slam/sparsifier.hpp"
+#include "slam/sparsify/sparsifier.hpp"
 
 #include <cstring>
 #include <random>
@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 
-#include "slam/marginalization.hpp"
-#include "slam/se2.hpp"
+#include "slam/graph/se2.hpp"
+#include "slam/sparsify/marginalization.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

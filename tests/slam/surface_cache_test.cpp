@@ -1,6 +1,6 @@
 // slam::SurfaceCache: each node's points made once while cached, at most `capacity` nodes,
 // the least recently used going first.
-#include "slam/surface_cache.hpp"
+#include "slam/loops/surface_cache.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// SurfacePoints (slam/scan_matcher.hpp): a scan's returns joined into surfaces, and why the
-// incremental matcher's local map uses them. Along an aisle whose shelf faces the beams hit at
+// SurfacePoints (slam/matching/scan_matcher.hpp): a scan's returns joined into surfaces, and why
+// the incremental matcher's local map uses them. Along an aisle whose shelf faces the beams hit at
 // grazing angles, a likelihood field of the reference's returns alone is lumpy along the
 // faces and pulls a match back towards the reference pose: motion is under-measured.
 #include <algorithm>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "slam/scan_matcher.hpp"
+#include "slam/matching/scan_matcher.hpp"
 #include "tests/slam/synthetic_scans.hpp"
 
 namespace lifelong::slam {

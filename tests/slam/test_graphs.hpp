@@ -3,7 +3,7 @@
 
 #include <Eigen/Core>
 
-#include "slam/pose_graph.hpp"
+#include "slam/graph/pose_graph.hpp"
 
 namespace lifelong::slam::test {
 

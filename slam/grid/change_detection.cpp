@@ -1,0 +1,202 @@
+// Scan-to-scan change detection (change_detection.hpp).
+#include "slam/grid/change_detection.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+#include <Eigen/Core>
+
+namespace lifelong::slam {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+/// A pose's rotation computed once: Apply gives what Pose2::Apply gives, bit for bit,
+/// without a cosine and a sine per point.
+struct Frame {
+  explicit Frame(const Pose2& T) : x(T.x), y(T.y), c(std::cos(T.theta)), s(std::sin(T.theta)) {}
+  void Apply(double px, double py, double* out_x, double* out_y) const {
+    *out_x = x + c * px - s * py;
+    *out_y = y + s * px + c * py;
+  }
+  double x, y, c, s;
+};
+
+/// cos and sin of each beam's bearing, for scans of this geometry (one laser's, so computed
+/// once a run); the same values as computing them per beam.
+const std::vector<std::array<double, 2>>& Directions(const LaserScan& scan) {
+  thread_local double angle_min = 0.0, increment = 0.0;
+  thread_local std::vector<std::array<double, 2>> table;
+  if (table.size() != scan.ranges_m.size() || angle_min != scan.angle_min_rad ||
+      increment != scan.angle_increment_rad) {
+    angle_min = scan.angle_min_rad;
+    increment = scan.angle_increment_rad;
+    table.resize(scan.ranges_m.size());
+    for (std::size_t i = 0; i < table.size(); ++i) {
+      table[i] = {std::cos(scan.Bearing(i)), std::sin(scan.Bearing(i))};
+    }
+  }
+  return table;
+}
+
+/// Where a return of one scan falls in another: the beam at its bearing and its distance
+/// from that scan's laser; beam < 0 when it is outside the field of view or too close.
+struct Seen {
+  long beam = -1;
+  double distance_m = 0.0;
+  double x = 0.0, y = 0.0;  ///< in that scan's laser frame
+};
+
+Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, double wy) {
+  double x = 0.0, y = 0.0;
+  T_laser_world.Apply(wx, wy, &x, &y);
+  Seen s;
+  s.x = x;
+  s.y = y;
+  s.distance_m = std::hypot(x, y);
+  if (s.distance_m < 1e-3 || scan.angle_increment_rad <= 0.0) return s;
+  double rel = std::atan2(y, x) - scan.angle_min_rad;
+  rel -= kTwoPi * std::floor(rel / kTwoPi);
+  const long k = std::lround(rel / scan.angle_increment_rad);
+  // The beams on both sides must exist too (three beams judge a point).
+  if (k >= 1 && k + 1 < static_cast<long>(scan.ranges_m.size())) s.beam = k;
+  return s;
+}
+
+enum class Verdict { kNone, kAgree, kSeenThrough };
+
+/// How `scan` sees a point: a return along its beam within margin of it (agree), or all
+/// three beams k-1, k, k+1 returns beyond d + margin and no return of the scan within margin
+/// of the point (seen through). The last condition keeps the edge of an object, which a
+/// small error of the poses moves off the object's outline, from reading as a change.
+Verdict Judge(const LaserScan& scan, const Seen& p, double margin) {
+  const auto i = static_cast<std::size_t>(p.beam);
+  const double d = p.distance_m;
+  if (scan.IsReturn(i) && std::abs(scan.ranges_m[i] - d) <= margin) return Verdict::kAgree;
+  for (std::size_t j = i - 1; j <= i + 1; ++j) {
+    if (!scan.IsReturn(j) || scan.ranges_m[j] <= d + margin) return Verdict::kNone;
+  }
+  // The beams whose returns could lie within margin of the point: those within
+  // asin(margin / d) of its bearing (all of them when it is that close).
+  const std::size_t n = scan.ranges_m.size();
+  const double half = d > margin ? std::asin(margin / d) : kTwoPi;
+  const auto w = static_cast<std::size_t>(std::ceil(half / scan.angle_increment_rad)) + 1;
+  const std::size_t lo = i > w ? i - w : 0, hi = std::min(n - 1, i + w);
+  for (std::size_t j = lo; j <= hi; ++j) {
+    if (!scan.IsReturn(j)) continue;
+    const double r = scan.ranges_m[j], b = scan.Bearing(j);
+    if (std::hypot(r * std::cos(b) - p.x, r * std::sin(b) - p.y) <= margin) return Verdict::kNone;
+  }
+  return Verdict::kSeenThrough;
+}
+
+/// Judges every return of `from` as `to` sees it; f(from_beam, to_beam, distance from
+/// to's laser) for those seen through. Counts agreement into *c.
+template <typename F>
+void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
+           const Pose2& T_world_to, const ChangeDetectionConfig& config, ScanComparison* c,
+           F&& seen_through) {
+  const Frame T_to_world(T_world_to.Inverse());
+  const Frame T_from(T_world_from);
+  const std::size_t n = from.ranges_m.size();
+  const std::vector<std::array<double, 2>> directions = Directions(from);
+  const auto end_point = [&](std::size_t i) {
+    const double r = from.ranges_m[i];
+    Eigen::Vector2d p;
+    T_from.Apply(r * directions[i][0], r * directions[i][1], &p.x(), &p.y());
+    return p;
+  };
+  const double min_sin = std::sin(config.min_incidence_rad);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!from.IsReturn(i)) continue;
+    const Eigen::Vector2d p = end_point(i);
+    const Seen s = SeenFrom(to, T_to_world, p.x(), p.y());
+    if (s.beam < 0) continue;
+    const Verdict v = Judge(to, s, config.margin_m);
+    ++c->judged;
+    if (v == Verdict::kAgree) ++c->agree;
+    if (v != Verdict::kSeenThrough) continue;
+    // The surface at the point, from its neighbours: a beam of `to` that meets it at a
+    // grazing angle passes it by a range error of (pose error) / sin(angle), no change.
+    if (i == 0 || i + 1 >= n || !from.IsReturn(i - 1) || !from.IsReturn(i + 1)) continue;
+    const Eigen::Vector2d t = end_point(i + 1) - end_point(i - 1);
+    if (t.norm() > 4.0 * config.margin_m || t.norm() < 1e-9) continue;
+    const Eigen::Vector2d origin(T_world_to.x, T_world_to.y);
+    const Eigen::Vector2d u = (p - origin).normalized();
+    if (std::abs(u.x() * t.y() - u.y() * t.x()) / t.norm() < min_sin) continue;
+    {
+      ++c->disagree;
+      seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam), s.distance_m);
+    }
+  }
+}
+
+void SortUnique(std::vector<std::uint32_t>* v) {
+  std::sort(v->begin(), v->end());
+  v->erase(std::unique(v->begin(), v->end()), v->end());
+}
+
+/// By beam, each beam once with the shortest free range given for it.
+void SortUnique(std::vector<BeamCut>* v) {
+  std::sort(v->begin(), v->end(), [](const BeamCut& a, const BeamCut& b) {
+    return a.beam < b.beam || (a.beam == b.beam && a.free_to_m < b.free_to_m);
+  });
+  v->erase(std::unique(v->begin(), v->end(),
+                       [](const BeamCut& a, const BeamCut& b) { return a.beam == b.beam; }),
+           v->end());
+}
+
+std::uint32_t BeamOf(std::uint32_t b) { return b; }
+std::uint32_t BeamOf(const BeamCut& c) { return c.beam; }
+
+/// Keeps the beams (ascending) that lie in runs of at least min_run beams, a run allowing
+/// gaps of one beam: a change covers neighbouring beams, noise single ones.
+template <typename T>
+void KeepRuns(std::size_t min_run, std::vector<T>* v) {
+  std::vector<T> kept;
+  std::size_t start = 0;
+  for (std::size_t i = 1; i <= v->size(); ++i) {
+    if (i < v->size() && BeamOf((*v)[i]) - BeamOf((*v)[i - 1]) <= 2) continue;
+    if (i - start >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
+    start = i;
+  }
+  *v = std::move(kept);
+}
+
+}  // namespace
+
+ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
+                            const LaserScan& newer, const Pose2& T_world_newer,
+                            const ChangeDetectionConfig& config) {
+  const Pose2 T_world_old_laser = T_world_older * older.T_robot_laser;
+  const Pose2 T_world_new_laser = T_world_newer * newer.T_robot_laser;
+  ScanComparison c;
+  // The older scan's returns that the newer one sees through: removed objects.
+  Judge(older, T_world_old_laser, newer, T_world_new_laser, config, &c,
+        [&](std::uint32_t old_beam, std::uint32_t new_beam, double) {
+          c.outdated.push_back({old_beam, older.ranges_m[old_beam]});
+          c.news.push_back(new_beam);
+        });
+  // The newer scan's returns that the older one saw through: added objects.
+  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, &c,
+        [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+          c.outdated.push_back(
+              {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m))});
+          c.news.push_back(new_beam);
+        });
+  c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;
+  if (!c.compared) {
+    c.outdated.clear();
+    c.news.clear();
+  }
+  SortUnique(&c.outdated);
+  SortUnique(&c.news);
+  KeepRuns(static_cast<std::size_t>(config.min_run_beams), &c.outdated);
+  KeepRuns(static_cast<std::size_t>(config.min_run_beams), &c.news);
+  return c;
+}
+
+}  // namespace lifelong::slam

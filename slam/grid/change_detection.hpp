@@ -1,0 +1,62 @@
+// Scan-to-scan change detection, after DPG-SLAM (Walcott-Bryant, Kaess, Johannsson and
+// Leonard, "Dynamic Pose Graph SLAM: Long-term Mapping in Low Dynamic Environments", IROS
+// 2012): laser scans of the same place taken at different times are compared, each in the
+// other's frame, beam by beam. A return of the older scan is *removed* when the newer scan's
+// beams at its bearing pass beyond it (the object is gone); a free beam of the older scan is
+// *contradicted* when the newer scan puts a return on it, short of the older beam's end (an
+// object was added). Either way the older beam shows a state the world has left: it is
+// outdated. The newer scan's beams that showed it are its news.
+//
+// A beam counts only when the beams on both sides of it agree (three beams beyond the
+// point), no return of the other scan lies within the margin of the point, the other
+// scan's beam meets the point's surface at min_incidence_rad or more, and it lies in a run
+// of min_run_beams: a corner, an object's edge or a grazing wall, hit by one beam and
+// missed by its neighbour or moved along the beam by a small pose error, is no change. And two
+// scans are compared only when they agree where they overlap: when fewer than min_agreement of the
+// returns they both see lie within `margin_m` of each other, their poses disagree (drift before a
+// loop closure) and nothing is marked.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sensor/laser_scan.hpp"
+#include "sensor/pose2.hpp"
+#include "slam/grid/grid_map.hpp"
+
+namespace lifelong::slam {
+
+struct ChangeDetectionConfig {
+  double margin_m = 0.3;  ///< a beam must pass a point by this much to see through it
+  /// A point is seen through only by a beam that meets its surface (the line through the
+  /// neighbouring returns) at this angle or more: at a grazing angle a pose error of e
+  /// moves the surface by e / sin(angle) along the beam.
+  double min_incidence_rad = 0.35;
+  /// Outdated beams count only in runs of at least this many (a run may skip one beam): a
+  /// change covers neighbouring beams, noise and pose error single ones.
+  int min_run_beams = 4;
+  /// The share of the returns within each other's field of view that must agree (within
+  /// margin_m) for the two scans to be compared at all.
+  double min_agreement = 0.6;
+};
+
+/// What comparing an older scan with a newer one found.
+struct ScanComparison {
+  int judged = 0;         ///< returns of either scan within the other's field of view
+  int agree = 0;          ///< of them, those the other sees within margin_m
+  int disagree = 0;       ///< returns of either scan that the other sees through
+  bool compared = false;  ///< the scans overlap and agree enough (min_agreement) to judge
+  /// The older scan's outdated beams, ascending, each with how far it still shows free
+  /// space: up to its return for a return seen through (the space was free, the object is
+  /// gone), up to short of the newer surface for a beam that passed where an object stands.
+  std::vector<BeamCut> outdated;
+  std::vector<std::uint32_t> news;  ///< the newer scan's beams that showed a change, ascending
+};
+
+/// Compares `older` (taken at robot pose T_world_older) with `newer` (at T_world_newer).
+/// Beams with a range <= 0 or at range_max (no return) are no evidence either way.
+ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
+                            const LaserScan& newer, const Pose2& T_world_newer,
+                            const ChangeDetectionConfig& config);
+
+}  // namespace lifelong::slam

@@ -1,0 +1,22 @@
+// What one loop search of one observation did, from its candidates to its decision
+// (slam/loops/loop_closer.hpp). The mapper reports them in StepStats.
+#pragma once
+
+#include <optional>
+
+#include "slam/loops/loop_verifier.hpp"
+
+namespace lifelong::slam {
+
+struct LoopAttempt {
+  enum class Search { kLocal, kGlobal };
+  Search search = Search::kLocal;
+  int candidates = 0;                   ///< nodes (local) or places (global) matched against
+  double window_m = 0.0;                ///< the matcher's half-width...
+  double window_rad = 0.0;              ///< ...and heading half-width
+  std::optional<MatchRefusal> refused;  ///< why no hypothesis came of it
+  bool proposed = false;                ///< a hypothesis went to the verifier
+  int accepted = 0;  ///< closures the verifier accepted on it (its own or pending ones)
+};
+
+}  // namespace lifelong::slam

@@ -1,0 +1,146 @@
+// The global loop search (loops.global; loop_config.hpp GlobalLoopConfig): candidates come
+// from the place index, not from the projected uncertainty, so a revisit is found however far
+// the estimate has drifted. Each candidate is matched by the correlative matcher's branch and
+// bound in a window of loops.global.linear_window_m around the candidate node's position, at
+// the heading the descriptors agree on, against the candidate and its graph neighbours. A
+// match must pass the local search's tests (score, ambiguity, local uniqueness). The test
+// against the projected uncertainty is widened (plausible_sigmas) where the projection
+// reaches the candidate and left out where it does not, since the drift is what is being
+// corrected; and no other proposal far from the best may score nearly as well (cross-map
+// ambiguity). Then it goes through the same group verification (slam/loops/loop_verifier.hpp).
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "slam/graph/se2.hpp"
+#include "slam/loops/loop_closer.hpp"
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::slam {
+
+std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view, NodeId current,
+                                                    bool search,
+                                                    std::vector<LoopHypothesis>* accepted) {
+  const GlobalLoopConfig& g = config_.global;
+  if (!g.enabled) return std::nullopt;
+  const PlaceDescriptor place = Describe(view, current);
+  if (place.occupied < g.min_occupied) return std::nullopt;
+  std::optional<LoopAttempt> attempt;
+  if (search) attempt = MatchPlaces(view, current, place, accepted);
+  // Indexed after its own search, so that it never finds itself.
+  places_.Add(current, place);
+  return attempt;
+}
+
+PlaceDescriptor LoopCloser::Describe(const LoopClosingView& view, NodeId id) const {
+  const GlobalLoopConfig& g = config_.global;
+  const Pose2& X = view.values.at(id);
+  const std::vector<NodeId>& recent = view.recent;
+  std::vector<Eigen::Vector2d> points;
+  const auto count = static_cast<std::ptrdiff_t>(std::max(g.context_nodes, 0) + 1);
+  const auto it = std::find(recent.begin(), recent.end(), id);
+  const auto last = it == recent.end() ? recent.end() : std::next(it);
+  const auto first = last - std::min(count, last - recent.begin());
+  for (auto n = first; n != last; ++n) {
+    const Pose2 T_id_n = Between(X, view.values.at(*n));
+    for (const Eigen::Vector2d& p : view.nodes.at(*n).points) {
+      double x = 0.0, y = 0.0;
+      T_id_n.Apply(p.x(), p.y(), &x, &y);
+      points.emplace_back(x, y);
+    }
+  }
+  return DescribePlace(points, g.descriptor);
+}
+
+std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, NodeId current,
+                                                   const PlaceDescriptor& place,
+                                                   std::vector<LoopHypothesis>* accepted) {
+  const LoopClosingConfig& lc = config_;
+  const GlobalLoopConfig& g = lc.global;
+  const NodeData& cur = view.nodes.at(current);
+  struct Proposal {
+    NodeId id;
+    PlaceComparison cmp;
+  };
+  std::vector<Proposal> proposals;
+  for (NodeId id : places_.Nearest(place, static_cast<std::size_t>(g.index_neighbours))) {
+    const auto node = view.nodes.find(id);
+    if (node == view.nodes.end()) continue;
+    // Not a revisit: the robot has not left this place (odometry path length).
+    if (cur.travelled_m - node->second.travelled_m < lc.min_path_separation_m) continue;
+    const PlaceComparison cmp = ComparePlaces(place, places_.Get(id));
+    if (cmp.distance <= g.max_distance) proposals.push_back({id, cmp});
+  }
+  if (proposals.empty()) return std::nullopt;
+  std::sort(proposals.begin(), proposals.end(),
+            [](const Proposal& a, const Proposal& b) { return a.cmp.distance < b.cmp.distance; });
+  if (static_cast<int>(proposals.size()) > g.candidates) proposals.resize(g.candidates);
+
+  verifier_.NoteGlobalAttempt();
+  LoopAttempt attempt;
+  attempt.search = LoopAttempt::Search::kGlobal;
+  attempt.candidates = static_cast<int>(proposals.size());
+  MatcherConfig mc = lc.matcher;
+  mc.linear_window_m = attempt.window_m = g.linear_window_m;
+  mc.angular_window_rad = attempt.window_rad = g.angular_window_rad;
+  const auto refuse = [&](MatchRefusal why) {
+    verifier_.NoteRefused(why);
+    attempt.refused = why;
+    return attempt;
+  };
+  const double k2 = g.plausible_sigmas * g.plausible_sigmas;
+  // Every proposal is matched: a place that another, distant place matches about as well
+  // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
+  MatchRefusal why = MatchRefusal::kLowScore;
+  struct Matched {
+    NodeId id;
+    MatchResult match;
+  };
+  std::vector<Matched> matched;
+  for (const Proposal& p : proposals) {
+    // The current scan placed at the candidate, turned by the descriptors' heading, against
+    // the candidate and its graph neighbours.
+    const Pose2 guess = view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad);
+    std::set<NodeId> submap{p.id};
+    int added = 0;
+    for (NodeId n : view.graph.Neighbours(p.id)) {
+      if (added++ >= lc.neighbours_per_candidate) break;
+      submap.insert(n);
+    }
+    MatchRefusal refused = MatchRefusal::kLowScore;
+    const std::optional<MatchResult> match =
+        MatchSubmap(view, submap, current, guess, mc, &refused);
+    if (!match) {
+      if (refused != MatchRefusal::kLowScore) why = refused;
+      continue;
+    }
+    // Where the covariance projection reaches the candidate, a place far outside its
+    // uncertainty (inflated by plausible_sigmas) is another place that looks alike (the next
+    // aisle), not drift; one it does not reach may be anywhere.
+    const auto reach = projected_.find(p.id);
+    if (reach != projected_.end() &&
+        !Plausible(view, *match, current, k2 * reach->second.covariance)) {
+      why = MatchRefusal::kImplausible;
+      continue;
+    }
+    matched.push_back({p.id, *match});
+  }
+  if (matched.empty()) return refuse(why);
+  const auto best = std::max_element(
+      matched.begin(), matched.end(),
+      [](const Matched& a, const Matched& b) { return a.match.score < b.match.score; });
+  for (const Matched& m : matched) {
+    const double apart = std::hypot(m.match.T_ref_cur.x - best->match.T_ref_cur.x,
+                                    m.match.T_ref_cur.y - best->match.T_ref_cur.y);
+    if (apart > g.linear_window_m && m.match.score > lc.max_ambiguity * best->match.score) {
+      return refuse(MatchRefusal::kAmbiguous);
+    }
+  }
+  verifier_.NoteGlobalProposed();
+  attempt.proposed = true;
+  attempt.accepted = Propose(view, best->id, current, best->match, accepted);
+  return attempt;
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,102 @@
+// The loop closer's configuration: where it searches (the local window from the projected
+// uncertainty, the global place search), what it accepts, and how it verifies.
+#pragma once
+
+#include "slam/loops/loop_verifier.hpp"
+#include "slam/loops/place_descriptor.hpp"
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::slam {
+
+/// Global loop closing (slam/loops/loop_closer_global.cpp): where the local search, gated by the
+/// projected uncertainty, finds nothing, the node's place descriptor (Scan Context,
+/// slam/loops/place_descriptor.hpp) proposes the most similar earlier places wherever the estimate
+/// puts them; each is matched in a wide window around the heading the descriptor gives, and
+/// goes through the same acceptance and group verification as a local closure.
+struct GlobalLoopConfig {
+  bool enabled = false;
+  int every = 5;               ///< observations between searches (when no local closure)
+  int candidates = 3;          ///< places matched per search, most similar first
+  int index_neighbours = 25;   ///< ring-key neighbours compared in full per search
+  double max_distance = 0.35;  ///< descriptor distance in [0, 1]: farther is no candidate
+  int min_occupied = 30;       ///< descriptor bins: sparser places are neither indexed nor searched
+  int context_nodes = 10;      ///< recent nodes whose points, with the node's, make its place
+  double linear_window_m = 4.0;     ///< m, search half-width around the candidate's position
+  double angular_window_rad = 0.2;  ///< rad, around the descriptor's heading
+  /// A match within reach of the covariance projection must lie within this many of its
+  /// sigmas of the estimate (the local search's consistency gate, widened).
+  double plausible_sigmas = 3.0;
+  PlaceDescriptorConfig descriptor;
+};
+
+/// The loop closer's matcher: a finer table and a wider likelihood field than the
+/// incremental one's (its windows are set per attempt).
+inline MatcherConfig LoopMatcherDefaults() {
+  MatcherConfig m;
+  m.resolution_m = 0.05;
+  m.sigma_m = 0.08;
+  return m;
+}
+
+struct LoopClosingConfig {
+  bool enabled = true;
+  double min_path_separation_m = 6.0;  ///< nodes closer along the graph are not candidates
+  double overlap_radius_m = 1.0;       ///< sensor overlap added to the position uncertainty
+  double gate_chi2 = 5.99;             ///< 95 % gate (2 dof) of the candidate test
+  double max_position_sigma_m = 20.0;  ///< Dijkstra projection stops beyond this
+  double min_window_m = 0.3;           ///< search window: 3 sigma, clamped to [min, max]
+  double max_window_m = 6.0;
+  double min_window_rad = 0.15;
+  double max_window_rad = 0.5;
+  /// Candidates whose position uncertainty (3 sigma) exceeds max_window_m are searched, in
+  /// the clamped window, at every this many observations (and at every one while hypotheses
+  /// wait for confirmation); in between, an observation searches only the candidates its
+  /// windows cover. 1: at every observation; 0: never. The pruned graph projects wider
+  /// uncertainties than the full one, so most of pruned's searches grow to the largest
+  /// window: 5 makes pruned's loop closing cheaper than standard's on freiburg-079, but
+  /// loses closures on logs it was not tuned on (acapulco, the infinite corridor), so the
+  /// default stays 1 (BENCHMARKS.md "Loop closing's cost by mode").
+  int beyond_window_every = 1;
+  int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
+  /// The submap is made of its nodes' surfaces, by the incremental matcher's rule
+  /// (IncrementalConfig::surfaces), rather than of their return points (false before
+  /// 2026-12-02).
+  bool surfaces = true;
+  /// ...joined along lines as well (SurfaceRule::line_gap_m), or by the gap alone.
+  bool surface_lines = true;
+  /// The submap holds one visit: candidates observed within this many observations of the
+  /// most likely candidate (and their neighbours alike). 0: every candidate.
+  int submap_span = 0;
+  double min_score = 0.6;       ///< a good match...
+  double max_ambiguity = 0.85;  ///< ...and an unambiguous one...
+  /// ...and a locally unique one: no pose uniqueness_radius_m away (8 directions, same
+  /// heading) scores above max_flatness times the best. 1: off.
+  double max_flatness = 0.9;
+  double uniqueness_radius_m = 0.25;
+  /// The edge is measured against the attached node's scan alone, in this window around
+  /// the submap's answer (0: the submap match is the edge).
+  double refine_window_m = 0.0;
+  double refine_window_rad = 0.05;
+  double consistency_chi2 = 16.27;  ///< 99.9 % gate (3 dof) of the correction
+  int min_reference_points = 60;    ///< submap points the search can reach, fewer: no match
+  MatcherConfig matcher = LoopMatcherDefaults();  ///< windows are set per attempt
+  double optimize_edge_chi2 = 9.0;  ///< optimize at once when the new edge's chi2 exceeds
+  int optimize_every = 10;          ///< ...and at least every this many closures
+  /// Group verification: a closure enters the graph only once enough others confirm it
+  /// (slam/loops/loop_verifier.hpp).
+  LoopVerifierConfig verify;
+  /// A loop edge whose chi2 at the estimate exceeds this is suspect (its robust kernel is
+  /// switching it off): its nodes are neither removed nor sparsified, so that no
+  /// marginal bakes it in.
+  double suspect_chi2 = 16.27;
+  /// False-closure test, read by eval (eval/false_closures.hpp), which installs it as the
+  /// mapper's hypothesis hook: this share of the matcher's closures is moved by (dx, dy) in
+  /// the world frame before verification, as a closure into the neighbouring aisle would be.
+  /// 0: off.
+  double inject_false_share = 0.0;
+  double inject_false_dx_m = 0.0;  ///< m, world frame
+  double inject_false_dy_m = 3.0;  ///< m, world frame
+  GlobalLoopConfig global;
+};
+
+}  // namespace lifelong::slam

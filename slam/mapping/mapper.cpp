@@ -1,0 +1,286 @@
+#include "slam/mapping/mapper.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "slam/backend/optimizer.hpp"
+#include "slam/mapping/mapper_state.hpp"
+#include "slam/matching/match_degeneracy.hpp"
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
+
+double MsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// Information of the odometry fallback edge, in the edge's error frame.
+Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
+  const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * Norm(delta);
+  const double sth = c.odom_sigma_rad + c.odom_sigma_rad_per_rad * std::abs(delta.theta);
+  return Eigen::Vector3d(1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (sth * sth)).asDiagonal();
+}
+
+}  // namespace
+
+Mapper::Mapper(const MapperConfig& config) : state_(std::make_unique<State>(config)) {}
+Mapper::~Mapper() = default;
+
+StepStats Mapper::AddObservation(const Observation& obs) {
+  const auto start = std::chrono::steady_clock::now();
+  State& s = *state_;
+  StepStats stats;
+  stats.scan_index = static_cast<int>(s.scans.size());
+  stats.stamp_s = obs.stamp_s;
+  if (s.have_last) {
+    const Pose2 delta = Between(s.nodes.at(s.last_node).T_odom_robot, obs.T_odom_robot);
+    if (Norm(delta) < s.config.keyframes.min_translation_m &&
+        std::abs(delta.theta) < s.config.keyframes.min_rotation_rad) {
+      s.AnchorScan(obs);
+      return stats;
+    }
+  }
+  s.step = &stats;
+  {
+    const ScopedMs timer = s.Stage(&StageTimes::match_ms);
+    s.AddSequentialNode(obs, &stats);
+  }
+  const NodeId current = s.last_node;
+  if (s.config.loops.enabled && s.graph.NumNodes() > 1) {
+    const ScopedMs timer = s.Stage(&StageTimes::loop_ms);
+    s.CloseLoops(current, &stats);
+  }
+  if (s.config.pruning.mode != PruningMode::kNone &&
+      s.observations % s.config.pruning.round_period == 0)
+    s.Prune(current);
+
+  s.step = nullptr;
+  // The mapper's own time; the statistics below are instrumentation, not mapping.
+  stats.time_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats.observation_index = s.observations++;
+  stats.nodes = s.graph.NumNodes();
+  stats.edges = s.graph.NumEdgesForGamma();
+  stats.gamma = s.graph.Gamma();
+  stats.graph_bytes = s.graph.Bytes();
+  stats.loop_closures_total = static_cast<int>(s.loops.size());
+  stats.nodes_removed_total = s.pruner ? static_cast<int>(s.pruner->marginalizations().size()) : 0;
+  if (on_observation) on_observation(stats);
+  return stats;
+}
+
+void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) {
+  const IncrementalConfig& inc = config.incremental;
+  NodeData data;
+  data.scan = obs.scan;
+  data.points = ScanToPoints(obs.scan, inc.point_spacing_m);
+  data.T_odom_robot = obs.T_odom_robot;
+  data.scan_index = static_cast<int>(scans.size());
+  const NodeId id = next_id++;
+  graph.AddNode(id);
+  if (!have_last) {
+    values[id] = Pose2();
+  } else {
+    const Pose2& X_last = values.at(last_node);
+    const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
+    data.travelled_m = nodes.at(last_node).travelled_m + std::hypot(delta.x, delta.y);
+    const Pose2 guess = X_last * delta;
+    std::vector<Eigen::Vector2d> reference = LocalMap();
+    PoseEdge edge;
+    edge.from = last_node;
+    edge.to = id;
+    edge.kind = EdgeKind::kOdometry;
+    Pose2 X_new = guess;
+    const Eigen::Matrix3d odometry = OdometryInformation(inc, delta);  // the same in any frame
+    edge.information = odometry;
+    CropToSearch(data.points, guess, inc.matcher, &reference);
+    if (reference.size() >= 10 && data.points.size() >= 10) {
+      match_grid.Build(reference, inc.matcher);
+      const MatchResult match = Match(match_grid, data.points, guess, inc.matcher);
+      if (match.ok) {
+        X_new = match.T_ref_cur;
+        Eigen::Matrix3d information = match.information;  // in the world frame
+        if (match.ambiguity > inc.max_ambiguity) {
+          TakeDegenerateDirectionFromGuess(guess, odometry, match, &X_new, &information);
+          stats->incremental_match_degenerate = true;
+        }
+        edge.information = RotateIntoFrame(information, X_new.theta);
+        stats->incremental_match_ok = true;
+      }
+    }
+    edge.T_from_to = Between(X_last, X_new);
+    values[id] = X_new;
+    graph.AddEdge(edge);
+  }
+  data.T_world_map = values.at(id);
+  if (config.pruning.mode == PruningMode::kNone) {
+    map.AddScan(data.scan, data.T_world_map);
+  } else {
+    const std::vector<CellUpdate> cells = map.TouchedCells(data.scan, data.T_world_map);
+    ChangeMap(cells, true);
+    TrackAdded(id, cells);
+  }
+  nodes.emplace(id, std::move(data));
+  recent.push_back(id);
+
+  // Pending scans go to whichever of the previous and the new node is nearer by odometry.
+  for (std::size_t idx : pending) {
+    ScanAnchor& a = scans[idx];
+    if (a.anchor != last_node) continue;
+    const Pose2 from_new = Between(obs.T_odom_robot, a.T_odom_robot);
+    if (Norm(from_new) < Norm(a.T_anchor_scan)) {
+      Reanchor(idx, id);
+      scans[idx].T_anchor_scan = from_new;
+    }
+  }
+  pending.clear();
+  scans.push_back(ScanAnchor{obs.stamp_s, id, Pose2(), obs.T_odom_robot});
+  scans_of_node[id].push_back(scans.size() - 1);
+  last_node = id;
+  have_last = true;
+}
+
+std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
+  const IncrementalConfig& inc = config.incremental;
+  const auto count = static_cast<std::ptrdiff_t>(inc.local_map_nodes);
+  const auto first = recent.end() - std::min(count, static_cast<std::ptrdiff_t>(recent.size()));
+  std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
+  std::vector<Eigen::Vector2d> reference;
+  for (auto it = first; it != recent.end(); ++it) {
+    const NodeId id = *it;
+    const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
+    if (inc.surfaces.JoinsAny()) {
+      const auto cached = local_surfaces.find(id);
+      local = &(kept[id] = cached != local_surfaces.end()
+                               ? std::move(cached->second)
+                               : ScanSurfaces(nodes.at(id).scan, inc, inc.surfaces));
+    }
+    const auto world = ToWorld(*local, values.at(id));
+    reference.insert(reference.end(), world.begin(), world.end());
+  }
+  local_surfaces = std::move(kept);
+  return reference;
+}
+
+void Mapper::State::AnchorScan(const Observation& obs) {
+  const Pose2 rel = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
+  scans.push_back(ScanAnchor{obs.stamp_s, last_node, rel, obs.T_odom_robot});
+  scans_of_node[last_node].push_back(scans.size() - 1);
+  pending.push_back(scans.size() - 1);
+}
+
+void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
+  auto& old_list = scans_of_node[scans[scan].anchor];
+  for (std::size_t i = 0; i < old_list.size(); ++i) {
+    if (old_list[i] == scan) {
+      old_list.erase(old_list.begin() + static_cast<std::ptrdiff_t>(i));
+      break;
+    }
+  }
+  scans[scan].anchor = anchor;
+  scans_of_node[anchor].push_back(scan);
+}
+
+void Mapper::State::OptimizeAndSyncMap() {
+  Optimize();
+  const auto start = std::chrono::steady_clock::now();
+  {
+    const ScopedMs timer = Stage(&StageTimes::map_update_ms);
+    SyncMap();
+  }
+  since_sync = 0;
+  if (step) {
+    step->map_synced = true;
+    step->optimize_ms += MsSince(start);
+  }
+}
+
+void Mapper::State::Optimize() {
+  const auto start = std::chrono::steady_clock::now();
+  OptimizerSummary summary;
+  {
+    const ScopedMs timer = Stage(&StageTimes::backend_ms);
+    summary = slam::Optimize(graph, &values, config.optimizer);
+  }
+  since_optimize = 0;
+  if (step) {
+    step->optimized = true;
+    step->optimizer_iterations += summary.iterations;
+    step->optimize_ms += MsSince(start);
+  }
+}
+
+void Mapper::State::SyncMap() {
+  for (auto& [id, data] : nodes) {
+    const Pose2& X = values.at(id);
+    const Pose2 d = Between(data.T_world_map, X);
+    if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
+      if (config.pruning.mode == PruningMode::kNone) {
+        map.MoveScan(data.scan, data.T_world_map, X);
+      } else {
+        // The cells at the old pose come from the gain index, which holds them anyway.
+        const std::vector<CellUpdate>& from = Untrack(id);
+        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X, data.cuts);
+        MoveInMap(from, to);
+        TrackAdded(id, to);
+      }
+      data.T_world_map = X;
+    }
+  }
+}
+
+void Mapper::Finish() {
+  if (state_->graph.NumNodes() > 1) state_->OptimizeAndSyncMap();
+}
+
+const PoseGraph& Mapper::graph() const { return state_->graph; }
+const Values& Mapper::values() const { return state_->values; }
+const GridMap& Mapper::map() const { return state_->map; }
+void Mapper::set_hypothesis_hook(std::function<void(LoopHypothesis*, const Values&)> hook) {
+  state_->closer.set_hypothesis_hook(std::move(hook));
+}
+const std::vector<LoopClosureRecord>& Mapper::loop_closures() const { return state_->loops; }
+const LoopVerifierStats& Mapper::loop_verification() const { return state_->closer.stats(); }
+const std::vector<MarginalizationRecord>& Mapper::marginalizations() const {
+  static const std::vector<MarginalizationRecord> kNone;
+  return state_->pruner ? state_->pruner->marginalizations() : kNone;
+}
+const std::vector<SparsificationRecord>& Mapper::sparsifications() const {
+  static const std::vector<SparsificationRecord> kNone;
+  return state_->pruner ? state_->pruner->sparsifications() : kNone;
+}
+int Mapper::observations() const { return state_->observations; }
+std::size_t Mapper::cut_beams() const { return state_->cut_beams; }
+
+double Mapper::MaxGainCacheError() const {
+  double worst = 0.0;
+  if (!state_->pruner) return worst;
+  for (const auto& [id, data] : state_->nodes) {
+    const double fresh = state_->map.InformationGain(
+        state_->map.TouchedCells(data.scan, data.T_world_map, data.cuts));
+    worst = std::max(worst, std::abs(fresh - state_->Gain(id)));
+  }
+  return worst;
+}
+
+StampedPose Mapper::LastScanPose() const {
+  if (state_->scans.empty()) return {};
+  const ScanAnchor& a = state_->scans.back();
+  return {a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan};
+}
+
+std::vector<StampedPose> Mapper::Trajectory() const {
+  std::vector<StampedPose> out;
+  out.reserve(state_->scans.size());
+  for (const ScanAnchor& a : state_->scans) {
+    out.push_back({a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan});
+  }
+  return out;
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,151 @@
+// Validate(MapperConfig): every setting against its allowed values, as declared once in
+// mapper_config_fields.hpp, then the bounds across settings (the matchers' tables, the place
+// descriptors). eval's config reader checks the same ranges as it reads, to name the line.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slam/mapping/mapper_config.hpp"
+#include "slam/mapping/mapper_config_fields.hpp"
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+using namespace config_fields;  // NOLINT: the fields are this file's vocabulary
+
+// A visitor that records the first setting outside its range, by its dotted name.
+class Checker {
+ public:
+  explicit Checker(std::string prefix = "") : prefix_(std::move(prefix)) {}
+
+  template <class F>
+  void Section(const char* key, F&& visit) {
+    if (problem_) return;
+    Checker child(Name(key));
+    visit(child);
+    problem_ = child.problem_;
+  }
+  void Number(const char* key, double value, const Range& range) {
+    if (!range.Admits(value)) {
+      Fail(key, std::string("must be ") + range.text + ", got " + ShortestDouble(value));
+    }
+  }
+  void Int(const char* key, int value, int min, int max = std::numeric_limits<int>::max()) {
+    if (value < min)
+      Fail(key, "must be >= " + std::to_string(min) + ", got " + std::to_string(value));
+    if (value > max)
+      Fail(key, "must be <= " + std::to_string(max) + ", got " + std::to_string(value));
+  }
+  void PowerOfTwo(const char* key, int value) {
+    if (value < 1 || (value & (value - 1)) != 0 || value > 1024) {
+      Fail(key, "must be a power of 2 up to 1024, got " + std::to_string(value));
+    }
+  }
+  void Bool(const char*, bool) {}
+  template <class E, std::size_t N>
+  void Enum(const char*, E, const EnumName<E> (&)[N]) {}  // typed: always one of them
+  void Choice(const char* key, const std::string& value, const std::vector<std::string>& names,
+              bool allow_empty) {
+    if (allow_empty && value.empty()) return;
+    for (const std::string& name : names) {
+      if (value == name) return;
+    }
+    Fail(key, "unknown: '" + value + "'");
+  }
+  void Ordered(const char* lo_key, double lo, const char* hi_key, double hi) {
+    if (lo > hi) {
+      Fail(hi_key, std::string(lo_key) + " (" + ShortestDouble(lo) + ") exceeds " + hi_key + " (" +
+                       ShortestDouble(hi) + ")");
+    }
+  }
+
+  const std::optional<ConfigProblem>& problem() const { return problem_; }
+
+ private:
+  std::string Name(const std::string& key) const {
+    return prefix_.empty() ? key : prefix_ + "." + key;
+  }
+  void Fail(const char* key, std::string message) {
+    if (!problem_) problem_ = ConfigProblem{Name(key), std::move(message)};
+  }
+
+  std::string prefix_;
+  std::optional<ConfigProblem> problem_;
+};
+
+std::string Gib(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.3g GiB", bytes / 1073741824.0);
+  return buf;
+}
+
+// The products of settings that size a matcher's allocations (EstimateFootprint), for the
+// incremental matcher and for the loop closer's widest and refining searches.
+std::optional<ConfigProblem> CheckMatcher(const std::string& where, const MatcherConfig& m,
+                                          double window_m, const char* window_key,
+                                          double window_rad, const char* window_rad_key) {
+  const MatcherFootprint f = EstimateFootprint(m, window_m, window_rad);
+  const std::string limit = Gib(kMaxMatcherBytes);
+  if (f.table_bytes > kMaxMatcherBytes) {
+    return ConfigProblem{
+        std::string(window_key) + ", " + where + ".resolution_m, " + where + ".coarse_factor",
+        "the matcher's tables over this window would take " + Gib(f.table_bytes) + ", more than " +
+            limit + ": a narrower window or coarser cells"};
+  }
+  if (f.frontier_bytes > kMaxMatcherBytes) {
+    return ConfigProblem{std::string(window_key) + ", " + window_rad_key + ", " + where +
+                             ".angular_step_rad, " + where + ".resolution_m",
+                         "the matcher's search frontier (rotations x blocks) would take " +
+                             Gib(f.frontier_bytes) + ", more than " + limit +
+                             ": narrower windows, a coarser step or a larger coarse_factor"};
+  }
+  return std::nullopt;
+}
+
+// Every node keeps its place descriptor (rings x sectors floats) while the global search is
+// on: 10^4 bins is 40 kB a node, 400 MB for 10^4 nodes.
+constexpr int kMaxDescriptorBins = 10000;
+
+std::optional<ConfigProblem> CheckFootprints(const MapperConfig& c) {
+  const PlaceDescriptorConfig& d = c.loops.global.descriptor;
+  if (static_cast<long long>(d.rings) * d.sectors > kMaxDescriptorBins) {
+    return ConfigProblem{"loops.global.rings, loops.global.sectors",
+                         "a place descriptor of " + std::to_string(d.rings) + " x " +
+                             std::to_string(d.sectors) + " bins is kept for every node: at most " +
+                             std::to_string(kMaxDescriptorBins) + " bins"};
+  }
+  const MatcherConfig& inc = c.incremental.matcher;
+  const LoopClosingConfig& lc = c.loops;
+  if (auto p = CheckMatcher("incremental.matcher", inc, inc.linear_window_m,
+                            "incremental.matcher.linear_window_m", inc.angular_window_rad,
+                            "incremental.matcher.angular_window_rad")) {
+    return p;
+  }
+  if (auto p = CheckMatcher("loops.matcher", lc.matcher, lc.max_window_m, "loops.max_window_m",
+                            lc.max_window_rad, "loops.max_window_rad")) {
+    return p;
+  }
+  if (auto p = CheckMatcher("loops.matcher", lc.matcher, lc.global.linear_window_m,
+                            "loops.global.linear_window_m", lc.global.angular_window_rad,
+                            "loops.global.angular_window_rad")) {
+    return p;
+  }
+  return CheckMatcher("loops.matcher", lc.matcher, lc.refine_window_m, "loops.refine_window_m",
+                      lc.refine_window_rad, "loops.refine_window_rad");
+}
+
+}  // namespace
+
+std::optional<ConfigProblem> Validate(const MapperConfig& config) {
+  MapperConfig c = config;  // the visitors take fields by reference
+  Checker checker;
+  VisitConfig(checker, c);
+  if (checker.problem()) return checker.problem();
+  return CheckFootprints(c);
+}
+
+}  // namespace lifelong::slam

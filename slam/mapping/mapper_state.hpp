@@ -1,0 +1,153 @@
+// Internal state of the Mapper, shared by mapper.cpp, mapper_loops.cpp and pruning.cpp.
+// Not part of the public API.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slam/graph/dijkstra.hpp"
+#include "slam/graph/pose_graph.hpp"
+#include "slam/grid/grid_map.hpp"
+#include "slam/loops/loop_closer.hpp"
+#include "slam/mapping/mapper.hpp"
+#include "slam/mapping/pruner.hpp"
+#include "slam/mapping/pruning_state.hpp"
+#include "slam/mapping/removal_policy.hpp"
+#include "slam/matching/scan_matcher.hpp"
+#include "slam/matching/scan_store.hpp"
+#include "slam/sparsify/sparsifier.hpp"
+
+namespace lifelong::slam {
+
+/// Adds the wall time of its scope, in ms, to *total, less the time of the timers nested in
+/// it, so that the per-stage times of StepStats never count a moment twice (the map update
+/// inside the matching stage, say, is the gains' when it updates gains). Nothing when total
+/// is null. `innermost` is the timers' stack top, kept by the caller.
+class ScopedMs {
+ public:
+  ScopedMs(double* total, ScopedMs** innermost)
+      : total_(total),
+        innermost_(innermost),
+        parent_(total ? *innermost : nullptr),
+        start_(std::chrono::steady_clock::now()) {
+    if (total_) *innermost_ = this;
+  }
+  ~ScopedMs() {
+    if (!total_) return;
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+            .count();
+    *total_ += ms - nested_ms_;
+    if (parent_) parent_->nested_ms_ += ms;
+    *innermost_ = parent_;
+  }
+  ScopedMs(const ScopedMs&) = delete;
+  ScopedMs& operator=(const ScopedMs&) = delete;
+
+ private:
+  double* total_;
+  ScopedMs** innermost_;
+  ScopedMs* parent_;
+  std::chrono::steady_clock::time_point start_;
+  double nested_ms_ = 0.0;
+};
+
+/// Where a scan of the stream is held: relative to an anchor node.
+struct ScanAnchor {
+  double stamp_s = 0.0;
+  NodeId anchor = 0;
+  Pose2 T_anchor_scan;
+  Pose2 T_odom_robot;
+};
+
+struct Mapper::State {
+  /// std::invalid_argument when the config is invalid (Validate) or names an unknown policy
+  /// or sparsifier.
+  explicit State(const MapperConfig& c);
+
+  MapperConfig config;
+  LoopCloser closer;
+  std::vector<LoopClosureRecord> loops;  ///< closures put into the graph, in order
+  int since_optimize = 0;                ///< closures added since the last optimization
+  int since_sync = 0;            ///< closures added since the map was last re-rendered (SyncMap)
+  std::optional<Pruner> pruner;  ///< in the pruned modes: which node goes, what replaces it
+  PruningState prune_state;      ///< in the pruned modes: the scans' information gains
+  PoseGraph graph;
+  Values values;
+  GridMap map;
+  NodeStore nodes;
+  std::vector<NodeId> recent;  ///< node ids in insertion order (surviving ones)
+  std::vector<ScanAnchor> scans;
+  std::map<NodeId, std::vector<std::size_t>> scans_of_node;
+  std::vector<std::size_t> pending;  ///< non-keyframe scans since the last node
+  NodeId next_id = 0;
+  int observations = 0;
+  StepStats* step = nullptr;            ///< stats of the observation being processed
+  ScopedMs* innermost_timer = nullptr;  ///< of the stage timers running
+  bool have_last = false;
+  NodeId last_node = 0;
+  ReferenceGrid match_grid;  ///< the incremental matcher's table, rebuilt for each match
+  /// The surface points (robot frame) of the nodes in the last local map, kept while they
+  /// stay in it (SurfaceRule::JoinsAny).
+  std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces;
+  /// Times its scope as the stage `field` of the observation being processed (none when
+  /// there is none).
+  ScopedMs Stage(double StageTimes::*field) {
+    return ScopedMs(step ? &(step->stages.*field) : nullptr, &innermost_timer);
+  }
+
+  void AddSequentialNode(const Observation& obs, StepStats* stats);
+  void AnchorScan(const Observation& obs);
+  /// The incremental matcher's reference in the world frame: the last local_map_nodes
+  /// nodes' return points, or their surfaces (SurfaceRule::JoinsAny).
+  std::vector<Eigen::Vector2d> LocalMap();
+  void Reanchor(std::size_t scan, NodeId anchor);
+  /// Loop closing for the new node `current`: the local search, then the global one when
+  /// the local one closed nothing; the closures they accept go into the graph.
+  void CloseLoops(NodeId current, StepStats* stats);
+  LoopClosingView View() const { return {graph, values, nodes, recent}; }
+  /// Puts a verified closure into the graph (and optimizes when it is far off).
+  void AddLoopEdge(const LoopHypothesis& h);
+  /// Nodes that must neither be removed nor sparsified: those of pending hypotheses and of
+  /// loop edges whose chi2 at the estimate exceeds loops.suspect_chi2.
+  std::set<NodeId> UnsettledNodes() const;
+  /// Optimizes and re-renders the scans that moved (SyncMap).
+  void OptimizeAndSyncMap();
+  /// Optimizes the graph only: the map keeps rendering the scans where it had them until the
+  /// next SyncMap, as it does between optimizations.
+  void Optimize();
+  void SyncMap();
+  /// Information gain of node `id`'s scan (pruned modes), exact for the map as it is.
+  double Gain(NodeId id) const;
+  /// Stops tracking node `id`'s gain (before its cells move or leave the map) and gives its
+  /// cells at its map pose, from the index (valid until the next call).
+  const std::vector<CellUpdate>& Untrack(NodeId id);
+  /// Adds an increment list to the map (or removes it) in a pruned mode; the gains follow.
+  void ChangeMap(const std::vector<CellUpdate>& cells, bool add);
+  /// Replaces an increment list in the map by another (GridMap::Move: a moved scan's cells
+  /// at its old and new pose); the gains of the other scans follow. The moved scan must not
+  /// be tracked; TrackAdded tracks it again.
+  void MoveInMap(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to);
+  /// Starts tracking the gain of node `id`, whose cells ChangeMap or MoveInMap has just
+  /// added: the gain comes from the states they were left in.
+  void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
+  void Prune(NodeId current);
+  void RemoveNode(NodeId id, double gain_bits);
+  /// Traces beams of node id's scan cut in the map from now on (a policy found them
+  /// outdated, SampleRetirement; a beam is cut once: a cut beam is no evidence); the gains
+  /// follow.
+  void CutBeams(NodeId id, const std::vector<BeamCut>& cuts);
+  std::size_t cut_beams = 0;  ///< beams CutBeams cut, in all
+  /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
+  ScanFootprint Footprint(NodeId id) const;
+};
+
+}  // namespace lifelong::slam

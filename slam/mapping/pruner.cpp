@@ -1,0 +1,163 @@
+// The pruner: removal policy, sparsifier, the marginalization step and the edge budget
+// (pruner.hpp).
+#include "slam/mapping/pruner.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "slam/backend/optimizer_problem.hpp"
+#include "slam/graph/se2.hpp"
+#include "slam/sparsify/marginalization.hpp"
+
+namespace lifelong::slam {
+
+std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values,
+                                          const std::vector<NodeId>& set,
+                                          const OptimizerParams& params) {
+  const auto in = [&](NodeId n) { return std::binary_search(set.begin(), set.end(), n); };
+  std::vector<WeighedEdge> out;
+  for (std::size_t i = 0; i < graph->edges().size(); ++i) {
+    const PoseEdge& e = graph->edges()[i];
+    if (!e.robust || !in(e.from) || !in(e.to)) continue;
+    const Eigen::Vector3d r = RelativeError(values.at(e.from), values.at(e.to), e.T_from_to);
+    const double w = backend::ApplyKernel(r.dot(e.information * r), true, params).weight;
+    out.push_back({i, e.information});
+    graph->SetEdgeInformation(i, w * e.information);
+  }
+  return out;
+}
+
+Pruner::Pruner(PruningMode mode, const PruningConfig& config, const OptimizerParams& optimizer)
+    : config_(config), optimizer_(optimizer) {
+  const std::string policy = ModePolicy(mode).empty() ? config.policy : ModePolicy(mode);
+  policy_ = MakeRemovalPolicy(
+      policy, {config.gain_threshold_bits, config.node_budget, config.overlap, config.dpg});
+  if (!policy_) throw std::invalid_argument("unknown removal policy '" + policy + "'");
+  const std::string name = config.sparsifier.empty() ? ModeSparsifier(mode) : config.sparsifier;
+  SparsifierConfig sc;
+  sc.blanket = config.blanket;
+  sc.nfr_chords = config.nfr_chords;
+  sc.nfr_chord_ratio = config.nfr_chord_ratio;
+  sc.means = config.factor_means;
+  sparsifier_ = MakeSparsifier(name, sc);
+  if (!sparsifier_) throw std::invalid_argument("unknown sparsifier '" + name + "'");
+}
+
+std::optional<NodeId> Pruner::Next(const std::map<NodeId, double>& gains,
+                                   std::size_t num_nodes) const {
+  return policy_->Next(gains, num_nodes);
+}
+
+Replacement Pruner::Marginalize(PoseGraph* graph, const Values& values, NodeId id) const {
+  // With robust_marginal, the loop edges of the clique (at the node and among its
+  // neighbours) enter the marginal as the optimizer weighs them at the estimate: information
+  // times the kernel's IRLS weight rho'(e^T Omega e). Those among the neighbours that the
+  // sparsifier leaves in the graph get their own information back.
+  std::vector<WeighedEdge> weighed;
+  if (config_.robust_marginal) {
+    std::vector<NodeId> clique(graph->Neighbours(id).begin(), graph->Neighbours(id).end());
+    clique.insert(std::lower_bound(clique.begin(), clique.end(), id), id);
+    weighed = WeighRobustEdges(graph, values, clique, optimizer_);
+  }
+  Replacement replacement = sparsifier_->Replace(*graph, values, id);
+  if (!replacement.absorb_edges_within) {
+    for (const WeighedEdge& w : weighed) {
+      const PoseEdge& e = graph->edges()[w.index];
+      if (e.from != id && e.to != id) graph->SetEdgeInformation(w.index, w.information);
+    }
+  }
+  return replacement;
+}
+
+std::vector<SampleRetirement> Pruner::BeginRound(const std::map<NodeId, double>& gains,
+                                                 const RoundView& view) {
+  policy_->BeginRound(gains, view);
+  return policy_->TakeRetirements();
+}
+
+void Pruner::Remove(PoseGraph* graph, NodeId id, const Replacement& replacement, double gain_bits) {
+  ApplyReplacement(graph, id, replacement);
+  policy_->Forget(id);
+  removals_.push_back({id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
+}
+
+void Pruner::KeepEdgeBudget(PoseGraph* graph_ptr, const Values& values,
+                            const std::function<std::set<NodeId>()>& unsettled_nodes) {
+  if (!sparsifier_->LeavesTrees() || config_.max_edges_per_node <= 0.0) return;
+  PoseGraph& graph = *graph_ptr;
+  // The nodes within `hops` edges of `centre`, ascending.
+  const auto ball = [&graph](NodeId centre, int hops) {
+    std::set<NodeId> in{centre}, frontier{centre};
+    for (int h = 0; h < hops; ++h) {
+      std::set<NodeId> next;
+      for (NodeId u : frontier) {
+        for (NodeId w : graph.Neighbours(u)) {
+          if (in.insert(w).second) next.insert(w);
+        }
+      }
+      frontier = std::move(next);
+    }
+    return std::vector<NodeId>(in.begin(), in.end());
+  };
+  // Edges beyond a spanning tree among the nodes of a (connected) ball: its cycle rank.
+  const auto excess = [&graph](const std::vector<NodeId>& set) {
+    std::size_t within = 0;
+    for (NodeId a : set) {
+      for (NodeId b : graph.Neighbours(a)) {
+        within += (a < b && std::binary_search(set.begin(), set.end(), b)) ? 1 : 0;
+      }
+    }
+    return within + 1 > set.size() ? within + 1 - set.size() : 0;
+  };
+  // Bounds the work of one observation; the budget is restored over the next ones if need be.
+  constexpr int kMaxPerRound = 16;
+  for (int done = 0; done < kMaxPerRound; ++done) {
+    const double num_nodes = static_cast<double>(graph.NumNodes());
+    if (static_cast<double>(graph.NumEdgesForGamma()) <= config_.max_edges_per_node * num_nodes)
+      return;
+    // The Markov blanket (one hop) with the most edges beyond a tree; when every blanket is
+    // a tree already, the two-hop neighbourhood with the most.
+    std::vector<NodeId> best;
+    std::size_t most = 0;
+    NodeId centre = 0;
+    const std::set<NodeId> unsettled = unsettled_nodes();
+    const auto settled = [&](const std::vector<NodeId>& set) {
+      return std::none_of(set.begin(), set.end(), [&](NodeId n) { return unsettled.count(n); });
+    };
+    for (int hops = 1; hops <= 2 && most == 0; ++hops) {
+      for (NodeId id : graph.NodeIds()) {
+        std::vector<NodeId> set = ball(id, hops);
+        if (!settled(set)) continue;
+        const std::size_t e = excess(set);
+        if (e > most) {
+          most = e;
+          centre = id;
+          best = std::move(set);
+        }
+      }
+    }
+    if (most == 0) return;  // the graph is a tree near every node
+    std::vector<WeighedEdge> weighed;
+    if (config_.robust_marginal) weighed = WeighRobustEdges(&graph, values, best, optimizer_);
+    SparsificationResult result = SparsifyWithin(graph, values, best);
+    if (!result.applied) {
+      for (const WeighedEdge& w : weighed) graph.SetEdgeInformation(w.index, w.information);
+      return;
+    }
+    if (config_.factor_means != FactorMeans::kEstimate) {  // keep the edges' pull too
+      const LocalSystem replaced = LinearizeEdges(best, values, graph.EdgesWithin(best));
+      std::vector<CliqueFactor> no_cliques;
+      MoveMeans(config_.factor_means, best, values, replaced.H, replaced.g, &result.edges,
+                &no_cliques);
+    }
+    ApplySparsification(&graph, result);
+    sparsified_.push_back(
+        {centre, best.size(), result.edges_before, result.edges.size(), result.kl_divergence});
+  }
+}
+
+}  // namespace lifelong::slam

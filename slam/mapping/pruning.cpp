@@ -1,0 +1,147 @@
+// Pruning rounds (seed §5.1): among the nodes near the current one (Dijkstra expansion), the
+// pruner's policy removes the one whose scan has the lowest information gain
+// I(z_i) = H(m without z_i) - H(m) while it says so, the gains updated after each removal.
+// The pruner marginalizes the node (seed §5.3-5.5) in the graph (slam/mapping/pruner.hpp); here the
+// mapper moves what it holds of the node: its scans to a neighbour, its cells out of the map.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "slam/backend/optimizer_problem.hpp"
+#include "slam/graph/dijkstra.hpp"
+#include "slam/graph/se2.hpp"
+#include "slam/mapping/mapper_state.hpp"
+#include "slam/sparsify/marginalization.hpp"
+#include "slam/sparsify/sparsifier.hpp"
+
+namespace lifelong::slam {
+Mapper::State::State(const MapperConfig& c)
+    : config(c), closer(c.loops, c.incremental), map(c.grid) {
+  if (const std::optional<ConfigProblem> problem = Validate(c)) {
+    throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
+  }
+  if (c.pruning.mode != PruningMode::kNone) pruner.emplace(c.pruning.mode, c.pruning, c.optimizer);
+}
+
+void Mapper::State::Prune(NodeId current) {
+  const PruningConfig& pc = config.pruning;
+  // Marginalization linearizes at the current estimate and keeps its means for good, so the
+  // estimate must be the optimum: settle any loop closure not yet optimized (cheap here, the
+  // pruned graph is small). The map is not re-rendered for it: it follows the estimate on the
+  // schedule it follows in standard mode (loops.optimize_edge_chi2, optimize_every), and the
+  // gains are those of the map as rendered. Re-rendering before every round moved each scan
+  // once per closure: 4x the optimizations and 3x the map update on Intel (BENCHMARKS.md).
+  if (since_optimize > 0) Optimize();
+  const NodeId anchor = graph.NodeIds().front();
+  std::set<NodeId> protected_ids{current, anchor};
+  // Never marginalize a closure that is not settled: a pending hypothesis would lose its
+  // nodes, and a suspect loop edge would be baked into factors no kernel can switch off.
+  const std::set<NodeId> unsettled = UnsettledNodes();
+  protected_ids.insert(unsettled.begin(), unsettled.end());
+  for (int i = 0; i < pc.keep_recent_nodes && i < static_cast<int>(recent.size()); ++i) {
+    protected_ids.insert(recent[recent.size() - 1 - static_cast<std::size_t>(i)]);
+  }
+  const Pose2& X_cur = values.at(current);
+  std::map<NodeId, double> gains;
+  for (const auto& [id, length] : ExpandByPathLength(graph, values, current, 3.0 * pc.radius_m)) {
+    const Pose2& X = values.at(id);
+    if (protected_ids.count(id) || std::hypot(X.x - X_cur.x, X.y - X_cur.y) > pc.radius_m) {
+      continue;
+    }
+    gains[id] = 0.0;
+  }
+  for (auto& [id, gain] : gains) gain = Gain(id);
+  RoundView view;
+  view.current = current;
+  view.footprint = [this](NodeId id) { return Footprint(id); };
+  view.scan = [this](NodeId id) {
+    const NodeData& data = nodes.at(id);
+    return ScanAt{&data.scan, &data.cuts, values.at(id)};
+  };
+  std::vector<SampleRetirement> retired;
+  {
+    const ScopedMs timer = Stage(&StageTimes::gain_ms);
+    retired = pruner->BeginRound(gains, view);
+  }
+  for (const SampleRetirement& r : retired) CutBeams(r.node, r.cuts);
+  if (!retired.empty()) {
+    for (auto& [id, gain] : gains) gain = Gain(id);
+  }
+
+  while (!gains.empty()) {
+    const std::optional<NodeId> next = pruner->Next(gains, graph.NumNodes());
+    if (!next) break;
+    const NodeId victim = *next;
+    const double gain = gains.at(victim);
+    gains.erase(victim);
+    RemoveNode(victim, gain);
+    // The index has updated the gains of the scans that shared cells with it.
+    for (auto& [id, g] : gains) g = Gain(id);
+  }
+  const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
+  pruner->KeepEdgeBudget(&graph, values, [this] { return UnsettledNodes(); });
+}
+
+ScanFootprint Mapper::State::Footprint(NodeId id) const {
+  ScanFootprint f;
+  f.points = ToWorld(nodes.at(id).points, values.at(id));
+  for (const Eigen::Vector2d& p : f.points) {
+    f.box.extend(p);
+    f.centre += p;
+  }
+  if (!f.points.empty()) f.centre /= static_cast<double>(f.points.size());
+  f.edges = static_cast<int>(graph.Neighbours(id).size());
+  return f;
+}
+
+void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts) {
+  NodeData& data = nodes.at(id);
+  const std::vector<CellUpdate>& from = Untrack(id);
+  std::vector<BeamCut> all;
+  std::merge(data.cuts.begin(), data.cuts.end(), cuts.begin(), cuts.end(), std::back_inserter(all),
+             [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
+  data.cuts = std::move(all);
+  const std::vector<CellUpdate> to = map.TouchedCells(data.scan, data.T_world_map, data.cuts);
+  MoveInMap(from, to);
+  TrackAdded(id, to);
+  cut_beams += cuts.size();
+}
+
+void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
+  const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
+  const Replacement replacement = pruner->Marginalize(&graph, values, id);
+  // The removed node's scans are held relative to its nearest surviving neighbour.
+  const Pose2& X = values.at(id);
+  NodeId keeper = id;
+  double best = std::numeric_limits<double>::infinity();
+  for (NodeId n : graph.Neighbours(id)) {
+    const double d = std::hypot(values.at(n).x - X.x, values.at(n).y - X.y);
+    if (d < best) {
+      best = d;
+      keeper = n;
+    }
+  }
+  const Pose2 T_keeper_node = Between(values.at(keeper), X);
+  const std::vector<std::size_t> held = scans_of_node[id];
+  for (std::size_t scan : held) {
+    scans[scan].T_anchor_scan = T_keeper_node * scans[scan].T_anchor_scan;
+    Reanchor(scan, keeper);
+  }
+  scans_of_node.erase(id);
+  ChangeMap(Untrack(id), false);
+  pruner->Remove(&graph, id, replacement, gain_bits);
+  nodes.erase(id);
+  values.erase(id);
+  closer.ForgetNode(id);
+  recent.erase(std::find(recent.begin(), recent.end(), id));
+  if (last_node == id) last_node = recent.back();
+}
+
+}  // namespace lifelong::slam

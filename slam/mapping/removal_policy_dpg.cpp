@@ -1,0 +1,92 @@
+// Removal policy "dpg": removal that keeps the news, after DPG-SLAM (Walcott-Bryant, Kaess,
+// Johannsson and Leonard, "Dynamic Pose Graph SLAM: Long-term Mapping in Low Dynamic
+// Environments", IROS 2012). DPG-SLAM compares the laser scans of a place taken at
+// different times, marks the samples of the older scans that the newer ones show to be
+// removed (or whose free space now holds an object), keeps only active samples in the map,
+// and retires a pose from the active map when its scan has too few active samples left.
+// Here, at each round the current scan is compared with every candidate (change_detection.hpp):
+//   - the candidate's outdated beams are retired: the mapper takes them out of the counting
+//     grid, so the map, and every scan's information gain (seed eq. 5.11), follows the
+//     present. A scan that shows a change is no longer measured against the past it
+//     contradicts, so its gain counts the change as information;
+//   - a candidate whose active beams fall below min_active_share of its returns goes first,
+//     whatever its gain: its scan mostly shows a past state;
+//   - otherwise the seed's rule (removal_policy_information_gain.cpp) picks the node.
+// (DPG-SLAM keeps a retired pose in its full graph for the history; here the mode's
+// sparsifier marginalizes it, as for any removal.)
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "slam/mapping/removal_policy.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+class DpgPolicy final : public RemovalPolicy {
+ public:
+  explicit DpgPolicy(const RemovalPolicyConfig& config)
+      : config_(config), seed_(MakeInformationGainPolicy(config)) {}
+  std::string Name() const override { return "dpg"; }
+
+  void BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) override {
+    doomed_.clear();
+    const ScanAt now = view.scan(view.current);
+    const LaserScan now_active = Active(now);
+    for (const auto& [id, gain] : gains) {
+      const ScanAt old = view.scan(id);
+      const LaserScan old_active = Active(old);
+      const ScanComparison c = CompareScans(old_active, old.T_world_robot, now_active,
+                                            now.T_world_robot, config_.dpg.detection);
+      // Cut beams are no evidence, so a comparison never finds one of them again.
+      std::size_t retired = old.cut->size();
+      if (!c.outdated.empty()) {
+        retired += c.outdated.size();
+        retired_.push_back({id, c.outdated});
+      }
+      const double returns = Returns(*old.scan);
+      if (retired > 0 &&
+          returns - static_cast<double>(retired) < config_.dpg.min_active_share * returns) {
+        doomed_.push_back(id);
+      }
+    }
+  }
+
+  std::vector<SampleRetirement> TakeRetirements() override { return std::exchange(retired_, {}); }
+
+  std::optional<NodeId> Next(const std::map<NodeId, double>& gains,
+                             std::size_t num_nodes) const override {
+    for (NodeId id : doomed_) {
+      if (gains.count(id)) return id;
+    }
+    return seed_->Next(gains, num_nodes);
+  }
+
+ private:
+  static double Returns(const LaserScan& scan) {
+    int n = 0;
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) n += scan.IsReturn(i) ? 1 : 0;
+    return n;
+  }
+  /// The scan without its cut beams (read as 0: no evidence).
+  static LaserScan Active(const ScanAt& at) {
+    LaserScan scan = *at.scan;
+    for (const BeamCut& c : *at.cut) scan.ranges_m.at(c.beam) = 0.0f;
+    return scan;
+  }
+
+  RemovalPolicyConfig config_;
+  std::unique_ptr<RemovalPolicy> seed_;  ///< information-gain, for the scans that show no change
+  std::vector<NodeId> doomed_;           ///< this round's, in id order
+  std::vector<SampleRetirement> retired_;
+};
+
+}  // namespace
+
+std::unique_ptr<RemovalPolicy> MakeDpgPolicy(const RemovalPolicyConfig& config) {
+  return std::make_unique<DpgPolicy>(config);
+}
+
+}  // namespace lifelong::slam

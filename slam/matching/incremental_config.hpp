@@ -1,0 +1,44 @@
+// The sequential (incremental) scan matcher's configuration: how each observation is matched
+// against the local map of recent nodes, and what happens when the match fails or is
+// degenerate. Read by the mapper, the scan store and the loop closer (its submap surfaces).
+#pragma once
+
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::slam {
+
+/// The incremental matcher's window and acceptance (its table and field are the matcher's
+/// defaults). Real odometry turns by more than a simulated one between observations, and the
+/// mean likelihood of a match in a wide hall, whose returns lie far apart, is low: a 0.26 rad
+/// window and a 0.5 score failed one match in three on acapulco and edmonton and bent csail
+/// (BENCHMARKS.md "Sequential matching on real odometry"). The linear window stays 0.3 m: at
+/// 0.5 m the matcher slips along the simulated corridors.
+inline MatcherConfig IncrementalMatcherDefaults() {
+  MatcherConfig m;
+  m.angular_window_rad = 0.5;
+  m.min_score = 0.3;
+  return m;
+}
+
+struct IncrementalConfig {
+  /// Recent nodes whose scans form the local map: 20 nodes cover about 10 m of path (8, before
+  /// 2026-12-04, covered 4 m, too little to hold a heading through a room on real odometry).
+  int local_map_nodes = 20;
+  double point_spacing_m = 0.05;  ///< voxel thinning of matched points
+  /// The local map joins consecutive returns of a scan into surfaces (SurfacePoints), so its
+  /// likelihood field is smooth along walls hit at grazing angles and motion along them is
+  /// not under-measured. YAML keys surface_gap_m (0: return points, before 2026-12-02),
+  /// surface_line_gap_m and surface_line_tol_m (the line rule; gap 0: off).
+  SurfaceRule surfaces;
+  MatcherConfig matcher = IncrementalMatcherDefaults();  ///< window around the odometry guess
+  double odom_sigma_xy_m = 0.05;     ///< fallback edge when matching fails: base sigma
+  double odom_sigma_xy_per_m = 0.1;  ///< ...plus this much per metre travelled
+  double odom_sigma_rad = 0.02;      ///< ...heading base sigma
+  double odom_sigma_rad_per_rad = 0.1;
+  /// A match whose best distinct rival scores above this share of it does not measure the
+  /// direction towards the rival: the odometry does (slam/matching/match_degeneracy.hpp). 1: off,
+  /// the match alone (before 2026-12-04).
+  double max_ambiguity = 0.95;
+};
+
+}  // namespace lifelong::slam

@@ -36,7 +36,7 @@ struct SweepArgs {
   std::string spec, out;
   int jobs = 0;  ///< 0: the number of cores
   bool collect_only = false;
-  bool slurm = false;  ///< run the cells as a Slurm job array (eval/sweep_slurm.hpp)
+  bool slurm = false;  ///< run the cells as a Slurm job array (eval/sweep/sweep_slurm.hpp)
   std::string partition, time;
   std::vector<std::string> sbatch_args;
   bool no_wait = false;
@@ -45,14 +45,15 @@ struct SweepArgs {
 };
 
 /// `score --truth PATH --trajectory FILE [--map MAP.yaml] [--name NAME] -o OUT`; the last
-/// three repeat, one per system (eval/score.hpp).
+/// three repeat, one per system (eval/experiment/score.hpp).
 struct ScoreArgs {
   std::string truth, out;
   std::vector<std::string> trajectories, maps, names;
   std::string command_line;
 };
 
-/// `reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]` (eval/book.hpp).
+/// `reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]`
+/// (eval/sweep/book.hpp).
 struct ReproduceArgs {
   std::string book, profile = "quick", out;
   int jobs = 0;  ///< 0: the number of cores

@@ -1,4 +1,4 @@
-// `lifelong score` (eval/score.hpp): reads the truth and every system, scores them, and
+// `lifelong score` (eval/experiment/score.hpp): reads the truth and every system, scores them, and
 // writes OUT all or nothing: summary.json (modes[NAME] with a run's fields), report.html and
 // trajectories.png.
 #include "apps/score_command.hpp"
@@ -9,15 +9,15 @@
 #include <set>
 
 #include "apps/exit_codes.hpp"
-#include "eval/build_info.hpp"
-#include "eval/console_table.hpp"
-#include "eval/interrupt.hpp"
-#include "eval/report.hpp"
-#include "eval/report_html.hpp"
-#include "eval/resources.hpp"
-#include "eval/score.hpp"
-#include "eval/staged_output.hpp"
-#include "eval/trajectory_figure.hpp"
+#include "eval/common/interrupt.hpp"
+#include "eval/common/resources.hpp"
+#include "eval/common/staged_output.hpp"
+#include "eval/experiment/score.hpp"
+#include "eval/figures/trajectory_figure.hpp"
+#include "eval/metrics/summary.hpp"
+#include "eval/report/build_info.hpp"
+#include "eval/report/console_table.hpp"
+#include "eval/report/report_html.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
 #include "sensor/input_error.hpp"

@@ -9,11 +9,11 @@
 #include <thread>
 
 #include "apps/exit_codes.hpp"
-#include "eval/build_info.hpp"
-#include "eval/interrupt.hpp"
-#include "eval/progress.hpp"
-#include "eval/sweep_run.hpp"
-#include "eval/sweep_slurm.hpp"
+#include "eval/common/interrupt.hpp"
+#include "eval/common/progress.hpp"
+#include "eval/report/build_info.hpp"
+#include "eval/sweep/sweep_run.hpp"
+#include "eval/sweep/sweep_slurm.hpp"
 
 namespace lifelong::apps {
 namespace {

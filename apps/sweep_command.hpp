@@ -4,7 +4,7 @@
 #include <string>
 
 #include "apps/commands.hpp"
-#include "eval/sweep_run.hpp"
+#include "eval/sweep/sweep_run.hpp"
 
 namespace lifelong::apps {
 

@@ -1,7 +1,7 @@
 // The entry of liblifelong_video.so (apps/video_module.hpp).
 #include "apps/video_module.hpp"
 
-#include "eval/video_sink.hpp"
+#include "eval/video/video_sink.hpp"
 
 namespace {
 const lifelong::apps::VideoModule kModule{&lifelong::eval::OpenVideoSink};

@@ -1,4 +1,4 @@
-// The module liblifelong_video.so: the frame sink of eval/video_sink.hpp with what it needs
+// The module liblifelong_video.so: the frame sink of eval/video/video_sink.hpp with what it needs
 // (OpenGL through EGL or OSMesa, OpenCV's video writer). `lifelong run --video/--frames`
 // loads it; every other run starts without those libraries, which cost ~0.2 s of dynamic
 // loading a process (BENCHMARKS.md).
@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "eval/video.hpp"
+#include "eval/figures/video.hpp"
 
 namespace lifelong::apps {
 

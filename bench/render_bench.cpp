@@ -7,8 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "eval/map_quality.hpp"
-#include "eval/simulation.hpp"
+#include "eval/experiment/simulation.hpp"
+#include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/world_state.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sim/scenario.hpp"
 

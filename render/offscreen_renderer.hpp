@@ -9,7 +9,7 @@
 // one scale, laid out by render/layout.hpp.
 //
 // Text is not rasterized here: Render returns the titles and counters as TextLabels at
-// pixel positions in the title strips, for the caller to draw (eval/video.cpp uses
+// pixel positions in the title strips, for the caller to draw (eval/figures/video.cpp uses
 // cv::putText), so that render depends on no font or image library.
 #pragma once
 

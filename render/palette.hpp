@@ -1,5 +1,5 @@
 // The colours of the graph's edge kinds, one palette for the video frames (render), the
-// map PNGs (eval/draw.cpp) and the report's legend, so that a figure reads the same in all.
+// map PNGs (eval/figures/draw.cpp) and the report's legend, so that a figure reads the same in all.
 #pragma once
 
 #include <cstdint>

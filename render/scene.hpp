@@ -1,6 +1,6 @@
 // What the renderer draws, as plain data (no simulator, no mapper): the true world with
 // the robot and its laser rays, and one panel per mapping mode with its map, pose graph,
-// pose estimate and counters. eval builds it (eval/video.hpp); render turns it into pixels.
+// pose estimate and counters. eval builds it (eval/figures/video.hpp); render turns it into pixels.
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 // One ground-truth relation of Kümmerle et al. 2009 ("On measuring the accuracy of SLAM
 // algorithms"): the true pose of the robot at t2 in the frame of the robot at t1. Read by
-// io/relations.hpp, scored by eval/metrics.hpp.
+// io/relations.hpp, scored by eval/metrics/metrics.hpp.
 #pragma once
 
 #include "sensor/pose2.hpp"

@@ -131,7 +131,7 @@ TEST(SweepCli, AnOutputDirectoryThatHoldsNoSweepIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "cells"));
 }
 
-// `sweep run-cell DIR INDEX` is what a Slurm array task runs (eval/sweep_slurm.hpp): the
+// `sweep run-cell DIR INDEX` is what a Slurm array task runs (eval/sweep/sweep_slurm.hpp): the
 // cell's command from sweep.json, its log and its stamp, nothing when it is up to date, and
 // never a plan written by another program.
 TEST(SweepCli, RunCellRunsOneCellOfThePlanAsThePoolDoes) {

@@ -1,5 +1,5 @@
 // change_recall: whether a map shows a door as it stands at the end, and when it was seen.
-#include "eval/change_recall.hpp"
+#include "eval/metrics/change_recall.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/change_tiles.hpp"
-#include "eval/map_quality.hpp"
+#include "eval/figures/change_tiles.hpp"
+#include "eval/metrics/map_quality.hpp"
 
 namespace lifelong::eval {
 namespace {

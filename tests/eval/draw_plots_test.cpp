@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "eval/draw.hpp"
-#include "eval/mode_colors.hpp"
-#include "eval/plots.hpp"
-#include "eval/resources.hpp"
+#include "eval/common/resources.hpp"
+#include "eval/figures/draw.hpp"
+#include "eval/figures/mode_colors.hpp"
+#include "eval/figures/plots.hpp"
 #include "io/atomic_file.hpp"
 #include "render/palette.hpp"
 #include "tests/io/file_size_limit.hpp"

@@ -1,5 +1,5 @@
 // The false-closure test's hook: which hypotheses it moves, and where to.
-#include "eval/false_closures.hpp"
+#include "eval/experiment/false_closures.hpp"
 
 #include <vector>
 

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eval/report.hpp"
+#include "eval/metrics/summary.hpp"
 
 namespace lifelong::eval {
 namespace {

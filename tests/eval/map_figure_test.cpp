@@ -1,16 +1,15 @@
-// Map figures in a chosen frame and scale (eval/map_figure.hpp, eval/run_maps.hpp): the
-// estimate is moved into the truth frame, every figure of a run shares one scale (and,
-// with ground truth, one canvas), the true path lies under the graph, and the graph
-// figure has no grid.
+// Map figures in a chosen frame and scale (eval/figures/map_figure.hpp, eval/figures/run_maps.hpp):
+// the estimate is moved into the truth frame, every figure of a run shares one scale (and, with
+// ground truth, one canvas), the true path lies under the graph, and the graph figure has no grid.
 #include <cmath>
 #include <filesystem>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "eval/map_figure.hpp"
-#include "eval/map_quality.hpp"
-#include "eval/run_maps.hpp"
+#include "eval/figures/map_figure.hpp"
+#include "eval/figures/run_maps.hpp"
+#include "eval/metrics/map_quality.hpp"
 #include "render/palette.hpp"
 
 namespace lifelong::eval {

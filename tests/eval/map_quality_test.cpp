@@ -1,5 +1,5 @@
 // Map blur and entropy on synthetic maps built from known walls (res 0.1 m).
-#include "eval/map_quality.hpp"
+#include "eval/metrics/map_quality.hpp"
 
 #include <cmath>
 

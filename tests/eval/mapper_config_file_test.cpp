@@ -1,4 +1,4 @@
-#include "eval/mapper_config_file.hpp"
+#include "eval/experiment/mapper_config_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Trajectory metrics on tiny trajectories whose answers are worked out by hand.
-#include "eval/metrics.hpp"
+#include "eval/metrics/metrics.hpp"
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
-// One colour per mode (eval/mode_colors.hpp): fixed for the known modes, distinct, and a
+// One colour per mode (eval/figures/mode_colors.hpp): fixed for the known modes, distinct, and a
 // stable fallback for names it does not know.
-#include "eval/mode_colors.hpp"
+#include "eval/figures/mode_colors.hpp"
 
 #include <set>
 #include <string>

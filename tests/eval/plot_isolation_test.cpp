@@ -1,6 +1,7 @@
-// One failed figure never takes the others down (eval/plots.hpp, eval/gnuplot_run.hpp): a
-// run without loop closures still draws its loop chart, a broken figure is the only one
-// lost and is named with its log, and messages name the directory the output ends up in.
+// One failed figure never takes the others down (eval/figures/plots.hpp,
+// eval/common/gnuplot_run.hpp): a run without loop closures still draws its loop chart, a broken
+// figure is the only one lost and is named with its log, and messages name the directory the output
+// ends up in.
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -8,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "eval/plots.hpp"
+#include "eval/figures/plots.hpp"
 #include "io/atomic_file.hpp"
 
 namespace lifelong::eval {

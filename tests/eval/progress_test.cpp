@@ -1,11 +1,11 @@
-// Progress lines (eval/progress.hpp): rate, times real time, ETA; plain lines per 10 %
+// Progress lines (eval/common/progress.hpp): rate, times real time, ETA; plain lines per 10 %
 // when the output is not a terminal.
 #include <gtest/gtest.h>
 
 #include <sstream>
 #include <string>
 
-#include "eval/progress.hpp"
+#include "eval/common/progress.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -1,5 +1,5 @@
-// Published figures keyed by relations file and log (eval/reference_figures.hpp), and the
-// build provenance (eval/build_info.hpp, cmake/WriteBuildInfo.cmake).
+// Published figures keyed by relations file and log (eval/figures/reference_figures.hpp), and the
+// build provenance (eval/report/build_info.hpp, cmake/WriteBuildInfo.cmake).
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/build_info.hpp"
-#include "eval/reference_figures.hpp"
+#include "eval/figures/reference_figures.hpp"
+#include "eval/report/build_info.hpp"
 
 namespace lifelong::eval {
 namespace {

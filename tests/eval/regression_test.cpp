@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "eval/experiment.hpp"
-#include "eval/simulation.hpp"
-#include "eval/world_state.hpp"
+#include "eval/experiment/experiment.hpp"
+#include "eval/experiment/simulation.hpp"
+#include "eval/metrics/world_state.hpp"
 #include "sim/scenario.hpp"
 
 namespace lifelong::eval {

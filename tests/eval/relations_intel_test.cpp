@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/metrics.hpp"
+#include "eval/metrics/metrics.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -1,5 +1,5 @@
-// report.html (eval/report_html.hpp) and what it gathers from an output directory
-// (eval/report_files.hpp): captions, full size on click, the legend in the palette's
+// report.html (eval/report/report_html.hpp) and what it gathers from an output directory
+// (eval/report/report_files.hpp): captions, full size on click, the legend in the palette's
 // colours, one display scale for all maps, links only to files that exist, provenance.
 // The page's order and banners: report_layout_test.cpp.
 #include <filesystem>
@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/draw.hpp"
-#include "eval/mode_colors.hpp"
-#include "eval/report_files.hpp"
-#include "eval/report_html.hpp"
+#include "eval/figures/draw.hpp"
+#include "eval/figures/mode_colors.hpp"
+#include "eval/report/report_files.hpp"
+#include "eval/report/report_html.hpp"
 #include "render/palette.hpp"
 
 namespace lifelong::eval {

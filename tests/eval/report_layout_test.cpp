@@ -1,4 +1,4 @@
-// The order and the banners of report.html (eval/report_html.hpp, report_alerts.hpp,
+// The order and the banners of report.html (eval/report/report_html.hpp, report_alerts.hpp,
 // report_files.hpp): charts and maps first, then the key figures with the full table
 // folded below; a figure gnuplot failed on is named with its log; a page without charts
 // says why; a relations replay that used few relations of its file, and a simulation that
@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/draw.hpp"
-#include "eval/report_files.hpp"
-#include "eval/report_html.hpp"
+#include "eval/figures/draw.hpp"
+#include "eval/report/report_files.hpp"
+#include "eval/report/report_html.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -1,7 +1,7 @@
-// The report's summary table (eval/report_table.hpp): grouped rows with units and
+// The report's summary table (eval/report/report_table.hpp): grouped rows with units and
 // definitions, modes in run order, ratios to the first mode where they mean something,
 // and no row or group that no mode has.
-#include "eval/report_table.hpp"
+#include "eval/report/report_table.hpp"
 
 #include <set>
 #include <string>

@@ -1,6 +1,6 @@
 // The output contract: exact JSON keys, CSV header, absent figures, atomic writes
 // (report.html: report_html_test.cpp).
-#include "eval/report.hpp"
+#include "eval/metrics/summary.hpp"
 
 #include <cmath>
 #include <cstdio>

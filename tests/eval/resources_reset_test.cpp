@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "eval/resources.hpp"
+#include "eval/common/resources.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -4,7 +4,8 @@
 
 #include <string>
 
-#include "eval/simulation.hpp"
+#include "eval/experiment/simulation.hpp"
+#include "eval/metrics/world_state.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eval/report.hpp"
+#include "eval/metrics/summary.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -1,11 +1,11 @@
-// All-or-nothing output directories (eval/staged_output.hpp).
+// All-or-nothing output directories (eval/common/staged_output.hpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
-#include "eval/staged_output.hpp"
+#include "eval/common/staged_output.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {

@@ -1,11 +1,11 @@
-// The end-of-run console table (eval/console_table.hpp).
+// The end-of-run console table (eval/report/console_table.hpp).
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "eval/console_table.hpp"
+#include "eval/report/console_table.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -1,6 +1,6 @@
 // `sweep collect` alone, on fabricated cell directories: runs.csv, aggregate.csv and
 // paired.csv hold what the cells' summary.json files say, empty where a figure is absent.
-#include "eval/sweep_collect.hpp"
+#include "eval/sweep/sweep_collect.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "eval/plots.hpp"
-#include "eval/sweep_report.hpp"
-#include "eval/sweep_run.hpp"
+#include "eval/figures/plots.hpp"
+#include "eval/sweep/sweep_report.hpp"
+#include "eval/sweep/sweep_run.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {

@@ -1,6 +1,6 @@
 // The sweep SPEC: every kind of bad input is an InputError naming the file, line and
 // field; a good SPEC expands into the expected cells with generated inputs.
-#include "eval/sweep_spec.hpp"
+#include "eval/sweep/sweep_spec.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "eval/mapper_config_file.hpp"
-#include "eval/sweep_cells.hpp"
+#include "eval/experiment/mapper_config_file.hpp"
+#include "eval/sweep/sweep_cells.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {

@@ -1,5 +1,5 @@
 // The statistics of a sweep against hand-computed and tabulated values.
-#include "eval/sweep_stats.hpp"
+#include "eval/sweep/sweep_stats.hpp"
 
 #include <gtest/gtest.h>
 

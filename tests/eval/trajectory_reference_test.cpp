@@ -1,4 +1,4 @@
-// Scoring against a reference trajectory (eval/trajectory_reference.hpp) and reading one
+// Scoring against a reference trajectory (eval/metrics/trajectory_reference.hpp) and reading one
 // (io::ReadTrajectory).
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "eval/metrics.hpp"
-#include "eval/trajectory_reference.hpp"
+#include "eval/metrics/metrics.hpp"
+#include "eval/metrics/trajectory_reference.hpp"
 #include "io/tum.hpp"
 #include "sensor/input_error.hpp"
 

@@ -1,11 +1,11 @@
 // The world's state at a time, the surfaces gone by the end, and the stale share of a map.
-#include "eval/world_state.hpp"
+#include "eval/metrics/world_state.hpp"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
-#include "eval/map_quality.hpp"
+#include "eval/metrics/map_quality.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "eval/video.hpp"
-#include "eval/video_sink.hpp"
+#include "eval/figures/video.hpp"
+#include "eval/video/video_sink.hpp"
 #include "io/atomic_file.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sensor/input_error.hpp"

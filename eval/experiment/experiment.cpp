@@ -1,0 +1,250 @@
+#include "eval/experiment/experiment.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <memory>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "eval/common/interrupt.hpp"
+#include "eval/common/progress.hpp"
+#include "eval/common/resources.hpp"
+#include "eval/common/staged_output.hpp"
+#include "eval/common/stopwatch.hpp"
+#include "eval/experiment/mapper_config_file.hpp"
+#include "eval/experiment/mode_runner.hpp"
+#include "eval/figures/draw.hpp"
+#include "eval/figures/plots.hpp"
+#include "eval/figures/run_maps.hpp"
+#include "eval/figures/trajectory_figure.hpp"
+#include "eval/figures/video.hpp"
+#include "eval/metrics/metrics.hpp"
+#include "eval/metrics/summary.hpp"
+#include "eval/metrics/world_state.hpp"
+#include "eval/report/report_files.hpp"
+#include "io/atomic_file.hpp"
+#include "io/graph_file.hpp"
+#include "io/map_file.hpp"
+#include "io/relations.hpp"
+#include "io/tum.hpp"
+#include "slam/mapping/mapper.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+void Progress(const ExperimentConfig& c, const std::string& line) {
+  if (c.progress) *c.progress << line << std::flush;
+}
+
+// Renders one frame with every mode side by side.
+void AddVideoFrame(FrameSink* sink, const Observation& obs, const std::optional<GroundTruth>& truth,
+                   const std::vector<std::unique_ptr<ModeRunner>>& runners) {
+  std::vector<render::Panel> panels;
+  for (const auto& r : runners) {
+    const slam::Mapper& m = r->mapper();
+    const Pose2 estimate = m.LastScanPose().T_world_robot;
+    panels.push_back(MakePanel(r->name(), ToOccupancyGrid(m.map()), m.graph(), m.values(), estimate,
+                               m.observations()));
+  }
+  const std::vector<Segment> walls = truth ? truth->walls : std::vector<Segment>{};
+  const Pose2 pose = obs.T_world_robot_true.value_or(Pose2());
+  sink->AddFrame(MakeScene(walls, pose, obs.scan, std::move(panels)));
+}
+
+void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth,
+                const ExperimentConfig& config) {
+  const std::string dir = (fs::path(config.out_dir) / "truth").string();
+  WriteTruthFiles(dir, stream, truth.walls, config.mapper.grid.resolution_m);
+  WriteTruthWalls(dir + "/", truth);
+}
+
+}  // namespace
+
+OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
+  OccupancyGrid grid;
+  grid.resolution_m = map.resolution_m();
+  const slam::CellBounds b = map.Bounds();
+  if (b.empty) return grid;
+  grid.width = b.max.x - b.min.x + 1;
+  grid.height = b.max.y - b.min.y + 1;
+  grid.origin_x_m = b.min.x * grid.resolution_m;
+  grid.origin_y_m = b.min.y * grid.resolution_m;
+  grid.p_occ.assign(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height),
+                    OccupancyGrid::kUnknown);
+  map.ForEachKnownCell([&](slam::CellIndex c, slam::CellCounts counts) {
+    const double total = static_cast<double>(counts.hits) + static_cast<double>(counts.misses);
+    if (total > 0.0) {
+      grid.At(c.x - b.min.x, c.y - b.min.y) = static_cast<float>(counts.hits / total);
+    }
+  });
+  return grid;
+}
+
+namespace {
+
+// Robot time from the first observation to the latest one so far (stamps may run
+// backwards in real logs; the span never does).
+class StreamSpan {
+ public:
+  explicit StreamSpan(const std::vector<Observation>& stream) : stream_(stream) {}
+  double Covered(std::size_t done) {
+    for (; seen_ < done; ++seen_) {
+      lo_ = std::min(lo_, stream_[seen_].stamp_s);
+      hi_ = std::max(hi_, stream_[seen_].stamp_s);
+    }
+    return seen_ == 0 ? 0.0 : hi_ - lo_;
+  }
+
+ private:
+  const std::vector<Observation>& stream_;
+  std::size_t seen_ = 0;
+  double lo_ = std::numeric_limits<double>::infinity();
+  double hi_ = -std::numeric_limits<double>::infinity();
+};
+
+ProgressOptions MeterOptions(const ExperimentConfig& c, const std::string& label) {
+  ProgressOptions o;
+  o.label = label;
+  o.unit = "scans";
+  o.terminal = c.progress_terminal;
+  return o;
+}
+
+}  // namespace
+
+RunSummary RunExperiment(const std::vector<Observation>& stream,
+                         const std::optional<GroundTruth>& truth,
+                         const ExperimentConfig& final_config) {
+  const auto start = Clock::now();
+  StagedOutput output(final_config.out_dir);
+  ExperimentConfig config = final_config;
+  config.out_dir = output.path();
+  io::WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
+                          "# Mapper settings of this run (lifelong --config format)\n" +
+                              MapperConfigToYaml(config.mapper));
+  const std::vector<Relation>& relations = config.relations;
+  std::unique_ptr<FrameSink> sink;
+  if (!config.video_path.empty() || !config.frames_dir.empty()) {
+    if (!config.open_video) throw std::logic_error("RunExperiment: frames asked for, no sink");
+    VideoOptions options;
+    options.video_path = config.video_path;
+    options.frames_dir = config.frames_dir;
+    options.stride = config.video_stride;
+    sink = config.open_video(options);
+    Progress(config, "rendering with " + sink->backend_name() + "\n");
+  }
+  std::vector<std::unique_ptr<ModeRunner>> runners;
+  for (slam::PruningMode mode : config.modes) {
+    runners.push_back(std::make_unique<ModeRunner>(mode, config));
+  }
+  const std::size_t n = stream.size();
+  RunSummary summary;
+  summary.source = config.source;
+  summary.seed = config.seed;
+  summary.log = config.log;
+  summary.simulation = config.simulation;
+  StreamSpan span(stream);
+  if (!stream.empty()) summary.log_duration_s = span.Covered(n);
+  for (const auto& r : runners) summary.mode_order.push_back(r->name());
+  ModeTimelines timelines;
+  std::map<std::string, std::vector<double>> kld;
+  std::map<std::string, std::vector<LoopCurvePoint>> loop_curves;
+  std::vector<AlignedTrack> reference_tracks;
+  ReportPage page;
+  // Evaluates a mode, writes its outputs and frees its mapper.
+  auto finish = [&](ModeRunner* r) {
+    std::vector<double> kl;
+    std::string map_png;
+    summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
+    timelines[r->name()] = r->timeline();
+    if (!kl.empty()) kld[r->name()] = std::move(kl);
+    if (!r->loop_curve().empty()) loop_curves[r->name()] = r->loop_curve();
+    if (!r->aligned_to_reference().empty()) {
+      reference_tracks.push_back({r->name(), r->aligned_to_reference()});
+    }
+    page.maps[r->name()] = map_png;
+    if (!r->changes_png().empty()) {
+      page.change_strips.push_back({r->changes_png(), r->name() + ": " + r->changes_caption()});
+    }
+    r->Release();
+  };
+  if (sink) {  // lockstep: every mode sees scan i before any sees scan i + 1
+    ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, "all modes"));
+    for (std::size_t i = 0; i < n; ++i) {
+      ThrowIfInterrupted();
+      for (auto& r : runners) {
+        r->Step(stream[i]);
+        r->ScorePresentAt(stream, i, truth);
+      }
+      if (sink->Wants(static_cast<int>(i))) AddVideoFrame(sink.get(), stream[i], truth, runners);
+      meter.Update(static_cast<double>(i + 1), span.Covered(i + 1),
+                   runners.front()->ProgressDetail());
+    }
+    sink->Close();
+    meter.Finish(span.Covered(n), runners.front()->ProgressDetail());
+    for (auto& r : runners) finish(r.get());
+  } else {  // one mode after the other, each with its own peak RSS
+    for (auto& r : runners) {
+      ResetPeakRss();
+      ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, r->name()));
+      for (std::size_t i = 0; i < n; ++i) {
+        ThrowIfInterrupted();
+        r->Step(stream[i]);
+        r->ScorePresentAt(stream, i, truth);
+        meter.Update(static_cast<double>(i + 1), span.Covered(i + 1), r->ProgressDetail());
+      }
+      meter.Finish(span.Covered(n), r->ProgressDetail());
+      finish(r.get());
+    }
+  }
+  ThrowIfInterrupted();
+  if (truth) WriteTruth(stream, *truth, config);
+  if (!reference_tracks.empty()) {
+    std::vector<Pose2> reference;
+    for (const StampedPose& p : config.reference) reference.push_back(p.T_world_robot);
+    const std::string name =
+        config.log && config.log->reference ? *config.log->reference : std::string("reference");
+    WriteTrajectoryFigure((fs::path(config.out_dir) / "trajectories.png").string(), reference,
+                          "reference: " + name, reference_tracks);
+  }
+  PlotConfig plot_config;
+  plot_config.log_time = true;  // the modes differ by orders of magnitude
+  plot_config.mode_order = summary.mode_order;
+  plot_config.named_dir = final_config.out_dir;  // the staging directory is gone by then
+  const PlotResult plots = PlotRun(timelines, kld, loop_curves, config.out_dir, plot_config);
+  if (!plots.ok) Progress(config, "warning: " + plots.error + "\n");
+  ThrowIfInterrupted();
+  summary.wall_time_s = Seconds(start);
+  page.summary = summary;
+  page.command_line = config.command_line;
+  CompleteReportPage(MakeReportContext(config, stream, truth, plot_config), &page);
+  WriteReportHtml((fs::path(config.out_dir) / "report.html").string(), page);
+  WriteSummaryJson((fs::path(config.out_dir) / "summary.json").string(), summary);
+  output.Commit();
+  return summary;
+}
+
+ReportContext MakeReportContext(const ExperimentConfig& config,
+                                const std::vector<Observation>& stream,
+                                const std::optional<GroundTruth>& truth,
+                                const PlotConfig& plot_config) {
+  ReportContext c;
+  c.out_dir = config.out_dir;
+  for (slam::PruningMode mode : config.modes) c.mode_order.push_back(slam::PruningModeName(mode));
+  const double res = config.mapper.grid.resolution_m;  // as in ModeRunner::Finish
+  c.map_m_per_px = MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, res).m_per_px;
+  c.truth_frame = truth.has_value();
+  c.moving_average = plot_config.moving_average;
+  c.log_time = plot_config.log_time;
+  c.relations_path = config.relations_path.value_or("");
+  return c;
+}
+
+}  // namespace lifelong::eval

@@ -1,0 +1,236 @@
+#include "eval/experiment/mapper_config_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "sensor/input_error.hpp"
+#include "sim/yaml_fields.hpp"
+#include "slam/mapping/mapper_config_fields.hpp"
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+using namespace slam::config_fields;  // NOLINT: the fields are this file's vocabulary
+
+/// Keys that look like settings but are deliberately not in the file.
+const std::map<std::string, std::string>& Hints() {
+  static const std::map<std::string, std::string> hints = {
+      {"pruning.mode", "the pruning mode is chosen with --modes, not in the config"},
+      {"loops.matcher.linear_window_m", "set per attempt from loops.min_window_m..max_window_m"},
+      {"loops.matcher.angular_window_rad",
+       "set per attempt from loops.min_window_rad..max_window_rad"},
+      {"optimizer.anchor", "the mapper always anchors the oldest node"}};
+  return hints;
+}
+
+// ---- Reading: strict, every error an InputError with file, 1-based line and field. ----
+
+using sim::LineOf;
+
+class Reader {
+ public:
+  Reader(std::string file, YAML::Node node, std::string field)
+      : file_(std::move(file)), node_(std::move(node)), field_(std::move(field)) {}
+
+  template <class F>
+  void Section(const char* key, F&& visit) {
+    const YAML::Node n = Take(key);
+    if (!n || n.IsNull()) return;  // an empty section changes nothing
+    if (!n.IsMap()) Fail(n, Name(key), "expected a section of key: value pairs");
+    Reader child(file_, n, Name(key));
+    visit(child);
+    child.RejectUnknown();
+  }
+
+  void Number(const char* key, double& value, const Range& range) {
+    const YAML::Node n = Take(key);
+    if (!n) return;
+    double v = 0.0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) {
+      Fail(n, Name(key), "expected a number, got '" + Text(n) + "'");
+    }
+    if (!range.Admits(v)) {
+      Fail(n, Name(key), std::string("must be ") + range.text + ", got " + Text(n));
+    }
+    value = v;
+  }
+
+  void Int(const char* key, int& value, int min, int max = std::numeric_limits<int>::max()) {
+    const YAML::Node n = Take(key);
+    if (!n) return;
+    int v = 0;
+    if (!n.IsScalar() || !YAML::convert<int>::decode(n, v)) {
+      Fail(n, Name(key), "expected an integer, got '" + Text(n) + "'");
+    }
+    if (v < min) Fail(n, Name(key), "must be >= " + std::to_string(min) + ", got " + Text(n));
+    if (v > max) Fail(n, Name(key), "must be <= " + std::to_string(max) + ", got " + Text(n));
+    value = v;
+  }
+
+  void PowerOfTwo(const char* key, int& value) {
+    int v = value;
+    Int(key, v, 1);
+    const YAML::Node n = Node()[key];
+    // A matcher's top level has coarse_factor^2 cells per block: past 1024 it exhausted memory.
+    if (n && ((v & (v - 1)) != 0 || v > 1024)) {
+      Fail(n, Name(key), "must be a power of 2 up to 1024, got " + Text(n));
+    }
+    value = v;
+  }
+
+  void Bool(const char* key, bool& value) {
+    const YAML::Node n = Take(key);
+    if (!n) return;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, value)) {
+      Fail(n, Name(key), "expected true or false, got '" + Text(n) + "'");
+    }
+  }
+
+  template <class E, std::size_t N>
+  void Enum(const char* key, E& value, const EnumName<E> (&names)[N]) {
+    const YAML::Node n = Take(key);
+    if (!n) return;
+    std::string choices;
+    for (const auto& [name, e] : names) {
+      if (n.IsScalar() && n.Scalar() == name) {
+        value = e;
+        return;
+      }
+      choices += choices.empty() ? name : std::string(", ") + name;
+    }
+    Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
+  }
+
+  /// One of `names` (or, with allow_empty, an empty string or nothing: "").
+  void Choice(const char* key, std::string& value, const std::vector<std::string>& names,
+              bool allow_empty) {
+    const YAML::Node n = Take(key);
+    if (!n) return;
+    if (allow_empty && (n.IsNull() || (n.IsScalar() && n.Scalar().empty()))) {
+      value.clear();
+      return;
+    }
+    std::string choices;
+    for (const std::string& name : names) {
+      if (n.IsScalar() && n.Scalar() == name) {
+        value = name;
+        return;
+      }
+      choices += (choices.empty() ? "" : ", ") + name;
+    }
+    Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
+  }
+
+  /// lo <= hi once both are read; blames hi when the file gives it, else lo.
+  void Ordered(const char* lo_key, double lo, const char* hi_key, double hi) {
+    if (lo <= hi) return;
+    const char* key = Node()[hi_key] ? hi_key : lo_key;
+    Fail(Node()[key], Name(key),
+         std::string(lo_key) + " (" + ShortestDouble(lo) + ") exceeds " + hi_key + " (" +
+             ShortestDouble(hi) + ")");
+  }
+
+  /// Every key must be a known one, given once (yaml-cpp would silently keep the first).
+  void RejectUnknown() const {
+    sim::RejectDuplicateKeys(file_, node_, field_);
+    for (auto it = node_.begin(); it != node_.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      if (used_.count(key) != 0) continue;
+      const auto hint = Hints().find(Name(key));
+      Fail(it->first, Name(key),
+           hint == Hints().end() ? "unknown key" : "unknown key: " + hint->second);
+    }
+  }
+
+ private:
+  const YAML::Node& Node() const { return node_; }  // const access never inserts keys
+  YAML::Node Take(const char* key) {
+    used_.insert(key);
+    return Node()[key];
+  }
+  std::string Name(const std::string& key) const {
+    return field_.empty() ? key : field_ + "." + key;
+  }
+  static std::string Text(const YAML::Node& n) {
+    return n.IsScalar() ? n.Scalar() : "a non-scalar";
+  }
+  [[noreturn]] void Fail(const YAML::Node& at, const std::string& field,
+                         const std::string& message) const {
+    throw InputError(file_, at ? LineOf(at) : LineOf(node_), field, message);
+  }
+
+  std::string file_;
+  YAML::Node node_;
+  std::string field_;
+  std::set<std::string> used_;
+};
+
+// The line to blame for a problem Validate found: the first field it names, or the
+// deepest section of it the file has (a bound across settings may come from defaults).
+int LineOfField(const YAML::Node& root, const std::string& fields) {
+  const std::string first = fields.substr(0, fields.find(','));
+  YAML::Node at = root;
+  std::size_t start = 0;
+  while (start <= first.size()) {
+    const std::size_t dot = first.find('.', start);
+    const std::string key = first.substr(start, dot == std::string::npos ? dot : dot - start);
+    const YAML::Node next = at.IsMap() ? static_cast<const YAML::Node&>(at)[key] : YAML::Node();
+    if (!next) break;
+    at = next;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return LineOf(at);
+}
+
+slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
+                         const slam::MapperConfig& base) {
+  slam::MapperConfig config = base;
+  if (!root || root.IsNull()) return config;
+  if (!root.IsMap()) throw InputError(name, LineOf(root), "", "expected a map of sections");
+  Reader reader(name, root, "");
+  VisitConfig(reader, config);
+  reader.RejectUnknown();
+  // The reader has checked every key against its range; what is left are the bounds across
+  // settings.
+  if (const std::optional<slam::ConfigProblem> problem = slam::Validate(config)) {
+    throw InputError(name, LineOfField(root, problem->fields), problem->fields, problem->message);
+  }
+  return config;
+}
+
+}  // namespace
+
+slam::MapperConfig LoadMapperConfigFromString(const std::string& yaml, const std::string& name,
+                                              const slam::MapperConfig& base) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(name, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
+  return Apply(root, name, base);
+}
+
+slam::MapperConfig LoadMapperConfig(const std::string& path, const slam::MapperConfig& base) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path, 0, "", "cannot open the config file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
+  return Apply(root, path, base);
+}
+
+}  // namespace lifelong::eval

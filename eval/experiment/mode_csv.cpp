@@ -1,0 +1,32 @@
+// The per-mode CSVs; see mode_csv.hpp.
+#include "eval/experiment/mode_csv.hpp"
+
+#include <cstdio>
+
+#include "io/atomic_file.hpp"
+
+namespace lifelong::eval {
+
+void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper) {
+  std::string text = "node,clique_size,kl_nats,information_gain_bits\n";
+  char line[128];
+  for (const auto& m : mapper.marginalizations()) {
+    std::snprintf(line, sizeof(line), "%lld,%zu,%.9g,%.9g\n", static_cast<long long>(m.node),
+                  m.clique_size, m.kl_divergence, m.information_gain_bits);
+    text += line;
+  }
+  io::WriteFileAtomically(path, text);
+}
+
+void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
+  std::string text = "centre,nodes,edges_before,edges_after,kl_nats\n";
+  char line[128];
+  for (const auto& s : mapper.sparsifications()) {
+    std::snprintf(line, sizeof(line), "%lld,%zu,%zu,%zu,%.9g\n", static_cast<long long>(s.centre),
+                  s.nodes, s.edges_before, s.edges_after, s.kl_divergence);
+    text += line;
+  }
+  io::WriteFileAtomically(path, text);
+}
+
+}  // namespace lifelong::eval

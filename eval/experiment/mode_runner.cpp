@@ -1,0 +1,311 @@
+// One mode of an experiment; see mode_runner.hpp.
+#include "eval/experiment/mode_runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "eval/common/raster_limit.hpp"
+#include "eval/common/resources.hpp"
+#include "eval/common/stopwatch.hpp"
+#include "eval/experiment/false_closures.hpp"
+#include "eval/experiment/mode_csv.hpp"
+#include "eval/figures/change_tiles.hpp"
+#include "eval/figures/run_maps.hpp"
+#include "eval/metrics/change_recall.hpp"
+#include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/trajectory_reference.hpp"
+#include "eval/metrics/truth_metrics.hpp"
+#include "eval/metrics/world_state.hpp"
+#include "io/atomic_file.hpp"
+#include "io/graph_file.hpp"
+#include "io/map_file.hpp"
+#include "io/tum.hpp"
+#include "sensor/input_error.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A run whose map outgrows kMaxRasterCells is stopped at the observation that did, not at
+// the end with the memory exhausted.
+constexpr double kMaxMapCells = kMaxRasterCells;
+
+}  // namespace
+
+ModeRunner::ModeRunner(slam::PruningMode mode, const ExperimentConfig& config)
+    : mode_(mode), name_(slam::PruningModeName(mode)), config_(config) {
+  slam::MapperConfig mc = config.mapper;
+  mc.pruning.mode = mode;
+  mapper_ = std::make_unique<slam::Mapper>(mc);
+  mapper_->on_observation = [this](const slam::StepStats& s) { Record(s); };
+  const slam::LoopClosingConfig& loops = config.mapper.loops;
+  if (loops.inject_false_share > 0.0) {
+    mapper_->set_hypothesis_hook(FalseClosureInjector(
+        loops.inject_false_share, loops.inject_false_dx_m, loops.inject_false_dy_m));
+  }
+}
+void ModeRunner::Step(const Observation& obs) {
+  const auto start = Clock::now();
+  mapper_->AddObservation(obs);
+  seconds_ += Seconds(start);
+  const slam::CellBounds& box = mapper_->map().Extent();
+  if (box.empty) return;
+  const double w = box.max.x - box.min.x + 1.0, h = box.max.y - box.min.y + 1.0;
+  if (w * h <= kMaxMapCells) return;
+  const double r = mapper_->map().resolution_m();
+  char what[320];
+  std::snprintf(what, sizeof what,
+                "the scan stamped %.3f s (observation %zu) takes the map to %.0f x %.0f m, "
+                "more than the %.0f cells a map may hold at %g m: does the odometry jump? "
+                "(a larger area needs a coarser grid.resolution_m)",
+                obs.stamp_s, static_cast<std::size_t>(timeline_.back().obs), w * r, h * r,
+                kMaxMapCells, r);
+  throw InputError(config_.source, 0, "", what);
+}
+
+std::string ModeRunner::ProgressDetail() const {
+  std::ostringstream line;
+  line << "nodes " << mapper_->graph().NumNodes() << "  edges "
+       << mapper_->graph().NumEdgesForGamma() << "  loops " << mapper_->loop_closures().size();
+  return line.str();
+}
+
+void ModeRunner::Record(const slam::StepStats& s) {
+  TimelineRow row;
+  row.obs = s.observation_index;
+  row.t_s = s.stamp_s;
+  row.time_ms = s.time_ms;
+  row.nodes = static_cast<int>(s.nodes);
+  row.edges = static_cast<int>(s.edges);
+  row.gamma = s.gamma;
+  row.rss_mb = CurrentRssMb().value_or(0.0);
+  row.graph_bytes = s.graph_bytes;
+  row.loop_closures = s.loop_closures_total;
+  row.optimize_ms = s.optimize_ms;
+  row.nodes_removed = s.nodes_removed_total;
+  row.stages = s.stages;
+  timeline_.push_back(row);
+  if (s.observation_index > 0) {  // the first observation has nothing to match against
+    ++sequential_.count;
+    if (s.incremental_match_ok) ++sequential_.matched;
+    if (s.incremental_match_degenerate) ++sequential_.degenerate;
+  }
+  if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
+}
+
+void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const {
+  const std::vector<bool>& correct = truth.correct_each;
+  std::string text = "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg,final_chi2\n";
+  const auto& loops = mapper_->loop_closures();
+  const std::vector<std::optional<double>> chi2 = mapper_->LoopEdgeChi2();
+  const double end = timeline_.empty() ? 0.0 : timeline_.back().t_s;
+  const double start = timeline_.empty() ? 0.0 : timeline_.front().t_s;
+  int last_hour = 0, last_hour_correct = 0;
+  char line[160];
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    const bool known = k < correct.size();
+    if (known) {
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,%d,%.4f,%.3f,", loops[k].stamp_current_s,
+                    loops[k].stamp_old_s, loops[k].injected ? 1 : 0, correct[k] ? 1 : 0,
+                    truth.error_m_each[k], truth.error_deg_each[k]);
+    } else {
+      std::snprintf(line, sizeof(line), "%.6f,%.6f,%d,,,,", loops[k].stamp_current_s,
+                    loops[k].stamp_old_s, loops[k].injected ? 1 : 0);
+    }
+    text += line;
+    if (chi2[k]) {
+      std::snprintf(line, sizeof(line), "%.4g", *chi2[k]);
+      text += line;
+    }
+    text += '\n';
+    if (known && loops[k].stamp_current_s >= end - 3600.0) {
+      ++last_hour;
+      last_hour_correct += correct[k] ? 1 : 0;
+    }
+  }
+  if (summary && end - start > 3600.0 && last_hour > 0) {
+    summary->loop_precision_last_hour = static_cast<double>(last_hour_correct) / last_hour;
+  }
+  io::WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
+}
+
+std::vector<LoopCurvePoint> ModeRunner::LoopCurve(const LoopClosureResult& truth) const {
+  std::vector<std::pair<double, bool>> closures;  // (current node's time, correct)
+  const auto& loops = mapper_->loop_closures();
+  for (std::size_t k = 0; k < loops.size() && k < truth.correct_each.size(); ++k) {
+    closures.emplace_back(loops[k].stamp_current_s, truth.correct_each[k]);
+  }
+  std::sort(closures.begin(), closures.end());
+  std::vector<LoopCurvePoint> curve;
+  LoopCurvePoint p;
+  int correct = 0, recalled = 0;
+  std::size_t next = 0;
+  for (std::size_t n = 0; n < timeline_.size(); ++n) {
+    p.t_s = timeline_[n].t_s;
+    for (; next < closures.size() && closures[next].first <= p.t_s; ++next) {
+      ++p.accepted;
+      correct += closures[next].second ? 1 : 0;
+    }
+    if (n < truth.revisit_each.size() && truth.revisit_each[n]) {
+      ++p.revisits;
+      recalled += truth.recalled_each[n] ? 1 : 0;
+    }
+    p.precision = p.accepted > 0 ? static_cast<double>(correct) / p.accepted : 0.0;
+    p.recall = p.revisits > 0 ? static_cast<double>(recalled) / p.revisits : 0.0;
+    curve.push_back(p);
+  }
+  return curve;
+}
+
+Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
+                               const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
+                               ModeSummary* summary) {
+  std::vector<Pose2> true_poses;
+  std::map<double, Pose2> true_at;
+  for (const Observation& o : stream) {
+    true_poses.push_back(*o.T_world_robot_true);
+    true_at[o.stamp_s] = *o.T_world_robot_true;
+  }
+  const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &truth, &grid, summary);
+  if (truth.world) {
+    summary->change = ComputeChangeRecall(*truth.world, truth.end_s, stream, grid, T_truth_est);
+  }
+  // Loop closures against the true poses of the observations (every node ever created,
+  // in creation order: the timeline has one row per observation).
+  std::map<double, int> index_of_stamp;
+  std::vector<Pose2> true_nodes;
+  for (const TimelineRow& row : timeline_) {
+    index_of_stamp.emplace(row.t_s, static_cast<int>(true_nodes.size()));
+    true_nodes.push_back(true_at.at(row.t_s));
+  }
+  std::vector<LoopClosure> closures;
+  for (const auto& lc : mapper_->loop_closures()) {
+    closures.push_back({index_of_stamp.at(lc.stamp_old_s), index_of_stamp.at(lc.stamp_current_s),
+                        lc.T_old_current});
+  }
+  const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
+  if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
+  if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
+  WriteLoopsCsv(lcr, summary);
+  loop_curve_ = LoopCurve(lcr);
+  return T_truth_est;
+}
+
+void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::size_t i,
+                                const std::optional<GroundTruth>& truth) {
+  if (!truth || !truth->world) return;
+  const double stamp = stream[i].stamp_s;
+  for (const double t : config_.present_at_s) {
+    // stream[i] is the first scan at or after t.
+    if (stamp < t || (i > 0 && stream[i - 1].stamp_s >= t)) continue;
+    const std::vector<StampedPose> trajectory = mapper_->Trajectory();
+    std::vector<Pose2> estimate, true_poses;
+    for (std::size_t k = 0; k < trajectory.size() && k <= i; ++k) {
+      estimate.push_back(trajectory[k].T_world_robot);
+      true_poses.push_back(*stream[k].T_world_robot_true);
+    }
+    const OccupancyGrid grid = ToOccupancyGrid(mapper_->map());
+    const GroundTruth then = TruthOf(*truth->world, t);
+    ModeSummary s;
+    const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &then, &grid, &s);
+    PresentAt p;
+    p.t_s = t;
+    p.ate_rmse_m = s.ate_rmse_m;
+    // Before anything changed the present is every wall there is.
+    p.current_blur = s.current_blur ? s.current_blur : s.blur;
+    p.stale_cells = s.current_blur ? s.stale_cells : 0.0;
+    if (const auto change =
+            ComputeChangeRecall(*truth->world, t, stream, grid, T_truth_est, i + 1)) {
+      p.change_recall = change->recall;
+      p.change_recall_seen = change->recent;
+    }
+    present_at_.push_back(p);
+  }
+}
+
+ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
+                               const std::optional<GroundTruth>& truth,
+                               const std::vector<Relation>& relations, std::vector<double>* kld,
+                               std::string* map_png) {
+  const auto start = Clock::now();
+  mapper_->Finish();
+  seconds_ += Seconds(start);
+  const fs::path dir = fs::path(config_.out_dir) / name_;
+  fs::create_directories(dir);
+  const slam::Mapper& m = *mapper_;
+
+  ModeSummary summary = SummarizeTimeline(timeline_, first_pass_end_);
+  summary.wall_time_s = seconds_;
+  summary.peak_rss_mb = PeakRssMb();
+  if (m.observations() > 0) {
+    summary.scans_kept_pct =
+        100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
+  }
+  summary.edges_by_kind = EdgesByKind(m.graph());
+  if (sequential_.count > 0) summary.sequential = sequential_;
+  for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
+  if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
+
+  const std::vector<StampedPose> trajectory = m.Trajectory();
+  std::vector<Pose2> estimate;
+  for (const StampedPose& p : trajectory) estimate.push_back(p.T_world_robot);
+  io::WriteTum((dir / "trajectory.tum").string(), trajectory);
+  io::WriteG2o((dir / "graph.g2o").string(), m.graph(), m.values());
+  const OccupancyGrid grid = ToOccupancyGrid(m.map());
+  io::WritePgmMap((dir / "map.pgm").string(), grid);
+  const EntropyResult entropy = ComputeMapEntropy(grid);
+  summary.map_entropy_bits = entropy.entropy_bits;
+  summary.occupied_share = entropy.occupied_share;
+
+  summary.loop_verification =
+      LoopVerificationSummary{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0,
+                              config_.mapper.loops.global.enabled, 0};
+  for (const std::optional<double>& chi2 : m.LoopEdgeChi2()) {
+    if (chi2 && *chi2 > config_.mapper.loops.suspect_chi2)
+      ++summary.loop_verification->switched_off;
+  }
+  std::optional<Pose2> T_truth_est;
+  if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
+  summary.present_at = present_at_;
+  if (summary.change && T_truth_est) {
+    changes_caption_ =
+        WriteChangeTiles((dir / "changes.png").string(), *summary.change, grid, *T_truth_est);
+    if (!changes_caption_.empty()) changes_png_ = name_ + "/changes.png";
+  }
+  if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
+  if (!config_.reference.empty()) {
+    const ReferencePairs pairs = config_.reference_per_scan
+                                     ? PairScanByScan(trajectory, config_.reference)
+                                     : PairWithReference(trajectory, config_.reference);
+    summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
+    if (!pairs.estimate.empty()) {
+      const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);
+      summary.ate_rmse_m = ate.rmse_m;
+      summary.rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
+      aligned_to_reference_.clear();
+      for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
+    }
+  }
+  if (!relations.empty()) {
+    const RelationsResult rr = ComputeRelationsError(trajectory, relations);
+    summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
+                                         rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
+  }
+  WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
+  if (mode_ != slam::PruningMode::kNone) {
+    WriteMarginalizations((dir / "marginalizations.csv").string(), m);
+    WriteSparsifications((dir / "sparsifications.csv").string(), m);
+  }
+  WriteModeFigures(config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()),
+                   T_truth_est,
+                   MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
+  *map_png = name_ + "/map.png";
+  return summary;
+}
+
+}  // namespace lifelong::eval

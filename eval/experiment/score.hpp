@@ -1,0 +1,47 @@
+// `lifelong score` (issue #33): any system's trajectory, and optionally its map, scored on a
+// simulated run or a log with the figures a mode of `run` or `replay` gets. The truth comes
+// from a run's directory (its truth/), a truth directory, a simulated log (its
+// LOG-stem.truth.* files) or a corrected CARMEN log (its FLASER poses: ATE and RPE only).
+// Poses are paired with the truth by stamp (a corrected log's: scan by scan); a map is
+// aligned by the trajectory's ATE alignment, as a mode's is.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "eval/experiment/experiment.hpp"
+#include "eval/metrics/summary.hpp"
+#include "types/occupancy_grid.hpp"
+#include "types/stamped_pose.hpp"
+
+namespace lifelong::eval {
+
+struct ScoreTruth {
+  std::string source;                   ///< the path given
+  std::string kind;                     ///< "run", "truth", "simulated log" or "corrected log"
+  std::vector<StampedPose> trajectory;  ///< true poses, or the log's reference poses
+  bool per_scan = false;                ///< pair scan by scan (a corrected log's own poses)
+  std::optional<GroundTruth> walls;     ///< the true walls (simulated truth only)
+};
+
+/// Throws InputError naming the path when it is none of the four.
+ScoreTruth LoadScoreTruth(const std::string& path);
+
+struct ScoredSystem {
+  std::string name;
+  std::vector<StampedPose> trajectory;
+  std::optional<OccupancyGrid> map;
+};
+
+struct SystemScore {
+  ModeSummary summary;         ///< ate_rmse_m, rpe_1m, reference_matched, blur, ...
+  std::vector<Pose2> aligned;  ///< the matched poses, in the truth frame (for figures)
+  std::vector<Pose2> truth;    ///< their true poses
+};
+
+/// The system's figures against the truth. Throws InputError naming the system when none of
+/// its poses pairs with the truth.
+SystemScore ScoreSystem(const ScoreTruth& truth, const ScoredSystem& system);
+
+}  // namespace lifelong::eval

@@ -1,0 +1,250 @@
+#include "eval/sweep/sweep_spec.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <utility>
+
+#include "eval/experiment/mapper_config_file.hpp"
+#include "sensor/input_error.hpp"
+#include "sim/yaml_fields.hpp"
+#include "slam/mapping/mapper_config.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+using sim::LineOf;
+
+class SpecReader {
+ public:
+  SpecReader(std::string file, YAML::Node root) : file_(std::move(file)), root_(std::move(root)) {
+    dir_ = fs::absolute(fs::path(file_)).parent_path();
+  }
+
+  [[noreturn]] void Fail(const YAML::Node& at, const std::string& field,
+                         const std::string& message) const {
+    throw InputError(file_, at ? LineOf(at) : 0, field, message);
+  }
+
+  /// A list that is present must be a non-empty sequence.
+  YAML::Node List(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsSequence()) Fail(n, field, "expected a list");
+    if (n.size() == 0) Fail(n, field, "the list is empty");
+    return n;
+  }
+
+  std::string Scalar(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsScalar() || n.Scalar().empty()) Fail(n, field, "expected a value");
+    return n.Scalar();
+  }
+
+  /// An existing file named relative to the SPEC's folder, made absolute.
+  std::string ExistingFile(const YAML::Node& n, const std::string& field,
+                           const std::string& what) const {
+    const fs::path p = dir_ / Scalar(n, field);
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) Fail(n, field, "no such " + what + ": " + p.string());
+    return p.lexically_normal().string();
+  }
+
+  void RejectUnknown(const YAML::Node& map, const std::set<std::string>& known,
+                     const std::string& prefix) const {
+    sim::RejectDuplicateKeys(file_, map,
+                             prefix.empty() ? prefix : prefix.substr(0, prefix.size() - 1));
+    for (auto it = map.begin(); it != map.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      if (known.count(key) == 0) Fail(it->first, prefix + key, "unknown key");
+    }
+  }
+
+  SweepSource Scenario(const YAML::Node& n, const std::string& field) const {
+    SweepSource s;
+    s.given = Scalar(n, field);
+    s.path = ExistingFile(n, field, "scenario");
+    s.line = LineOf(n);
+    YAML::Node scenario;
+    try {
+      scenario = YAML::LoadFile(s.path);
+    } catch (const YAML::Exception& e) {
+      Fail(n, field, "the scenario " + s.path + " is not YAML: " + e.what());
+    }
+    const YAML::Node world = scenario.IsMap() ? scenario["world"] : YAML::Node();
+    if (!world || !world.IsScalar()) Fail(n, field, "the scenario " + s.path + " names no world");
+    const fs::path w = fs::path(s.path).parent_path() / world.Scalar();
+    std::error_code ec;
+    if (!fs::is_regular_file(w, ec)) {
+      Fail(n, field, "the world of " + s.path + " does not exist: " + w.string());
+    }
+    s.world_path = w.lexically_normal().string();
+    return s;
+  }
+
+  SweepSource Log(const YAML::Node& n, const std::string& field) const {
+    SweepSource s;
+    s.is_log = true;
+    s.line = LineOf(n);
+    const YAML::Node log = n.IsMap() ? n["log"] : n;
+    if (n.IsMap()) {
+      RejectUnknown(n, {"log", "relations", "relations_offset_s"}, field + ".");
+      if (!log) Fail(n, field + ".log", "missing");
+      if (n["relations"]) {
+        s.relations = ExistingFile(n["relations"], field + ".relations", "relations file");
+      }
+      if (const YAML::Node off = n["relations_offset_s"]) {
+        double v = 0.0;
+        if (!off.IsScalar() || !YAML::convert<double>::decode(off, v) || !std::isfinite(v)) {
+          Fail(off, field + ".relations_offset_s", "expected a finite number of seconds");
+        }
+        s.relations_offset_s = v;
+      }
+    }
+    s.given = Scalar(log, field + (n.IsMap() ? ".log" : ""));
+    s.path = ExistingFile(log, field + (n.IsMap() ? ".log" : ""), "log");
+    return s;
+  }
+
+  void Read(SweepSpec* spec) const {
+    if (!root_.IsMap()) Fail(root_, "", "expected a map (scenarios, logs, seeds, modes, ...)");
+    RejectUnknown(root_, {"scenarios", "logs", "seeds", "modes", "settings", "baseline"}, "");
+    if (const YAML::Node list = root_["scenarios"]) {
+      for (std::size_t i = 0; i < List(list, "scenarios").size(); ++i) {
+        spec->sources.push_back(Scenario(list[i], "scenarios[" + std::to_string(i) + "]"));
+      }
+    }
+    if (const YAML::Node list = root_["logs"]) {
+      for (std::size_t i = 0; i < List(list, "logs").size(); ++i) {
+        spec->sources.push_back(Log(list[i], "logs[" + std::to_string(i) + "]"));
+      }
+    }
+    if (spec->sources.empty()) Fail(root_, "scenarios", "neither scenarios nor logs are given");
+    ReadSeeds(spec);
+    ReadModes(spec);
+    ReadSettings(spec);
+  }
+
+ private:
+  void ReadSeeds(SweepSpec* spec) const {
+    const YAML::Node list = root_["seeds"];
+    if (!list) return;
+    std::set<std::int64_t> seen;
+    for (std::size_t i = 0; i < List(list, "seeds").size(); ++i) {
+      std::int64_t seed = 0;
+      const std::string field = "seeds[" + std::to_string(i) + "]";
+      if (!list[i].IsScalar() || !YAML::convert<std::int64_t>::decode(list[i], seed) || seed < 0) {
+        Fail(list[i], field, "expected an integer >= 0");
+      }
+      if (!seen.insert(seed).second) Fail(list[i], field, "seed given twice");
+      spec->seeds.push_back(seed);
+    }
+  }
+
+  void ReadModes(SweepSpec* spec) const {
+    const YAML::Node list = root_["modes"];
+    if (!list) Fail(root_, "modes", "missing (e.g. modes: [standard, pruned])");
+    for (std::size_t i = 0; i < List(list, "modes").size(); ++i) {
+      const std::string field = "modes[" + std::to_string(i) + "]";
+      const std::string name = Scalar(list[i], field);
+      slam::PruningMode mode;
+      if (!slam::ParsePruningMode(name, &mode)) {
+        Fail(list[i], field,
+             "unknown mode '" + name + "' (known: " + slam::PruningModeList() + ")");
+      }
+      if (std::count(spec->modes.begin(), spec->modes.end(), name)) {
+        Fail(list[i], field, "mode named twice");
+      }
+      spec->modes.push_back(name);
+    }
+    spec->baseline = spec->modes.front();
+    if (const YAML::Node b = root_["baseline"]) {
+      spec->baseline = Scalar(b, "baseline");
+      const auto it = std::find(spec->modes.begin(), spec->modes.end(), spec->baseline);
+      if (it == spec->modes.end()) Fail(b, "baseline", "is not one of the modes");
+      std::rotate(spec->modes.begin(), it, it + 1);  // the baseline first, as --modes wants
+    }
+  }
+
+  void ReadSettings(SweepSpec* spec) const {
+    const YAML::Node map = root_["settings"];
+    if (!map) return;
+    if (!map.IsMap() || map.size() == 0) {
+      Fail(map, "settings", "expected dotted mapper-config keys, each with a list of values");
+    }
+    RejectDuplicates(map);
+    for (auto it = map.begin(); it != map.end(); ++it) {
+      SweepSetting s;
+      s.key = it->first.Scalar();
+      s.line = LineOf(it->first);
+      const std::string field = "settings." + s.key;
+      for (std::size_t i = 0; i < List(it->second, field).size(); ++i) {
+        s.values.push_back(Scalar(it->second[i], field + "[" + std::to_string(i) + "]"));
+        CheckSetting(s.key, s.values.back(), it->second[i]);
+      }
+      spec->settings.push_back(std::move(s));
+    }
+  }
+
+  void RejectDuplicates(const YAML::Node& map) const {
+    sim::RejectDuplicateKeys(file_, map, "settings");
+  }
+
+  /// The real config reader decides: a config holding just this key and value must load.
+  void CheckSetting(const std::string& key, const std::string& value, const YAML::Node& at) const {
+    try {
+      LoadMapperConfigFromString(SettingsConfigYaml({{key, value}}), "setting");
+    } catch (const InputError& e) {
+      Fail(at, "settings." + key,
+           std::string("not a valid mapper setting (configs/default.yaml): ") + e.what());
+    }
+  }
+
+  std::string file_;
+  YAML::Node root_;
+  fs::path dir_;
+};
+
+}  // namespace
+
+std::string SettingsConfigYaml(const std::vector<std::pair<std::string, std::string>>& settings) {
+  YAML::Node root(YAML::NodeType::Map);
+  for (const auto& [key, value] : settings) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1) {
+      parts.push_back(key.substr(start, dot - start));
+    }
+    parts.push_back(key.substr(start));
+    YAML::Node node = root;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+      if (!node[parts[i]] || !node[parts[i]].IsMap())
+        node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      node.reset(node[parts[i]]);
+    }
+    node[parts.back()] = value;
+  }
+  if (root.size() == 0) return "{}\n";
+  YAML::Emitter out;
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
+
+SweepSpec LoadSweepSpec(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path, 0, "", "cannot open the sweep spec");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
+  SweepSpec spec;
+  spec.file = path;
+  SpecReader(path, root).Read(&spec);
+  return spec;
+}
+
+}  // namespace lifelong::eval

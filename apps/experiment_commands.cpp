@@ -45,21 +45,22 @@ std::string Trim(const std::string& s) {
 }
 
 // "standard, pruned" and "standard,pruned" alike; a mode named twice is an error.
-std::vector<lifelong::slam::PruningMode> ParseModes(const std::string& list) {
-  std::vector<lifelong::slam::PruningMode> modes;
+std::vector<lifelong::slam::Mode> ParseModes(const std::string& list) {
+  std::vector<lifelong::slam::Mode> modes;
   std::stringstream ss(list);
   std::string item;
   while (std::getline(ss, item, ',')) {
     const std::string name = Trim(item);
-    lifelong::slam::PruningMode mode;
-    if (!lifelong::slam::ParsePruningMode(name, &mode)) {
+    const std::optional<lifelong::slam::Mode> mode = lifelong::slam::ParseMode(name);
+    if (!mode) {
       throw InputError("--modes", 0, name,
-                       "unknown mode (known: " + lifelong::slam::PruningModeList() + ")");
+                       "unknown mode (known: " + lifelong::slam::ModeList() + ")");
     }
-    if (std::find(modes.begin(), modes.end(), mode) != modes.end()) {
+    if (std::any_of(modes.begin(), modes.end(),
+                    [&](const lifelong::slam::Mode& m) { return m.name == mode->name; })) {
       throw InputError("--modes", 0, name, "mode named twice");
     }
-    modes.push_back(mode);
+    modes.push_back(*mode);
   }
   if (modes.empty()) throw InputError("--modes", 0, "", "no mode given");
   return modes;

@@ -160,7 +160,7 @@ int main(int argc, char** argv) {
       ->check(kNonEmpty);
   run->add_option(
       "--modes", run_args.modes,
-      "comma-separated, of " + lifelong::slam::PruningModeList() + "; the first is the baseline");
+      "comma-separated, of " + lifelong::slam::ModeList() + "; the first is the baseline");
   run->add_option("--config", run_args.config, "mapper settings, YAML (see configs/default.yaml)")
       ->check(kNotADirectory);
   run->add_option("--present-at", run_args.present_at,

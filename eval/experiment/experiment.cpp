@@ -141,7 +141,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     Progress(config, "rendering with " + sink->backend_name() + "\n");
   }
   std::vector<std::unique_ptr<ModeRunner>> runners;
-  for (slam::PruningMode mode : config.modes) {
+  for (const slam::Mode& mode : config.modes) {
     runners.push_back(std::make_unique<ModeRunner>(mode, config));
   }
   const std::size_t n = stream.size();
@@ -237,7 +237,7 @@ ReportContext MakeReportContext(const ExperimentConfig& config,
                                 const PlotConfig& plot_config) {
   ReportContext c;
   c.out_dir = config.out_dir;
-  for (slam::PruningMode mode : config.modes) c.mode_order.push_back(slam::PruningModeName(mode));
+  for (const slam::Mode& mode : config.modes) c.mode_order.push_back(mode.name);
   const double res = config.mapper.grid.resolution_m;  // as in ModeRunner::Finish
   c.map_m_per_px = MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, res).m_per_px;
   c.truth_frame = truth.has_value();

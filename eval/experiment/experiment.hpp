@@ -24,7 +24,7 @@
 namespace lifelong::eval {
 
 struct ExperimentConfig {
-  std::vector<slam::PruningMode> modes{slam::PruningMode::kNone, slam::PruningMode::kChowLiu};
+  std::vector<slam::Mode> modes{slam::NamedMode("standard"), slam::NamedMode("pruned")};
   slam::MapperConfig mapper;
   std::string out_dir;
   std::string source;                ///< scenario or log path, for the summary

@@ -25,6 +25,10 @@ using namespace slam::config_fields;  // NOLINT: the fields are this file's voca
 const std::map<std::string, std::string>& Hints() {
   static const std::map<std::string, std::string> hints = {
       {"pruning.mode", "the pruning mode is chosen with --modes, not in the config"},
+      {"pruning.policy",
+       "the removal policy is the mode's: --modes POLICY+SPARSIFIER (e.g. node-budget+glc)"},
+      {"pruning.sparsifier",
+       "the sparsifier is the mode's: --modes POLICY+SPARSIFIER (e.g. information-gain+glc)"},
       {"loops.matcher.linear_window_m", "set per attempt from loops.min_window_m..max_window_m"},
       {"loops.matcher.angular_window_rad",
        "set per attempt from loops.min_window_rad..max_window_rad"},
@@ -106,26 +110,6 @@ class Reader {
         return;
       }
       choices += choices.empty() ? name : std::string(", ") + name;
-    }
-    Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
-  }
-
-  /// One of `names` (or, with allow_empty, an empty string or nothing: "").
-  void Choice(const char* key, std::string& value, const std::vector<std::string>& names,
-              bool allow_empty) {
-    const YAML::Node n = Take(key);
-    if (!n) return;
-    if (allow_empty && (n.IsNull() || (n.IsScalar() && n.Scalar().empty()))) {
-      value.clear();
-      return;
-    }
-    std::string choices;
-    for (const std::string& name : names) {
-      if (n.IsScalar() && n.Scalar() == name) {
-        value = name;
-        return;
-      }
-      choices += (choices.empty() ? "" : ", ") + name;
     }
     Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
   }

@@ -32,9 +32,6 @@ class Writer {
       if (e == value) Put(key, name);
     }
   }
-  void Choice(const char* key, const std::string& value, const std::vector<std::string>&, bool) {
-    out_ << YAML::Key << key << YAML::Value << YAML::DoubleQuoted << value;
-  }
   void Ordered(const char*, double, const char*, double) {}
 
  private:

@@ -37,8 +37,8 @@ constexpr double kMaxMapCells = kMaxRasterCells;
 
 }  // namespace
 
-ModeRunner::ModeRunner(slam::PruningMode mode, const ExperimentConfig& config)
-    : mode_(mode), name_(slam::PruningModeName(mode)), config_(config) {
+ModeRunner::ModeRunner(const slam::Mode& mode, const ExperimentConfig& config)
+    : mode_(mode), name_(mode.name), config_(config) {
   slam::MapperConfig mc = config.mapper;
   mc.pruning.mode = mode;
   mapper_ = std::make_unique<slam::Mapper>(mc);
@@ -249,7 +249,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.edges_by_kind = EdgesByKind(m.graph());
   if (sequential_.count > 0) summary.sequential = sequential_;
   for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
-  if (mode_ != slam::PruningMode::kNone) summary.kld = SummarizeKld(*kld);
+  if (mode_.Prunes()) summary.kld = SummarizeKld(*kld);
 
   const std::vector<StampedPose> trajectory = m.Trajectory();
   std::vector<Pose2> estimate;
@@ -297,7 +297,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                          rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
   }
   WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
-  if (mode_ != slam::PruningMode::kNone) {
+  if (mode_.Prunes()) {
     WriteMarginalizations((dir / "marginalizations.csv").string(), m);
     WriteSparsifications((dir / "sparsifications.csv").string(), m);
   }

@@ -16,7 +16,7 @@ namespace lifelong::eval {
 
 class ModeRunner {
  public:
-  ModeRunner(slam::PruningMode mode, const ExperimentConfig& config);
+  ModeRunner(const slam::Mode& mode, const ExperimentConfig& config);
 
   const std::string& name() const { return name_; }
   const slam::Mapper& mapper() const { return *mapper_; }
@@ -53,7 +53,7 @@ class ModeRunner {
                      const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                      ModeSummary* summary);
 
-  slam::PruningMode mode_;
+  slam::Mode mode_;
   std::string name_;
   const ExperimentConfig& config_;
   std::unique_ptr<slam::Mapper> mapper_;

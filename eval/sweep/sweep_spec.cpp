@@ -149,10 +149,8 @@ class SpecReader {
     for (std::size_t i = 0; i < List(list, "modes").size(); ++i) {
       const std::string field = "modes[" + std::to_string(i) + "]";
       const std::string name = Scalar(list[i], field);
-      slam::PruningMode mode;
-      if (!slam::ParsePruningMode(name, &mode)) {
-        Fail(list[i], field,
-             "unknown mode '" + name + "' (known: " + slam::PruningModeList() + ")");
+      if (!slam::ParseMode(name)) {
+        Fail(list[i], field, "unknown mode '" + name + "' (known: " + slam::ModeList() + ")");
       }
       if (std::count(spec->modes.begin(), spec->modes.end(), name)) {
         Fail(list[i], field, "mode named twice");

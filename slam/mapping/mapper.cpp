@@ -55,8 +55,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     const ScopedMs timer = s.Stage(&StageTimes::loop_ms);
     s.CloseLoops(current, &stats);
   }
-  if (s.config.pruning.mode != PruningMode::kNone &&
-      s.observations % s.config.pruning.round_period == 0)
+  if (s.config.pruning.mode.Prunes() && s.observations % s.config.pruning.round_period == 0)
     s.Prune(current);
 
   s.step = nullptr;
@@ -118,7 +117,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     graph.AddEdge(edge);
   }
   data.T_world_map = values.at(id);
-  if (config.pruning.mode == PruningMode::kNone) {
+  if (!config.pruning.mode.Prunes()) {
     map.AddScan(data.scan, data.T_world_map);
   } else {
     const std::vector<CellUpdate> cells = map.TouchedCells(data.scan, data.T_world_map);
@@ -220,7 +219,7 @@ void Mapper::State::SyncMap() {
     const Pose2& X = values.at(id);
     const Pose2 d = Between(data.T_world_map, X);
     if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
-      if (config.pruning.mode == PruningMode::kNone) {
+      if (!config.pruning.mode.Prunes()) {
         map.MoveScan(data.scan, data.T_world_map, X);
       } else {
         // The cells at the old pose come from the gain index, which holds them anyway.

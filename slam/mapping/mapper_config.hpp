@@ -9,38 +9,13 @@
 #include "slam/backend/optimizer.hpp"
 #include "slam/grid/grid_map.hpp"
 #include "slam/loops/loop_config.hpp"
+#include "slam/mapping/mode.hpp"
 #include "slam/mapping/removal_policy.hpp"
 #include "slam/matching/incremental_config.hpp"
 #include "slam/sparsify/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {
-
-/// How (and whether) the mapper removes nodes: a mode names a removal policy and a
-/// sparsifier (DESIGN.md "Methods as parts"); kNone is the standard approach.
-enum class PruningMode : std::uint8_t {
-  kNone,     ///< `standard`: never removes a node
-  kChowLiu,  ///< `pruned`: information gain + Chow-Liu tree marginalization (the seed)
-  kExact,    ///< `pruned-exact`: the same removal, exact marginalization (dense cliques)
-  kNaive,    ///< `pruned-naive`: delete and reconnect by composing constraints
-  kGlc,      ///< `pruned-glc`: the same removal, sparse GLC factors (glc.hpp)
-  kNfr,      ///< `pruned-nfr`: the same removal, NFR on the tree and joined pairs (nfr.hpp)
-  kOverlap,  ///< `pruned-overlap`: slam_toolbox's overlap rule picks the node, Chow-Liu trees
-  kDpg,      ///< `pruned-dpg`: DPG-SLAM's change detection retires beams and nodes, Chow-Liu
-};
-
-/// Parses a mode's name (PruningModeNames); false when unknown.
-bool ParsePruningMode(const std::string& name, PruningMode* mode);
-std::string PruningModeName(PruningMode mode);
-/// Every mode's name: standard, pruned, pruned-exact, ...
-std::vector<std::string> PruningModeNames();
-/// The names joined by ", ", for error messages and help.
-std::string PruningModeList();
-/// The sparsifier (sparsifier.hpp) a mode uses when pruning.sparsifier does not name one;
-/// empty for kNone.
-std::string ModeSparsifier(PruningMode mode);
-/// The removal policy (removal_policy.hpp) a mode uses; empty: pruning.policy's.
-std::string ModePolicy(PruningMode mode);
 
 struct KeyframeConfig {
   /// An observation is taken after this much motion... On freiburg-079 and the freiburg campus
@@ -52,7 +27,8 @@ struct KeyframeConfig {
 };
 
 struct PruningConfig {
-  PruningMode mode = PruningMode::kNone;
+  /// The mode (mode.hpp): chosen with --modes, never in a config file.
+  Mode mode;
   /// Remove while the lowest gain is <= this, bits. The seed (§5.1) uses 0; 5 bits, about five
   /// cells no other scan sees, keeps range-noise speckle from growing the graph.
   double gain_threshold_bits = 5.0;
@@ -70,12 +46,6 @@ struct PruningConfig {
   double max_edges_per_node = 2.0;
   /// Chow-Liu: also fold the edges among the removed node's neighbours into the tree.
   BlanketPolicy blanket = BlanketPolicy::kBlanket;
-  /// Which node goes (removal_policy.hpp): information-gain (the seed), node-budget,
-  /// overlap (slam_toolbox's rule; the mode pruned-overlap picks it whatever this says) or
-  /// dpg (DPG-SLAM's change detection; the mode pruned-dpg picks it).
-  std::string policy = "information-gain";
-  /// What replaces its clique (sparsifier.hpp); empty: the mode's (ModeSparsifier).
-  std::string sparsifier;
   /// nfr-subgraph: which pairs beyond the tree may get an edge, and how many per clique
   /// (SparsifierConfig).
   NfrChords nfr_chords = NfrChords::kJoined;

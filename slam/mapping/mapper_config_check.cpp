@@ -48,14 +48,6 @@ class Checker {
   void Bool(const char*, bool) {}
   template <class E, std::size_t N>
   void Enum(const char*, E, const EnumName<E> (&)[N]) {}  // typed: always one of them
-  void Choice(const char* key, const std::string& value, const std::vector<std::string>& names,
-              bool allow_empty) {
-    if (allow_empty && value.empty()) return;
-    for (const std::string& name : names) {
-      if (value == name) return;
-    }
-    Fail(key, "unknown: '" + value + "'");
-  }
   void Ordered(const char* lo_key, double lo, const char* hi_key, double hi) {
     if (lo > hi) {
       Fail(hi_key, std::string(lo_key) + " (" + ShortestDouble(lo) + ") exceeds " + hi_key + " (" +
@@ -145,6 +137,15 @@ std::optional<ConfigProblem> Validate(const MapperConfig& config) {
   Checker checker;
   VisitConfig(checker, c);
   if (checker.problem()) return checker.problem();
+  // A mode is a named one or POLICY+SPARSIFIER (mode.hpp); an edited copy must stay one.
+  const std::optional<Mode> parsed = ParseMode(c.pruning.mode.name);
+  if (!parsed || parsed->policy != c.pruning.mode.policy ||
+      parsed->sparsifier != c.pruning.mode.sparsifier) {
+    return ConfigProblem{"pruning.mode", "'" + c.pruning.mode.name + "' (policy '" +
+                                             c.pruning.mode.policy + "', sparsifier '" +
+                                             c.pruning.mode.sparsifier +
+                                             "') is not a mode: " + ModeList()};
+  }
   return CheckFootprints(c);
 }
 

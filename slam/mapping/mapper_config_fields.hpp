@@ -1,6 +1,6 @@
 // Every mapper setting once, with its key and its allowed values: the Visit* functions walk
-// the MapperConfig, calling the visitor's Section, Number, Int, PowerOfTwo, Bool, Enum,
-// Choice and Ordered for each key. Three visitors walk them: Validate (mapper_config_check.cpp),
+// the MapperConfig, calling the visitor's Section, Number, Int, PowerOfTwo, Bool, Enum and
+// Ordered for each key. Three visitors walk them: Validate (mapper_config_check.cpp),
 // and eval's config file reader and writer, which only map keys to fields and back.
 #pragma once
 
@@ -214,7 +214,6 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Int("node_budget", c.pruning.node_budget, 0);
     s.Number("max_edges_per_node", c.pruning.max_edges_per_node, kNonNegative);
     s.Enum("blanket", c.pruning.blanket, kBlankets);
-    s.Choice("policy", c.pruning.policy, slam::RemovalPolicyNames(), false);
     s.Section("overlap", [&](auto& o) {
       slam::OverlapRuleConfig& r = c.pruning.overlap;
       o.Number("iou_min", r.iou_min, kUnit);
@@ -233,7 +232,6 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       d.Int("min_run_beams", r.detection.min_run_beams, 1);
       d.Number("min_active_share", r.min_active_share, kUnit);
     });
-    s.Choice("sparsifier", c.pruning.sparsifier, slam::SparsifierNames(), true);
     s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
     s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);
     s.Enum("factor_means", c.pruning.factor_means, kFactorMeans);

@@ -31,13 +31,13 @@ std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values
   return out;
 }
 
-Pruner::Pruner(PruningMode mode, const PruningConfig& config, const OptimizerParams& optimizer)
+Pruner::Pruner(const PruningConfig& config, const OptimizerParams& optimizer)
     : config_(config), optimizer_(optimizer) {
-  const std::string policy = ModePolicy(mode).empty() ? config.policy : ModePolicy(mode);
+  const std::string& policy = config.mode.policy;
   policy_ = MakeRemovalPolicy(
       policy, {config.gain_threshold_bits, config.node_budget, config.overlap, config.dpg});
   if (!policy_) throw std::invalid_argument("unknown removal policy '" + policy + "'");
-  const std::string name = config.sparsifier.empty() ? ModeSparsifier(mode) : config.sparsifier;
+  const std::string& name = config.mode.sparsifier;
   SparsifierConfig sc;
   sc.blanket = config.blanket;
   sc.nfr_chords = config.nfr_chords;

@@ -37,9 +37,10 @@ std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values
 
 class Pruner {
  public:
-  /// The policy and sparsifier of `mode` (the sparsifier pruning.sparsifier names, if any).
+  /// The policy and sparsifier of config.mode; std::invalid_argument when either is unknown
+  /// (the standard mode has neither).
   /// std::invalid_argument when either name is unknown.
-  Pruner(PruningMode mode, const PruningConfig& config, const OptimizerParams& optimizer);
+  Pruner(const PruningConfig& config, const OptimizerParams& optimizer);
 
   /// Starts a round over the candidates and their gains (bits); `view` shows the scans.
   /// Returns the beams the policy retires (the mapper takes them out of the map).

@@ -27,7 +27,7 @@ Mapper::State::State(const MapperConfig& c)
   if (const std::optional<ConfigProblem> problem = Validate(c)) {
     throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
   }
-  if (c.pruning.mode != PruningMode::kNone) pruner.emplace(c.pruning.mode, c.pruning, c.optimizer);
+  if (c.pruning.mode.Prunes()) pruner.emplace(c.pruning, c.optimizer);
 }
 
 void Mapper::State::Prune(NodeId current) {

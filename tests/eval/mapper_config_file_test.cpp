@@ -114,7 +114,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.odom_sigma_rad_per_rad, ib.odom_sigma_rad_per_rad);
   EXPECT_EQ(ia.max_ambiguity, ib.max_ambiguity);
   ExpectSameLoops(a.loops, b.loops);
-  EXPECT_EQ(a.pruning.mode, b.pruning.mode);
+  EXPECT_EQ(a.pruning.mode.name, b.pruning.mode.name);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
   EXPECT_EQ(a.pruning.radius_m, b.pruning.radius_m);
   EXPECT_EQ(a.pruning.keep_recent_nodes, b.pruning.keep_recent_nodes);
@@ -122,8 +122,6 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.node_budget, b.pruning.node_budget);
   EXPECT_EQ(a.pruning.max_edges_per_node, b.pruning.max_edges_per_node);
   EXPECT_EQ(a.pruning.blanket, b.pruning.blanket);
-  EXPECT_EQ(a.pruning.policy, b.pruning.policy);
-  EXPECT_EQ(a.pruning.sparsifier, b.pruning.sparsifier);
   EXPECT_EQ(a.pruning.nfr_chords, b.pruning.nfr_chords);
   EXPECT_EQ(a.pruning.nfr_chord_ratio, b.pruning.nfr_chord_ratio);
   EXPECT_EQ(a.pruning.factor_means, b.pruning.factor_means);
@@ -210,7 +208,7 @@ MapperConfig AllChanged() {
   l.inject_false_share = 0.05;
   l.inject_false_dx_m = 1.0;
   l.inject_false_dy_m = -2.5;
-  c.pruning = {slam::PruningMode::kNone,
+  c.pruning = {slam::NamedMode("standard"),
                -0.5,
                4.5,
                2,
@@ -218,8 +216,6 @@ MapperConfig AllChanged() {
                300,
                1.5,
                slam::BlanketPolicy::kFactorsAtK,
-               "node-budget",
-               "glc",
                slam::NfrChords::kMutualInformation,
                0.5,
                slam::FactorMeans::kMarginalMean,
@@ -278,7 +274,7 @@ TEST(MapperConfigFile, DenseKeyframesExampleSetsOnlyTheKeyframes) {
 
 TEST(MapperConfigFile, OverridesApplyAndTheRestStaysAtBase) {
   MapperConfig base = AllChanged();
-  base.pruning.mode = slam::PruningMode::kChowLiu;
+  base.pruning.mode = slam::NamedMode("pruned");
   const MapperConfig loaded = LoadMapperConfigFromString(
       "pruning: {node_budget: 50, radius_m: 6.5}\n"
       "loops:\n  matcher:\n    sigma_m: 0.1\n",
@@ -336,6 +332,8 @@ TEST(MapperConfigFile, UnknownKeysNameTheDottedField) {
   ExpectError("loops:\n  matcher:\n    sigma: 0.1\n", 3, "loops.matcher.sigma", "unknown key");
   ExpectError("grid: {resolution_m: 0.1}\npruning_radius: 3\n", 2, "pruning_radius", "unknown key");
   ExpectError("pruning:\n  mode: pruned\n", 2, "pruning.mode", "--modes");
+  ExpectError("pruning:\n  policy: node-budget\n", 2, "pruning.policy", "POLICY+SPARSIFIER");
+  ExpectError("pruning:\n  sparsifier: glc\n", 2, "pruning.sparsifier", "POLICY+SPARSIFIER");
   ExpectError("loops:\n  matcher: {linear_window_m: 1}\n", 2, "loops.matcher.linear_window_m",
               "per attempt");
   ExpectError("pruning:\n  radius_m: 1\n  radius_m: 2\n", 3, "pruning.radius_m", "duplicate key");

@@ -44,9 +44,9 @@ TEST(MapperConfigValidate, OrderAndChoicesAndPowersOfTwo) {
   EXPECT_EQ(Validate(c)->fields, "loops.max_window_m");
 
   MapperConfig d;
-  d.pruning.policy = "oldest-first";
+  d.pruning.mode = {"oldest-first+chow-liu", "oldest-first", "chow-liu"};
   ASSERT_TRUE(Validate(d).has_value());
-  EXPECT_EQ(Validate(d)->fields, "pruning.policy");
+  EXPECT_EQ(Validate(d)->fields, "pruning.mode");
 
   MapperConfig e;
   e.incremental.matcher.coarse_factor = 12;

@@ -57,9 +57,9 @@ struct MapRun {
   bool anchor_kept = true;
 };
 
-MapRun MapWith(PruningMode mode, const std::function<void(MapperConfig*)>& change = {}) {
+MapRun MapWith(const std::string& mode, const std::function<void(MapperConfig*)>& change = {}) {
   MapperConfig config;
-  config.pruning.mode = mode;
+  config.pruning.mode = *ParseMode(mode);
   if (change) change(&config);
   Mapper mapper(config);
   MapRun run;
@@ -80,7 +80,7 @@ MapRun MapWith(PruningMode mode, const std::function<void(MapperConfig*)>& chang
 }
 
 TEST(Mapper, StandardKeepsEveryNodeAndTracksTheTruth) {
-  const MapRun run = MapWith(PruningMode::kNone);
+  const MapRun run = MapWith("standard");
   ASSERT_EQ(run.trajectory.size(), Corridor3().size());  // a pose for every scan
   EXPECT_EQ(run.nodes, static_cast<std::size_t>(run.observations));
   EXPECT_EQ(run.removed, 0u);
@@ -100,7 +100,7 @@ TEST(Mapper, LoopClosingFunnelAddsUp) {
 }
 
 TEST(Mapper, PrunedStaysConnectedSparseAndAccurate) {
-  const MapRun run = MapWith(PruningMode::kChowLiu);
+  const MapRun run = MapWith("pruned");
   ASSERT_EQ(run.trajectory.size(), Corridor3().size());  // removed scans keep a pose
   EXPECT_GT(run.removed, 0u);
   EXPECT_EQ(run.nodes + run.removed, static_cast<std::size_t>(run.observations));
@@ -111,8 +111,8 @@ TEST(Mapper, PrunedStaysConnectedSparseAndAccurate) {
 }
 
 TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {
-  const MapRun exact = MapWith(PruningMode::kExact);
-  const MapRun chow_liu = MapWith(PruningMode::kChowLiu);
+  const MapRun exact = MapWith("pruned-exact");
+  const MapRun chow_liu = MapWith("pruned");
   EXPECT_TRUE(exact.always_connected);
   // Same removal rule, but exact marginalization fills in the cliques.
   EXPECT_GT(static_cast<double>(exact.edges) / static_cast<double>(exact.nodes),
@@ -123,7 +123,7 @@ TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {
 // across the skipped ones.
 TEST(Mapper, PrunesOnlyAtEveryNthNode) {
   MapperConfig config;
-  config.pruning.mode = PruningMode::kChowLiu;
+  config.pruning.mode = NamedMode("pruned");
   config.pruning.round_period = 3;
   Mapper mapper(config);
   int rounds_with_removals = 0, off_period = 0, removed_before = 0;
@@ -148,7 +148,7 @@ TEST(Mapper, PrunesOnlyAtEveryNthNode) {
 // this).
 TEST(Mapper, RememberedGainsStayExact) {
   MapperConfig config;
-  config.pruning.mode = PruningMode::kChowLiu;
+  config.pruning.mode = NamedMode("pruned");
   config.pruning.radius_m = 3.0;  // nodes leave and re-enter the neighbourhood often
   Mapper mapper(config);
   double worst = 0.0;
@@ -165,7 +165,7 @@ TEST(Mapper, RememberedGainsStayExact) {
 // for the map as rendered.
 TEST(Mapper, PruningOptimizesWithoutReRenderingTheMap) {
   MapperConfig config;
-  config.pruning.mode = PruningMode::kChowLiu;
+  config.pruning.mode = NamedMode("pruned");
   config.loops.optimize_edge_chi2 = std::numeric_limits<double>::max();  // never
   config.loops.optimize_every = 1000000;
   Mapper mapper(config);
@@ -226,7 +226,7 @@ TEST(WeighRobustEdges, ScalesTheLoopEdgesInsideTheSetByTheirKernelWeight) {
 TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {
   const auto run = [](double budget) {
     MapperConfig config;
-    config.pruning.mode = PruningMode::kChowLiu;
+    config.pruning.mode = NamedMode("pruned");
     config.pruning.max_edges_per_node = budget;
     auto mapper = std::make_unique<Mapper>(config);
     for (const Observation& o : Corridor3()) mapper->AddObservation(o);
@@ -249,8 +249,8 @@ TEST(Mapper, EdgeBudgetSparsifiesBlanketsIntoTrees) {
 }
 
 TEST(Mapper, GlcAndNfrModesStayConnectedAndAccurate) {
-  for (const PruningMode mode : {PruningMode::kGlc, PruningMode::kNfr}) {
-    SCOPED_TRACE(PruningModeName(mode));
+  for (const std::string mode : {"pruned-glc", "pruned-nfr"}) {
+    SCOPED_TRACE(mode);
     const MapRun run = MapWith(mode);
     EXPECT_GT(run.removed, 0u);
     EXPECT_EQ(run.nodes + run.removed, static_cast<std::size_t>(run.observations));
@@ -260,13 +260,10 @@ TEST(Mapper, GlcAndNfrModesStayConnectedAndAccurate) {
   }
 }
 
-// A config picks any removal policy with any sparsifier (DESIGN.md "Methods as parts").
+// A mode pairs any removal policy with any sparsifier (DESIGN.md "Methods as parts").
 TEST(Mapper, AnyPolicyWithAnySparsifier) {
-  const MapRun budget = MapWith(PruningMode::kChowLiu, [](MapperConfig* c) {
-    c->pruning.policy = "node-budget";
-    c->pruning.node_budget = 30;
-    c->pruning.sparsifier = "glc";
-  });
+  const MapRun budget =
+      MapWith("node-budget+glc", [](MapperConfig* c) { c->pruning.node_budget = 30; });
   EXPECT_GT(budget.removed, 0u);
   EXPECT_LE(budget.nodes, 30u + 3u);  // protected nodes may keep it just over
   EXPECT_TRUE(budget.always_connected);
@@ -281,7 +278,7 @@ TEST(Mapper, DpgRetiresOutdatedBeamsAndKeepsTheGainsExact) {
   const std::vector<Observation> changing =
       Simulate(std::string(LIFELONG_SOURCE_DIR) + "/scenarios/changing_corridor_10min.yaml");
   MapperConfig config;
-  config.pruning.mode = PruningMode::kDpg;
+  config.pruning.mode = NamedMode("pruned-dpg");
   Mapper mapper(config);
   double worst = 0.0;
   bool connected = true;
@@ -306,26 +303,37 @@ TEST(Mapper, DpgRetiresOutdatedBeamsAndKeepsTheGainsExact) {
 
 TEST(Mapper, UnknownPolicyOrSparsifierIsRefused) {
   MapperConfig config;
-  config.pruning.mode = PruningMode::kChowLiu;
-  config.pruning.sparsifier = "chow-lui";
+  config.pruning.mode = {"information-gain+chow-lui", "information-gain", "chow-lui"};
   EXPECT_THROW(Mapper{config}, std::invalid_argument);
-  config.pruning.sparsifier.clear();
-  config.pruning.policy = "gain";
+  config.pruning.mode = {"gain+chow-liu", "gain", "chow-liu"};
   EXPECT_THROW(Mapper{config}, std::invalid_argument);
-  // Standard mode uses neither, but a config naming an unknown one is invalid (Validate).
-  config.pruning.mode = PruningMode::kNone;
+  // A mode whose name says other than it runs is refused too (Validate).
+  config.pruning.mode = {"pruned-exact", "information-gain", "glc"};
+  EXPECT_THROW(Mapper{config}, std::invalid_argument);
+  config.pruning.mode = {"standard", "information-gain", ""};
   EXPECT_THROW(Mapper{config}, std::invalid_argument);
 }
 
-TEST(Mapper, ModeNamesRoundTrip) {
-  for (const std::string& name : PruningModeNames()) {
-    PruningMode parsed;
-    ASSERT_TRUE(ParsePruningMode(name, &parsed));
-    EXPECT_EQ(PruningModeName(parsed), name);
-    EXPECT_EQ(ModeSparsifier(parsed).empty(), name == "standard");
+TEST(Mapper, ModesAreNamedRowsOrPolicyPlusSparsifier) {
+  for (const Mode& mode : NamedModes()) {
+    const std::optional<Mode> parsed = ParseMode(mode.name);
+    ASSERT_TRUE(parsed);
+    EXPECT_EQ(parsed->policy, mode.policy);
+    EXPECT_EQ(parsed->sparsifier, mode.sparsifier);
+    EXPECT_EQ(mode.Prunes(), mode.name != "standard");
+    EXPECT_EQ(mode.policy.empty(), mode.sparsifier.empty());
   }
-  PruningMode unused;
-  EXPECT_FALSE(ParsePruningMode("prunned", &unused));
+  EXPECT_EQ(NamedMode("pruned").sparsifier, "chow-liu");
+  EXPECT_EQ(NamedMode("pruned-overlap").policy, "overlap");
+  const std::optional<Mode> pair = ParseMode("node-budget+glc");
+  ASSERT_TRUE(pair);
+  EXPECT_EQ(pair->policy, "node-budget");
+  EXPECT_EQ(pair->sparsifier, "glc");
+  for (const char* bad : {"prunned", "node-budget+", "+glc", "node-budget+glc+exact", "gain+glc",
+                          "node-budget+glcc", ""}) {
+    EXPECT_FALSE(ParseMode(bad)) << bad;
+  }
+  EXPECT_THROW(NamedMode("node-budget+glc"), std::invalid_argument);
 }
 
 }  // namespace

@@ -34,8 +34,9 @@ void Ring(int n, PoseGraph* graph, Values* values) {
 }
 
 TEST(Pruner, ThePolicyPicksTheLowestGainUnderTheThreshold) {
-  PruningConfig config;  // information-gain, 5 bits
-  const Pruner pruner(PruningMode::kChowLiu, config, OptimizerParams{});
+  PruningConfig config;               // 5 bits
+  config.mode = NamedMode("pruned");  // information-gain
+  const Pruner pruner(config, OptimizerParams{});
   EXPECT_EQ(pruner.Next({{1, 7.0}, {2, 0.5}, {3, 2.0}}, 10), std::optional<NodeId>(2));
   EXPECT_FALSE(pruner.Next({{1, 7.0}, {3, 9.0}}, 10).has_value());
 }
@@ -44,7 +45,9 @@ TEST(Pruner, ARemovalLeavesTheNeighboursConnectedAndIsRecorded) {
   PoseGraph graph;
   Values values;
   Ring(8, &graph, &values);
-  Pruner pruner(PruningMode::kChowLiu, PruningConfig{}, OptimizerParams{});
+  PruningConfig config;
+  config.mode = NamedMode("pruned");
+  Pruner pruner(config, OptimizerParams{});
   const Replacement r = pruner.Marginalize(&graph, values, 3);
   EXPECT_EQ(r.neighbours, (std::vector<NodeId>{1, 2, 4, 5}));
   EXPECT_TRUE(graph.HasNode(3));  // Marginalize leaves the graph as it was
@@ -66,7 +69,8 @@ TEST(Pruner, TheEdgeBudgetAppliesToTreeSparsifiersOnly) {
   PoseGraph graph;
   Values values;
   Ring(10, &graph, &values);  // 20 edges over 10 nodes
-  Pruner chow_liu(PruningMode::kChowLiu, config, OptimizerParams{});
+  config.mode = NamedMode("pruned");
+  Pruner chow_liu(config, OptimizerParams{});
   chow_liu.KeepEdgeBudget(&graph, values, none);
   EXPECT_FALSE(chow_liu.sparsifications().empty());
   EXPECT_LT(graph.NumEdgesForGamma(), 20u);
@@ -74,7 +78,9 @@ TEST(Pruner, TheEdgeBudgetAppliesToTreeSparsifiersOnly) {
 
   PoseGraph dense;
   Ring(10, &dense, &values);
-  Pruner exact(PruningMode::kExact, config, OptimizerParams{});
+  PruningConfig exact_config = config;
+  exact_config.mode = NamedMode("pruned-exact");
+  Pruner exact(exact_config, OptimizerParams{});
   exact.KeepEdgeBudget(&dense, values, none);
   EXPECT_TRUE(exact.sparsifications().empty());
   EXPECT_EQ(dense.NumEdgesForGamma(), 20u);
@@ -82,7 +88,7 @@ TEST(Pruner, TheEdgeBudgetAppliesToTreeSparsifiersOnly) {
   // Nodes that are not settled are never sparsified.
   PoseGraph held;
   Ring(10, &held, &values);
-  Pruner guarded(PruningMode::kChowLiu, config, OptimizerParams{});
+  Pruner guarded(config, OptimizerParams{});
   guarded.KeepEdgeBudget(&held, values, [] {
     std::set<NodeId> all;
     for (NodeId i = 0; i < 10; ++i) all.insert(i);
@@ -93,11 +99,10 @@ TEST(Pruner, TheEdgeBudgetAppliesToTreeSparsifiersOnly) {
 
 TEST(Pruner, UnknownNamesAreRefused) {
   PruningConfig config;
-  config.policy = "oldest-first";
-  EXPECT_THROW(Pruner(PruningMode::kChowLiu, config, OptimizerParams{}), std::invalid_argument);
-  PruningConfig other;
-  other.sparsifier = "chow-lui";
-  EXPECT_THROW(Pruner(PruningMode::kChowLiu, other, OptimizerParams{}), std::invalid_argument);
+  config.mode = {"oldest-first+chow-liu", "oldest-first", "chow-liu"};
+  EXPECT_THROW(Pruner(config, OptimizerParams{}), std::invalid_argument);
+  config.mode = {"information-gain+chow-lui", "information-gain", "chow-lui"};
+  EXPECT_THROW(Pruner(config, OptimizerParams{}), std::invalid_argument);
 }
 
 }  // namespace

@@ -41,7 +41,9 @@ json TimeJson(const TimeStats& t) {
   return j;
 }
 
-json ModeJson(const ModeSummary& m) {
+}  // namespace
+
+json ModeSummaryJson(const ModeSummary& m) {
   json j = json::object();
   Put(j, "observations", m.observations);
   Put(j, "wall_time_s", m.wall_time_s);
@@ -151,8 +153,6 @@ json ModeJson(const ModeSummary& m) {
   Put(j, "occupied_share", m.occupied_share);
   return j;
 }
-
-}  // namespace
 
 std::map<std::string, std::int64_t> EdgesByKind(const slam::PoseGraph& graph) {
   std::map<std::string, std::int64_t> out;
@@ -275,7 +275,7 @@ std::string SummaryJsonText(const RunSummary& s) {
   }
   if (!s.mode_order.empty()) j["mode_order"] = s.mode_order;
   json modes = json::object();
-  for (const auto& [name, mode] : s.modes) modes[name] = ModeJson(mode);
+  for (const auto& [name, mode] : s.modes) modes[name] = ModeSummaryJson(mode);
   j["modes"] = modes;
   return j.dump(2) + "\n";
 }

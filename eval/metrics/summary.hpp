@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "eval/metrics/change_recall.hpp"
 #include "eval/metrics/types.hpp"
 #include "slam/graph/pose_graph.hpp"
@@ -183,6 +185,10 @@ std::map<std::string, double> StageTotals(const std::vector<TimelineRow>& rows);
 
 /// KL statistics over the divergences of a mode's marginalizations; absent when empty.
 std::optional<KldSummary> SummarizeKld(const std::vector<double>& kl_values);
+
+/// A mode's object of summary.json (docs/output-contract.md). Never holds NaN: a non-finite
+/// figure is absent.
+nlohmann::json ModeSummaryJson(const ModeSummary& mode);
 
 /// The summary as JSON text (2-space indent). Never writes NaN: non-finite becomes absent.
 std::string SummaryJsonText(const RunSummary& summary);

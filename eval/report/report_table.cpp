@@ -24,6 +24,13 @@ const char kGraph[] = "Graph and memory";
 const char kAccuracy[] = "Accuracy";
 const char kMap[] = "Map quality";
 
+/// Every mode's object of summary.json, by name: the rows' pointers read it.
+json ModesJson(const RunSummary& summary) {
+  json all = json::object();
+  for (const auto& [name, mode] : summary.modes) all[name] = ModeSummaryJson(mode);
+  return all;
+}
+
 /// The value of a row for a mode, scaled; absent when the mode has no such figure.
 std::optional<double> Value(const json& mode, const TableRow& row, bool* is_integer) {
   const json::json_pointer ptr(row.pointer);
@@ -292,7 +299,7 @@ std::string SummaryTableHtml(const RunSummary& summary,
                              const std::vector<std::string>& mode_order) {
   const std::vector<std::string> modes = OrderedModes(summary, mode_order);
   if (modes.empty()) return "";
-  const json all = json::parse(SummaryJsonText(summary))["modes"];
+  const json all = ModesJson(summary);
   std::string body;
   const char* group = "";
   const std::size_t columns = modes.size() + 3;
@@ -331,7 +338,7 @@ const std::vector<std::string>& KeyFigurePointers() {
 std::string KeyTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order) {
   const std::vector<std::string> modes = OrderedModes(summary, mode_order);
   if (modes.empty()) return "";
-  const json all = json::parse(SummaryJsonText(summary))["modes"];
+  const json all = ModesJson(summary);
   std::string body;
   for (const std::string& pointer : KeyFigurePointers()) {
     for (const TableRow& row : SummaryTableRows()) {

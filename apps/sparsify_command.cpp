@@ -94,11 +94,9 @@ void PrintNumber(std::ostream& out, const char* key, double v) {
   }
 }
 
-}  // namespace
-
-int Sparsify(const SparsifyArgs& args) {
+/// The sparsifier's settings from the options; InputError naming an unknown value.
+slam::SparsifierConfig SparsifierSettings(const SparsifyArgs& args, const std::string& means) {
   slam::SparsifierConfig config;
-  const std::string means = args.zero_residual ? "estimate" : args.means;
   if (means == "estimate") {
     config.means = slam::FactorMeans::kEstimate;
   } else if (means == "gradient") {
@@ -116,6 +114,36 @@ int Sparsify(const SparsifyArgs& args) {
     throw InputError("--nfr-chords", 0, "",
                      "unknown value '" + args.nfr_chords + "' (known: joined, mi)");
   }
+  return config;
+}
+
+/// The result line: one JSON object (docs/cli.md "sparsify").
+void PrintResult(const SparsifyArgs& args, const std::string& means, const std::string& method,
+                 const slam::PoseGraph& sparse, const slam::OfflineSparsifyStats& stats,
+                 const slam::GlobalKl& kl) {
+  std::ostringstream json;
+  json << std::setprecision(10) << "{\"method\":\"" << method << "\",\"kept\":" << sparse.NumNodes()
+       << ",\"removed\":" << stats.removed << ",\"edges\":" << sparse.NumEdgesForGamma()
+       << ",\"factors\":" << sparse.edges().size() + sparse.cliques().size();
+  PrintNumber(json, "time_s", stats.time_s);
+  PrintNumber(json, "kld", kl.kl);
+  PrintNumber(json, "kld_mean", kl.mean_term);
+  PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
+  PrintNumber(json, "local_kl", stats.local_kl_sum);
+  json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
+       << ",\"gradient_kept\":" << (means == "gradient" ? "true" : "false") << ",\"means\":\""
+       << means << '"';
+  if (args.method == "nfr-subgraph") json << ",\"nfr_chords\":\"" << args.nfr_chords << '"';
+  json << ",\"blanket\":" << (args.no_blanket ? "false" : "true");
+  json << "}\n";
+  std::cout << json.str();
+}
+
+}  // namespace
+
+int Sparsify(const SparsifyArgs& args) {
+  const std::string means = args.zero_residual ? "estimate" : args.means;
+  const slam::SparsifierConfig config = SparsifierSettings(args, means);
   if (!args.out.empty()) io::CheckWritableFile(args.out, "-o");  // before the work, not after
   const auto sparsifier = slam::MakeSparsifier(args.method, config);
   if (!sparsifier) {
@@ -152,23 +180,7 @@ int Sparsify(const SparsifyArgs& args) {
   slam::Optimize(sparse, &sparse_values, params);
   const slam::GlobalKl kl = slam::GlobalKlDivergence(full, optimum, sparse, sparse_values);
   if (!args.out.empty()) io::WriteG2o(args.out, sparse, sparse_values);
-  std::ostringstream json;
-  json << std::setprecision(10) << "{\"method\":\"" << sparsifier->Name()
-       << "\",\"kept\":" << sparse.NumNodes() << ",\"removed\":" << stats.removed
-       << ",\"edges\":" << sparse.NumEdgesForGamma()
-       << ",\"factors\":" << sparse.edges().size() + sparse.cliques().size();
-  PrintNumber(json, "time_s", stats.time_s);
-  PrintNumber(json, "kld", kl.kl);
-  PrintNumber(json, "kld_mean", kl.mean_term);
-  PrintNumber(json, "rms_offset_m", kl.rms_offset_m);
-  PrintNumber(json, "local_kl", stats.local_kl_sum);
-  json << ",\"max_clique\":" << stats.max_clique << ",\"regularized\":" << stats.regularized
-       << ",\"gradient_kept\":" << (config.means == slam::FactorMeans::kGradient ? "true" : "false")
-       << ",\"means\":\"" << means << '"';
-  if (args.method == "nfr-subgraph") json << ",\"nfr_chords\":\"" << args.nfr_chords << '"';
-  json << ",\"blanket\":" << (args.no_blanket ? "false" : "true");
-  json << "}\n";
-  std::cout << json.str();
+  PrintResult(args, means, sparsifier->Name(), sparse, stats, kl);
   return 0;
 }
 

@@ -119,47 +119,21 @@ ProgressOptions MeterOptions(const ExperimentConfig& c, const std::string& label
 
 }  // namespace
 
-RunSummary RunExperiment(const std::vector<Observation>& stream,
-                         const std::optional<GroundTruth>& truth,
-                         const ExperimentConfig& final_config) {
-  const auto start = Clock::now();
-  StagedOutput output(final_config.out_dir);
-  ExperimentConfig config = final_config;
-  config.out_dir = output.path();
-  io::WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
-                          "# Mapper settings of this run (lifelong --config format)\n" +
-                              MapperConfigToYaml(config.mapper));
-  const std::vector<Relation>& relations = config.relations;
-  std::unique_ptr<FrameSink> sink;
-  if (!config.video_path.empty() || !config.frames_dir.empty()) {
-    if (!config.open_video) throw std::logic_error("RunExperiment: frames asked for, no sink");
-    VideoOptions options;
-    options.video_path = config.video_path;
-    options.frames_dir = config.frames_dir;
-    options.stride = config.video_stride;
-    sink = config.open_video(options);
-    Progress(config, "rendering with " + sink->backend_name() + "\n");
-  }
-  std::vector<std::unique_ptr<ModeRunner>> runners;
-  for (const slam::Mode& mode : config.modes) {
-    runners.push_back(std::make_unique<ModeRunner>(mode, config));
-  }
-  const std::size_t n = stream.size();
+namespace {
+
+/// What the modes leave once each is finished: their summaries and everything the plots,
+/// figures and report draw from.
+struct ModeResults {
   RunSummary summary;
-  summary.source = config.source;
-  summary.seed = config.seed;
-  summary.log = config.log;
-  summary.simulation = config.simulation;
-  StreamSpan span(stream);
-  if (!stream.empty()) summary.log_duration_s = span.Covered(n);
-  for (const auto& r : runners) summary.mode_order.push_back(r->name());
   ModeTimelines timelines;
   std::map<std::string, std::vector<double>> kld;
   std::map<std::string, std::vector<LoopCurvePoint>> loop_curves;
   std::vector<AlignedTrack> reference_tracks;
   ReportPage page;
-  // Evaluates a mode, writes its outputs and frees its mapper.
-  auto finish = [&](ModeRunner* r) {
+
+  /// Evaluates a mode, writes its outputs and frees its mapper.
+  void Finish(ModeRunner* r, const std::vector<Observation>& stream,
+              const std::optional<GroundTruth>& truth, const std::vector<Relation>& relations) {
     std::vector<double> kl;
     std::string map_png;
     summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
@@ -174,54 +148,118 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
       page.change_strips.push_back({r->changes_png(), r->name() + ": " + r->changes_caption()});
     }
     r->Release();
-  };
-  if (sink) {  // lockstep: every mode sees scan i before any sees scan i + 1
-    ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, "all modes"));
+  }
+};
+
+std::unique_ptr<FrameSink> OpenFrameSink(const ExperimentConfig& config) {
+  if (config.video_path.empty() && config.frames_dir.empty()) return nullptr;
+  if (!config.open_video) throw std::logic_error("RunExperiment: frames asked for, no sink");
+  VideoOptions options;
+  options.video_path = config.video_path;
+  options.frames_dir = config.frames_dir;
+  options.stride = config.video_stride;
+  std::unique_ptr<FrameSink> sink = config.open_video(options);
+  Progress(config, "rendering with " + sink->backend_name() + "\n");
+  return sink;
+}
+
+using Runners = std::vector<std::unique_ptr<ModeRunner>>;
+
+/// Lockstep, for a video: every mode sees scan i before any sees scan i + 1.
+void RunLockstep(const std::vector<Observation>& stream, const std::optional<GroundTruth>& truth,
+                 const ExperimentConfig& config, FrameSink* sink, Runners& runners,
+                 ModeResults* results) {
+  const std::size_t n = stream.size();
+  StreamSpan span(stream);
+  ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, "all modes"));
+  for (std::size_t i = 0; i < n; ++i) {
+    ThrowIfInterrupted();
+    for (auto& r : runners) {
+      r->Step(stream[i]);
+      r->ScorePresentAt(stream, i, truth);
+    }
+    if (sink->Wants(static_cast<int>(i))) AddVideoFrame(sink, stream[i], truth, runners);
+    meter.Update(static_cast<double>(i + 1), span.Covered(i + 1),
+                 runners.front()->ProgressDetail());
+  }
+  sink->Close();
+  meter.Finish(span.Covered(n), runners.front()->ProgressDetail());
+  for (auto& r : runners) results->Finish(r.get(), stream, truth, config.relations);
+}
+
+/// One mode after the other, each with its own peak RSS.
+void RunInTurn(const std::vector<Observation>& stream, const std::optional<GroundTruth>& truth,
+               const ExperimentConfig& config, Runners& runners, ModeResults* results) {
+  const std::size_t n = stream.size();
+  for (auto& r : runners) {
+    ResetPeakRss();
+    StreamSpan span(stream);
+    ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, r->name()));
     for (std::size_t i = 0; i < n; ++i) {
       ThrowIfInterrupted();
-      for (auto& r : runners) {
-        r->Step(stream[i]);
-        r->ScorePresentAt(stream, i, truth);
-      }
-      if (sink->Wants(static_cast<int>(i))) AddVideoFrame(sink.get(), stream[i], truth, runners);
-      meter.Update(static_cast<double>(i + 1), span.Covered(i + 1),
-                   runners.front()->ProgressDetail());
+      r->Step(stream[i]);
+      r->ScorePresentAt(stream, i, truth);
+      meter.Update(static_cast<double>(i + 1), span.Covered(i + 1), r->ProgressDetail());
     }
-    sink->Close();
-    meter.Finish(span.Covered(n), runners.front()->ProgressDetail());
-    for (auto& r : runners) finish(r.get());
-  } else {  // one mode after the other, each with its own peak RSS
-    for (auto& r : runners) {
-      ResetPeakRss();
-      ProgressMeter meter(config.progress, static_cast<double>(n), MeterOptions(config, r->name()));
-      for (std::size_t i = 0; i < n; ++i) {
-        ThrowIfInterrupted();
-        r->Step(stream[i]);
-        r->ScorePresentAt(stream, i, truth);
-        meter.Update(static_cast<double>(i + 1), span.Covered(i + 1), r->ProgressDetail());
-      }
-      meter.Finish(span.Covered(n), r->ProgressDetail());
-      finish(r.get());
-    }
+    meter.Finish(span.Covered(n), r->ProgressDetail());
+    results->Finish(r.get(), stream, truth, config.relations);
+  }
+}
+
+/// trajectories.png: the modes aligned to the log's reference trajectory, when it has one.
+void WriteReferenceFigure(const ExperimentConfig& config, const std::vector<AlignedTrack>& tracks) {
+  if (tracks.empty()) return;
+  std::vector<Pose2> reference;
+  for (const StampedPose& p : config.reference) reference.push_back(p.T_world_robot);
+  const std::string name =
+      config.log && config.log->reference ? *config.log->reference : std::string("reference");
+  WriteTrajectoryFigure((fs::path(config.out_dir) / "trajectories.png").string(), reference,
+                        "reference: " + name, tracks);
+}
+
+}  // namespace
+
+RunSummary RunExperiment(const std::vector<Observation>& stream,
+                         const std::optional<GroundTruth>& truth,
+                         const ExperimentConfig& final_config) {
+  const auto start = Clock::now();
+  StagedOutput output(final_config.out_dir);
+  ExperimentConfig config = final_config;
+  config.out_dir = output.path();
+  io::WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
+                          "# Mapper settings of this run (lifelong --config format)\n" +
+                              MapperConfigToYaml(config.mapper));
+  const std::unique_ptr<FrameSink> sink = OpenFrameSink(config);
+  Runners runners;
+  for (const slam::Mode& mode : config.modes) {
+    runners.push_back(std::make_unique<ModeRunner>(mode, config));
+  }
+  ModeResults results;
+  RunSummary& summary = results.summary;
+  summary.source = config.source;
+  summary.seed = config.seed;
+  summary.log = config.log;
+  summary.simulation = config.simulation;
+  if (!stream.empty()) summary.log_duration_s = StreamSpan(stream).Covered(stream.size());
+  for (const auto& r : runners) summary.mode_order.push_back(r->name());
+  if (sink) {
+    RunLockstep(stream, truth, config, sink.get(), runners, &results);
+  } else {
+    RunInTurn(stream, truth, config, runners, &results);
   }
   ThrowIfInterrupted();
   if (truth) WriteTruth(stream, *truth, config);
-  if (!reference_tracks.empty()) {
-    std::vector<Pose2> reference;
-    for (const StampedPose& p : config.reference) reference.push_back(p.T_world_robot);
-    const std::string name =
-        config.log && config.log->reference ? *config.log->reference : std::string("reference");
-    WriteTrajectoryFigure((fs::path(config.out_dir) / "trajectories.png").string(), reference,
-                          "reference: " + name, reference_tracks);
-  }
+  WriteReferenceFigure(config, results.reference_tracks);
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   plot_config.mode_order = summary.mode_order;
   plot_config.named_dir = final_config.out_dir;  // the staging directory is gone by then
-  const PlotResult plots = PlotRun(timelines, kld, loop_curves, config.out_dir, plot_config);
+  const PlotResult plots =
+      PlotRun(results.timelines, results.kld, results.loop_curves, config.out_dir, plot_config);
   if (!plots.ok) Progress(config, "warning: " + plots.error + "\n");
   ThrowIfInterrupted();
   summary.wall_time_s = Seconds(start);
+  ReportPage& page = results.page;
   page.summary = summary;
   page.command_line = config.command_line;
   CompleteReportPage(MakeReportContext(config, stream, truth, plot_config), &page);

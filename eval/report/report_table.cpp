@@ -114,6 +114,7 @@ std::string RowHtml(const TableRow& row, const std::vector<std::string>& modes, 
 
 }  // namespace
 
+// Every row, in the table's order (data table).
 const std::vector<TableRow>& SummaryTableRows() {
   static const std::vector<TableRow> rows = {
       {kRuntime, "/observations", "observations", "", 1, false,

@@ -164,7 +164,7 @@ void ChangeMatcher(slam::MatcherConfig* m, bool windows) {
   m->refine = !m->refine;
 }
 
-/// A valid config that differs from the defaults in every setting the file holds.
+/// A valid config that differs from the defaults in every setting the file holds (data table).
 MapperConfig AllChanged() {
   MapperConfig c;
   c.keyframes = {0.25, 0.2};

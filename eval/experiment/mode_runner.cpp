@@ -228,6 +228,30 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
   }
 }
 
+LoopVerificationSummary ModeRunner::SummarizeLoops() const {
+  const slam::Mapper& m = *mapper_;
+  LoopVerificationSummary out{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0,
+                              config_.mapper.loops.global.enabled, 0};
+  for (const std::optional<double>& chi2 : m.LoopEdgeChi2()) {
+    if (chi2 && *chi2 > config_.mapper.loops.suspect_chi2) ++out.switched_off;
+  }
+  return out;
+}
+
+void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajectory,
+                                       ModeSummary* summary) {
+  const ReferencePairs pairs = config_.reference_per_scan
+                                   ? PairScanByScan(trajectory, config_.reference)
+                                   : PairWithReference(trajectory, config_.reference);
+  summary->reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
+  if (pairs.estimate.empty()) return;
+  const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);
+  summary->ate_rmse_m = ate.rmse_m;
+  summary->rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
+  aligned_to_reference_.clear();
+  for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
+}
+
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                const std::optional<GroundTruth>& truth,
                                const std::vector<Relation>& relations, std::vector<double>* kld,
@@ -262,13 +286,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
 
-  summary.loop_verification =
-      LoopVerificationSummary{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0,
-                              config_.mapper.loops.global.enabled, 0};
-  for (const std::optional<double>& chi2 : m.LoopEdgeChi2()) {
-    if (chi2 && *chi2 > config_.mapper.loops.suspect_chi2)
-      ++summary.loop_verification->switched_off;
-  }
+  summary.loop_verification = SummarizeLoops();
   std::optional<Pose2> T_truth_est;
   if (truth) T_truth_est = TruthMetrics(stream, *truth, estimate, grid, &summary);
   summary.present_at = present_at_;
@@ -278,19 +296,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     if (!changes_caption_.empty()) changes_png_ = name_ + "/changes.png";
   }
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
-  if (!config_.reference.empty()) {
-    const ReferencePairs pairs = config_.reference_per_scan
-                                     ? PairScanByScan(trajectory, config_.reference)
-                                     : PairWithReference(trajectory, config_.reference);
-    summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
-    if (!pairs.estimate.empty()) {
-      const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);
-      summary.ate_rmse_m = ate.rmse_m;
-      summary.rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
-      aligned_to_reference_.clear();
-      for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
-    }
-  }
+  if (!config_.reference.empty()) ScoreAgainstReference(trajectory, &summary);
   if (!relations.empty()) {
     const RelationsResult rr = ComputeRelationsError(trajectory, relations);
     summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,

@@ -46,6 +46,10 @@ class ModeRunner {
   /// Cumulative loop precision and recall per observation, from the closures' truth.
   std::vector<LoopCurvePoint> LoopCurve(const LoopClosureResult& truth) const;
   void WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const;
+  /// The loop closer's verification counts, and the accepted edges the kernel switched off.
+  LoopVerificationSummary SummarizeLoops() const;
+  /// ATE and RPE at 1 m against config.reference; keeps the aligned estimate for the figure.
+  void ScoreAgainstReference(const std::vector<StampedPose>& trajectory, ModeSummary* summary);
 
   /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame);
   /// also fills loop_curve().

@@ -41,30 +41,28 @@ json TimeJson(const TimeStats& t) {
   return j;
 }
 
-}  // namespace
-
-json ModeSummaryJson(const ModeSummary& m) {
-  json j = json::object();
-  Put(j, "observations", m.observations);
-  Put(j, "wall_time_s", m.wall_time_s);
-  if (m.time_per_obs_ms) j["time_per_obs_ms"] = TimeJson(*m.time_per_obs_ms);
-  Put(j, "nodes_final", m.nodes_final);
-  Put(j, "edges_final", m.edges_final);
-  Put(j, "nodes_max", m.nodes_max);
-  Put(j, "edges_max", m.edges_max);
-  Put(j, "nodes_after_first_pass", m.nodes_after_first_pass);
-  if (!m.edges_by_kind.empty()) j["edges_by_kind"] = m.edges_by_kind;
-  Put(j, "gamma_final", m.gamma_final);
-  Put(j, "scans_kept_pct", m.scans_kept_pct);
-  Put(j, "peak_rss_mb", m.peak_rss_mb);
-  Put(j, "graph_bytes_final", m.graph_bytes_final);
-  if (m.blur) {
-    json b = {{"thickness", m.blur->thickness}};
-    Put(b, "mean_cm", m.blur->mean_cm);
-    Put(b, "p95_cm", m.blur->p95_cm);
-    Put(b, "recall", m.blur->recall);
-    j["blur"] = b;
+json LoopVerificationJson(const LoopVerificationSummary& l) {
+  const slam::LoopVerifierStats& v = l.counts;
+  json lv = {{"proposed", v.proposed},       {"accepted", v.accepted},
+             {"rejected", v.rejected},       {"expired", v.expired},
+             {"not_unique", v.not_unique},   {"switched_off", l.switched_off},
+             {"attempts", v.attempts},       {"few_points", v.few_points},
+             {"low_score", v.low_score},     {"ambiguous", v.ambiguous},
+             {"implausible", v.implausible}, {"beyond_window", v.beyond_window}};
+  if (l.global) {
+    lv["global_attempts"] = v.global_attempts;
+    lv["global_proposed"] = v.global_proposed;
   }
+  if (l.injection) {
+    lv["injected"] = v.injected;
+    lv["injected_accepted"] = v.injected_accepted;
+  }
+  return lv;
+}
+
+/// The change-aware figures (issue #35): against the world's state at the end and at the
+/// --present-at times, and per changing object.
+void PutChangeFigures(json& j, const ModeSummary& m) {
   if (m.current_blur) {
     json b;
     Put(b, "mean_cm", m.current_blur->mean_cm);
@@ -100,6 +98,33 @@ json ModeSummaryJson(const ModeSummary& m) {
     }
     j["changes"] = objects;
   }
+}
+
+}  // namespace
+
+json ModeSummaryJson(const ModeSummary& m) {
+  json j = json::object();
+  Put(j, "observations", m.observations);
+  Put(j, "wall_time_s", m.wall_time_s);
+  if (m.time_per_obs_ms) j["time_per_obs_ms"] = TimeJson(*m.time_per_obs_ms);
+  Put(j, "nodes_final", m.nodes_final);
+  Put(j, "edges_final", m.edges_final);
+  Put(j, "nodes_max", m.nodes_max);
+  Put(j, "edges_max", m.edges_max);
+  Put(j, "nodes_after_first_pass", m.nodes_after_first_pass);
+  if (!m.edges_by_kind.empty()) j["edges_by_kind"] = m.edges_by_kind;
+  Put(j, "gamma_final", m.gamma_final);
+  Put(j, "scans_kept_pct", m.scans_kept_pct);
+  Put(j, "peak_rss_mb", m.peak_rss_mb);
+  Put(j, "graph_bytes_final", m.graph_bytes_final);
+  if (m.blur) {
+    json b = {{"thickness", m.blur->thickness}};
+    Put(b, "mean_cm", m.blur->mean_cm);
+    Put(b, "p95_cm", m.blur->p95_cm);
+    Put(b, "recall", m.blur->recall);
+    j["blur"] = b;
+  }
+  PutChangeFigures(j, m);
   Put(j, "ate_rmse_m", m.ate_rmse_m);
   if (m.rpe_1m) {
     j["rpe_1m"] = {{"count", m.rpe_1m->count},
@@ -116,22 +141,7 @@ json ModeSummaryJson(const ModeSummary& m) {
   Put(j, "loop_recall", m.loop_recall);
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
   if (m.loop_verification) {
-    const slam::LoopVerifierStats& v = m.loop_verification->counts;
-    json lv = {{"proposed", v.proposed},       {"accepted", v.accepted},
-               {"rejected", v.rejected},       {"expired", v.expired},
-               {"not_unique", v.not_unique},   {"switched_off", m.loop_verification->switched_off},
-               {"attempts", v.attempts},       {"few_points", v.few_points},
-               {"low_score", v.low_score},     {"ambiguous", v.ambiguous},
-               {"implausible", v.implausible}, {"beyond_window", v.beyond_window}};
-    if (m.loop_verification->global) {
-      lv["global_attempts"] = v.global_attempts;
-      lv["global_proposed"] = v.global_proposed;
-    }
-    if (m.loop_verification->injection) {
-      lv["injected"] = v.injected;
-      lv["injected_accepted"] = v.injected_accepted;
-    }
-    j["loop_verification"] = lv;
+    j["loop_verification"] = LoopVerificationJson(*m.loop_verification);
   }
   if (m.relations) {
     const RelationsSummary& r = *m.relations;

@@ -165,6 +165,117 @@ std::string SlurmScript(const std::vector<std::size_t>& cells, const std::string
   return s.str();
 }
 
+namespace {
+
+/// The array job's tasks as squeue reports them: which are active, how many run.
+struct QueueState {
+  std::set<long> active;
+  int running = 0;
+};
+
+QueueState ParseQueue(const std::string& squeue_out) {
+  QueueState q;
+  std::istringstream lines(squeue_out);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream f(line);
+    long task = -1;
+    std::string state;
+    if (f >> task >> state) q.active.insert(task);
+    q.running += state == "RUNNING" || state == "COMPLETING" ? 1 : 0;
+  }
+  return q;
+}
+
+/// Follows a submitted array job until every task has ended: reports each failed task as it
+/// ends (with its log) and a status line, and cancels the job on Ctrl-C.
+class JobWatch {
+ public:
+  JobWatch(const SweepOptions& o, const PreparedSweep& prepared, const std::string& dir,
+           SlurmSweepOutcome* r)
+      : o_(o),
+        prepared_(prepared),
+        dir_(dir),
+        r_(r),
+        tasks_(static_cast<long>(prepared.to_run.size())) {}
+
+  /// One squeue poll; true once every task has ended.
+  bool Poll(double elapsed_s) {
+    const Captured q = Capture({"squeue", "-j", r_->job_id, "-h", "-r", "-o", "%K %T"}, true);
+    if (q.exit_code != 0 && q.out.find("Invalid job id") == std::string::npos) {
+      if (++misses_ > 30) throw std::runtime_error("squeue keeps failing: " + q.out);
+      return false;
+    }
+    misses_ = 0;
+    const QueueState state = ParseQueue(q.exit_code == 0 ? q.out : "");
+    std::vector<long> newly;
+    for (long t = 0; t < tasks_; ++t) {
+      if (!state.active.count(t) && !reported_.count(t)) newly.push_back(t);
+    }
+    if (!newly.empty()) Ended(newly);
+    PrintStatus(state.running, elapsed_s);
+    return static_cast<long>(reported_.size()) == tasks_;
+  }
+
+  /// Sleeps poll_s, in steps that notice an interrupt: then cancels the job and throws.
+  void Wait(double poll_s) const {
+    for (double w = 0.0; w < poll_s; w += 0.05) {
+      if (InterruptRequested()) {
+        Capture({"scancel", r_->job_id}, true);
+        if (o_.progress) *o_.progress << "\ncancelled slurm job " << r_->job_id << "\n";
+        ThrowIfInterrupted();
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+
+ private:
+  void Ended(const std::vector<long>& newly) {
+    const std::map<long, TaskEnd> ends = EndedTasks(r_->job_id);
+    for (long t : newly) {
+      const SweepPlanCell& cell =
+          prepared_.plan.cells[prepared_.to_run[static_cast<std::size_t>(t)]];
+      const auto e = ends.find(t);
+      const bool stamped = FinishedCellHash(dir_ + "/cells/" + cell.name) == cell.hash;
+      const TaskEnd end = e != ends.end() ? e->second : TaskEnd{stamped ? "COMPLETED" : "?", -1};
+      reported_.insert(t);
+      ++r_->sweep.ran;
+      if (stamped && end.exit_code <= 0 && end.state == "COMPLETED") continue;
+      ++failed_;
+      r_->sweep.failed.push_back({cell.name, end.exit_code, cell.log});
+      if (o_.progress) {
+        *o_.progress << (o_.terminal ? "\r\033[K" : "") << "task " << r_->job_id << "_" << t
+                     << " (cell " << cell.name << ") " << end.state << " (exit " << end.exit_code
+                     << "), see " << cell.log << " and " << dir_ << "/cells/slurm-" << r_->job_id
+                     << "_" << t << ".out\n";
+      }
+    }
+  }
+
+  void PrintStatus(int running, double elapsed_s) {
+    const long ended = static_cast<long>(reported_.size());
+    std::ostringstream line;
+    line << "slurm job " << r_->job_id << ": " << ended << "/" << tasks_ << " tasks ended, "
+         << failed_ << " failed, " << running << " running, " << (tasks_ - ended - running)
+         << " pending";
+    if (o_.progress && (o_.terminal || line.str() != last_)) {  // a plain line only on a change
+      *o_.progress << (o_.terminal ? "\r\033[K" : "") << line.str() << ", elapsed "
+                   << FormatDuration(elapsed_s) << (o_.terminal ? "" : "\n") << std::flush;
+    }
+    last_ = line.str();
+  }
+
+  const SweepOptions& o_;
+  const PreparedSweep& prepared_;
+  const std::string dir_;
+  SlurmSweepOutcome* r_;
+  const long tasks_;
+  std::set<long> reported_;
+  int failed_ = 0, misses_ = 0;
+  std::string last_;
+};
+
+}  // namespace
+
 SlurmSweepOutcome RunSlurmSweep(const SweepOptions& o, const SlurmOptions& slurm) {
   for (const std::string& a : slurm.sbatch_args) {
     if (a.empty() || a.find('\n') != std::string::npos || a[0] != '-') {
@@ -172,10 +283,9 @@ SlurmSweepOutcome RunSlurmSweep(const SweepOptions& o, const SlurmOptions& slurm
     }
   }
   const PreparedSweep prepared = PrepareSweep(o);
-  const SweepPlan& plan = prepared.plan;
   const std::string dir = fs::absolute(o.out_dir).string();
   SlurmSweepOutcome r;
-  r.sweep.cells = static_cast<int>(plan.cells.size());
+  r.sweep.cells = static_cast<int>(prepared.plan.cells.size());
   r.sweep.up_to_date = prepared.up_to_date;
   r.submitted = static_cast<int>(prepared.to_run.size());
   const Clock::time_point start = Clock::now();
@@ -188,75 +298,13 @@ SlurmSweepOutcome RunSlurmSweep(const SweepOptions& o, const SlurmOptions& slurm
   io::WriteFileAtomically(r.script, SlurmScript(prepared.to_run, dir, o.program, slurm));
   r.job_id = Submit(r.script);
   if (!slurm.wait) return r;
-  std::ostream* out = o.progress;
-  if (out) {
-    *out << "slurm job " << r.job_id << " submitted: " << prepared.to_run.size()
-         << " array tasks, script " << r.script << " (Ctrl-C cancels it)\n";
+  if (o.progress) {
+    *o.progress << "slurm job " << r.job_id << " submitted: " << prepared.to_run.size()
+                << " array tasks, script " << r.script << " (Ctrl-C cancels it)\n";
   }
-  std::set<long> reported;
-  int failed = 0, misses = 0;
-  const long tasks = static_cast<long>(prepared.to_run.size());
-  std::string last;
-  for (;;) {
-    const Captured q = Capture({"squeue", "-j", r.job_id, "-h", "-r", "-o", "%K %T"}, true);
-    if (q.exit_code != 0 && q.out.find("Invalid job id") == std::string::npos) {
-      if (++misses > 30) throw std::runtime_error("squeue keeps failing: " + q.out);
-    } else {
-      misses = 0;
-      std::set<long> active;
-      int running = 0;
-      std::istringstream lines(q.exit_code == 0 ? q.out : "");
-      for (std::string line; std::getline(lines, line);) {
-        std::istringstream f(line);
-        long task = -1;
-        std::string state;
-        if (f >> task >> state) active.insert(task);
-        running += state == "RUNNING" || state == "COMPLETING" ? 1 : 0;
-      }
-      std::vector<long> newly;
-      for (long t = 0; t < tasks; ++t) {
-        if (!active.count(t) && !reported.count(t)) newly.push_back(t);
-      }
-      const std::map<long, TaskEnd> ends =
-          newly.empty() ? std::map<long, TaskEnd>{} : EndedTasks(r.job_id);
-      for (long t : newly) {
-        const SweepPlanCell& cell = plan.cells[prepared.to_run[static_cast<std::size_t>(t)]];
-        const auto e = ends.find(t);
-        const bool stamped = FinishedCellHash(dir + "/cells/" + cell.name) == cell.hash;
-        const TaskEnd end = e != ends.end() ? e->second : TaskEnd{stamped ? "COMPLETED" : "?", -1};
-        reported.insert(t);
-        ++r.sweep.ran;
-        if (stamped && end.exit_code <= 0 && end.state == "COMPLETED") continue;
-        ++failed;
-        r.sweep.failed.push_back({cell.name, end.exit_code, cell.log});
-        if (out) {
-          *out << (o.terminal ? "\r\033[K" : "") << "task " << r.job_id << "_" << t << " (cell "
-               << cell.name << ") " << end.state << " (exit " << end.exit_code << "), see "
-               << cell.log << " and " << dir << "/cells/slurm-" << r.job_id << "_" << t << ".out\n";
-        }
-      }
-      const long ended = static_cast<long>(reported.size());
-      std::ostringstream line;
-      line << "slurm job " << r.job_id << ": " << ended << "/" << tasks << " tasks ended, "
-           << failed << " failed, " << running << " running, " << (tasks - ended - running)
-           << " pending";
-      if (out && (o.terminal || line.str() != last)) {  // a plain line only on a change
-        *out << (o.terminal ? "\r\033[K" : "") << line.str() << ", elapsed "
-             << FormatDuration(elapsed()) << (o.terminal ? "" : "\n") << std::flush;
-      }
-      last = line.str();
-      if (ended == tasks) break;
-    }
-    for (double w = 0.0; w < slurm.poll_s; w += 0.05) {
-      if (InterruptRequested()) {
-        Capture({"scancel", r.job_id}, true);
-        if (out) *out << "\ncancelled slurm job " << r.job_id << "\n";
-        ThrowIfInterrupted();
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  }
-  if (out && o.terminal) *out << "\n";
+  JobWatch watch(o, prepared, dir, &r);
+  while (!watch.Poll(elapsed())) watch.Wait(slurm.poll_s);
+  if (o.progress && o.terminal) *o.progress << "\n";
   r.sweep.tables = CollectSweep(o.out_dir);
   r.sweep.wall_s = elapsed();
   return r;

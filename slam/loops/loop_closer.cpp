@@ -62,6 +62,64 @@ std::vector<Candidate> Gate(const LoopClosingView& view, NodeId current,
   return out;
 }
 
+/// Keeps the candidates observed within `span` observations of the most likely one.
+void KeepOneVisit(int span, std::vector<Candidate>* candidates) {
+  const NodeId centre = Likeliest(*candidates).id;
+  candidates->erase(
+      std::remove_if(candidates->begin(), candidates->end(),
+                     [&](const Candidate& c) { return std::abs(c.id - centre) > span; }),
+      candidates->end());
+}
+
+/// A local search's submap and the largest variances of its candidates (the window).
+struct Submap {
+  std::set<NodeId> nodes;
+  double var_x = 0.0, var_y = 0.0, var_th = 0.0;
+};
+
+/// Every candidate plus its graph neighbours that are not near the current node (and, with
+/// submap_span, within that span of a candidate).
+Submap BuildSubmap(const PoseGraph& graph, const std::vector<Candidate>& candidates,
+                   const std::map<NodeId, double>& near, const LoopClosingConfig& lc) {
+  const auto in_span = [&](NodeId n) {
+    return lc.submap_span <= 0 ||
+           std::any_of(candidates.begin(), candidates.end(),
+                       [&](const Candidate& c) { return std::abs(n - c.id) <= lc.submap_span; });
+  };
+  Submap out;
+  for (const Candidate& c : candidates) {
+    out.nodes.insert(c.id);
+    int added = 0;
+    for (NodeId n : graph.Neighbours(c.id)) {
+      if (added >= lc.neighbours_per_candidate) break;
+      if (!near.count(n) && in_span(n)) {
+        out.nodes.insert(n);
+        ++added;
+      }
+    }
+    out.var_x = std::max(out.var_x, c.covariance(0, 0));
+    out.var_y = std::max(out.var_y, c.covariance(1, 1));
+    out.var_th = std::max(out.var_th, c.covariance(2, 2));
+  }
+  return out;
+}
+
+/// The candidate nearest to the matched pose: the node the closure is attached to.
+NodeId NearestCandidate(const Values& values, const std::vector<Candidate>& candidates,
+                        const Pose2& matched) {
+  NodeId old = candidates.front().id;
+  double best_d = 1e300;
+  for (const Candidate& c : candidates) {
+    const Pose2& X = values.at(c.id);
+    const double d = std::hypot(X.x - matched.x, X.y - matched.y);
+    if (d < best_d) {
+      best_d = d;
+      old = c.id;
+    }
+  }
+  return old;
+}
+
 }  // namespace
 
 LoopCloser::LoopCloser(const LoopClosingConfig& loops, const IncrementalConfig& incremental)
@@ -103,47 +161,19 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   // likely one. Candidates of different visits disagree by whatever error the map still
   // holds between them; a submap mixing them is blurred, and a closure attached to one node
   // after matching against another visit's walls is off by that disagreement.
-  if (lc.submap_span > 0) {
-    const NodeId centre = Likeliest(candidates).id;
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                    [&](const Candidate& c) {
-                                      return std::abs(c.id - centre) > lc.submap_span;
-                                    }),
-                     candidates.end());
-  }
-  const auto in_span = [&](NodeId n) {
-    return lc.submap_span <= 0 ||
-           std::any_of(candidates.begin(), candidates.end(),
-                       [&](const Candidate& c) { return std::abs(n - c.id) <= lc.submap_span; });
-  };
-
-  // The submap: every candidate plus its graph neighbours that are not near the current node.
-  std::set<NodeId> submap;
-  double var_x = 0.0, var_y = 0.0, var_th = 0.0;
-  for (const Candidate& c : candidates) {
-    submap.insert(c.id);
-    int added = 0;
-    for (NodeId n : view.graph.Neighbours(c.id)) {
-      if (added >= lc.neighbours_per_candidate) break;
-      if (!near.count(n) && in_span(n)) {
-        submap.insert(n);
-        ++added;
-      }
-    }
-    var_x = std::max(var_x, c.covariance(0, 0));
-    var_y = std::max(var_y, c.covariance(1, 1));
-    var_th = std::max(var_th, c.covariance(2, 2));
-  }
+  if (lc.submap_span > 0) KeepOneVisit(lc.submap_span, &candidates);
+  const Submap submap = BuildSubmap(view.graph, candidates, near, lc);
   attempt.candidates = static_cast<int>(candidates.size());
   MatcherConfig mc = lc.matcher;
-  mc.linear_window_m = std::max(Clamp3Sigma(var_x, lc.min_window_m, lc.max_window_m),
-                                Clamp3Sigma(var_y, lc.min_window_m, lc.max_window_m));
-  mc.angular_window_rad = Clamp3Sigma(var_th, lc.min_window_rad, lc.max_window_rad);
+  mc.linear_window_m = std::max(Clamp3Sigma(submap.var_x, lc.min_window_m, lc.max_window_m),
+                                Clamp3Sigma(submap.var_y, lc.min_window_m, lc.max_window_m));
+  mc.angular_window_rad = Clamp3Sigma(submap.var_th, lc.min_window_rad, lc.max_window_rad);
   attempt.window_m = mc.linear_window_m;
   attempt.window_rad = mc.angular_window_rad;
   MatchRefusal why = MatchRefusal::kLowScore;
   const Pose2& X_cur = view.values.at(current);
-  const std::optional<MatchResult> found = MatchSubmap(view, submap, current, X_cur, mc, &why);
+  const std::optional<MatchResult> found =
+      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why);
   if (!found) return refuse(why);
   const MatchResult& match = *found;
 
@@ -151,17 +181,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   if (!Plausible(view, match, current, Likeliest(candidates).covariance)) {
     return refuse(MatchRefusal::kImplausible);
   }
-  // Attach the closure to the candidate nearest to the matched pose.
-  NodeId old = candidates.front().id;
-  double best_d = 1e300;
-  for (const Candidate& c : candidates) {
-    const Pose2& X = view.values.at(c.id);
-    const double d = std::hypot(X.x - match.T_ref_cur.x, X.y - match.T_ref_cur.y);
-    if (d < best_d) {
-      best_d = d;
-      old = c.id;
-    }
-  }
+  const NodeId old = NearestCandidate(view.values, candidates, match.T_ref_cur);
   attempt.proposed = true;
   attempt.accepted = Propose(view, old, current, match, accepted);
   return attempt;

@@ -99,6 +99,21 @@ class LoopCloser {
               std::vector<LoopHypothesis>* accepted);
   /// The place descriptor of `id` from its points and its recent neighbours', in its frame.
   PlaceDescriptor Describe(const LoopClosingView& view, NodeId id) const;
+  /// An earlier place the descriptor index proposes, and its match once verified.
+  struct PlaceCandidate {
+    NodeId id;
+    PlaceComparison cmp;
+    MatchResult match;
+  };
+  /// The loops.global.candidates places most similar to `place` among those the robot has
+  /// left (odometry path length), within the descriptor distance, most similar first.
+  std::vector<PlaceCandidate> SimilarPlaces(const LoopClosingView& view, NodeId current,
+                                            const PlaceDescriptor& place) const;
+  /// Each candidate matched around the descriptor's heading; those that match and are
+  /// plausible where the covariance projection reaches them. *why: the last refusal.
+  std::vector<PlaceCandidate> MatchCandidates(const LoopClosingView& view, NodeId current,
+                                              const std::vector<PlaceCandidate>& candidates,
+                                              const MatcherConfig& mc, MatchRefusal* why);
   std::optional<LoopAttempt> MatchPlaces(const LoopClosingView& view, NodeId current,
                                          const PlaceDescriptor& place,
                                          std::vector<LoopHypothesis>* accepted);

@@ -53,30 +53,69 @@ PlaceDescriptor LoopCloser::Describe(const LoopClosingView& view, NodeId id) con
   return DescribePlace(points, g.descriptor);
 }
 
+std::vector<LoopCloser::PlaceCandidate> LoopCloser::SimilarPlaces(
+    const LoopClosingView& view, NodeId current, const PlaceDescriptor& place) const {
+  const GlobalLoopConfig& g = config_.global;
+  const NodeData& cur = view.nodes.at(current);
+  std::vector<PlaceCandidate> out;
+  for (NodeId id : places_.Nearest(place, static_cast<std::size_t>(g.index_neighbours))) {
+    const auto node = view.nodes.find(id);
+    if (node == view.nodes.end()) continue;
+    // Not a revisit: the robot has not left this place (odometry path length).
+    if (cur.travelled_m - node->second.travelled_m < config_.min_path_separation_m) continue;
+    const PlaceComparison cmp = ComparePlaces(place, places_.Get(id));
+    if (cmp.distance <= g.max_distance) out.push_back({id, cmp, {}});
+  }
+  std::sort(out.begin(), out.end(), [](const PlaceCandidate& a, const PlaceCandidate& b) {
+    return a.cmp.distance < b.cmp.distance;
+  });
+  if (static_cast<int>(out.size()) > g.candidates) out.resize(g.candidates);
+  return out;
+}
+
+std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
+    const LoopClosingView& view, NodeId current, const std::vector<PlaceCandidate>& candidates,
+    const MatcherConfig& mc, MatchRefusal* why) {
+  const double k2 = config_.global.plausible_sigmas * config_.global.plausible_sigmas;
+  std::vector<PlaceCandidate> matched;
+  for (const PlaceCandidate& p : candidates) {
+    // The current scan placed at the candidate, turned by the descriptors' heading, against
+    // the candidate and its graph neighbours.
+    const Pose2 guess = view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad);
+    std::set<NodeId> submap{p.id};
+    int added = 0;
+    for (NodeId n : view.graph.Neighbours(p.id)) {
+      if (added++ >= config_.neighbours_per_candidate) break;
+      submap.insert(n);
+    }
+    MatchRefusal refused = MatchRefusal::kLowScore;
+    const std::optional<MatchResult> match =
+        MatchSubmap(view, submap, current, guess, mc, &refused);
+    if (!match) {
+      if (refused != MatchRefusal::kLowScore) *why = refused;
+      continue;
+    }
+    // Where the covariance projection reaches the candidate, a place far outside its
+    // uncertainty (inflated by plausible_sigmas) is another place that looks alike (the next
+    // aisle), not drift; one it does not reach may be anywhere.
+    const auto reach = projected_.find(p.id);
+    if (reach != projected_.end() &&
+        !Plausible(view, *match, current, k2 * reach->second.covariance)) {
+      *why = MatchRefusal::kImplausible;
+      continue;
+    }
+    matched.push_back({p.id, p.cmp, *match});
+  }
+  return matched;
+}
+
 std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, NodeId current,
                                                    const PlaceDescriptor& place,
                                                    std::vector<LoopHypothesis>* accepted) {
   const LoopClosingConfig& lc = config_;
   const GlobalLoopConfig& g = lc.global;
-  const NodeData& cur = view.nodes.at(current);
-  struct Proposal {
-    NodeId id;
-    PlaceComparison cmp;
-  };
-  std::vector<Proposal> proposals;
-  for (NodeId id : places_.Nearest(place, static_cast<std::size_t>(g.index_neighbours))) {
-    const auto node = view.nodes.find(id);
-    if (node == view.nodes.end()) continue;
-    // Not a revisit: the robot has not left this place (odometry path length).
-    if (cur.travelled_m - node->second.travelled_m < lc.min_path_separation_m) continue;
-    const PlaceComparison cmp = ComparePlaces(place, places_.Get(id));
-    if (cmp.distance <= g.max_distance) proposals.push_back({id, cmp});
-  }
+  const std::vector<PlaceCandidate> proposals = SimilarPlaces(view, current, place);
   if (proposals.empty()) return std::nullopt;
-  std::sort(proposals.begin(), proposals.end(),
-            [](const Proposal& a, const Proposal& b) { return a.cmp.distance < b.cmp.distance; });
-  if (static_cast<int>(proposals.size()) > g.candidates) proposals.resize(g.candidates);
-
   verifier_.NoteGlobalAttempt();
   LoopAttempt attempt;
   attempt.search = LoopAttempt::Search::kGlobal;
@@ -89,48 +128,16 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
     attempt.refused = why;
     return attempt;
   };
-  const double k2 = g.plausible_sigmas * g.plausible_sigmas;
   // Every proposal is matched: a place that another, distant place matches about as well
   // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
   MatchRefusal why = MatchRefusal::kLowScore;
-  struct Matched {
-    NodeId id;
-    MatchResult match;
-  };
-  std::vector<Matched> matched;
-  for (const Proposal& p : proposals) {
-    // The current scan placed at the candidate, turned by the descriptors' heading, against
-    // the candidate and its graph neighbours.
-    const Pose2 guess = view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad);
-    std::set<NodeId> submap{p.id};
-    int added = 0;
-    for (NodeId n : view.graph.Neighbours(p.id)) {
-      if (added++ >= lc.neighbours_per_candidate) break;
-      submap.insert(n);
-    }
-    MatchRefusal refused = MatchRefusal::kLowScore;
-    const std::optional<MatchResult> match =
-        MatchSubmap(view, submap, current, guess, mc, &refused);
-    if (!match) {
-      if (refused != MatchRefusal::kLowScore) why = refused;
-      continue;
-    }
-    // Where the covariance projection reaches the candidate, a place far outside its
-    // uncertainty (inflated by plausible_sigmas) is another place that looks alike (the next
-    // aisle), not drift; one it does not reach may be anywhere.
-    const auto reach = projected_.find(p.id);
-    if (reach != projected_.end() &&
-        !Plausible(view, *match, current, k2 * reach->second.covariance)) {
-      why = MatchRefusal::kImplausible;
-      continue;
-    }
-    matched.push_back({p.id, *match});
-  }
+  const std::vector<PlaceCandidate> matched = MatchCandidates(view, current, proposals, mc, &why);
   if (matched.empty()) return refuse(why);
-  const auto best = std::max_element(
-      matched.begin(), matched.end(),
-      [](const Matched& a, const Matched& b) { return a.match.score < b.match.score; });
-  for (const Matched& m : matched) {
+  const auto best = std::max_element(matched.begin(), matched.end(),
+                                     [](const PlaceCandidate& a, const PlaceCandidate& b) {
+                                       return a.match.score < b.match.score;
+                                     });
+  for (const PlaceCandidate& m : matched) {
     const double apart = std::hypot(m.match.T_ref_cur.x - best->match.T_ref_cur.x,
                                     m.match.T_ref_cur.y - best->match.T_ref_cur.y);
     if (apart > g.linear_window_m && m.match.score > lc.max_ambiguity * best->match.score) {

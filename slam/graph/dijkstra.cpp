@@ -36,6 +36,55 @@ struct DenseGraph {
   }
 };
 
+/// The clique factors rooted at one node, before they become links.
+struct RootGroup {
+  std::vector<NodeId> members;  // nodes other than the root, ascending
+  std::vector<const CliqueFactor*> factors;
+};
+
+/// Links from the root to each member (the block of the group's joint covariance) and
+/// between members (their sum), from the group's factors and the root's edges to members.
+void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, DenseGraph* g) {
+  std::vector<NodeId>& members = group->members;
+  std::sort(members.begin(), members.end());
+  members.erase(std::unique(members.begin(), members.end()), members.end());
+  const auto at = [&](NodeId id) {
+    return 3 * static_cast<Eigen::Index>(std::lower_bound(members.begin(), members.end(), id) -
+                                         members.begin());
+  };
+  const Eigen::Index n = 3 * static_cast<Eigen::Index>(members.size());
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
+  for (const CliqueFactor* f : group->factors) {
+    for (std::size_t i = 1; i < f->nodes.size(); ++i) {
+      for (std::size_t j = 1; j < f->nodes.size(); ++j) {
+        information.block<3, 3>(at(f->nodes[i]), at(f->nodes[j])) += f->information.block<3, 3>(
+            3 * static_cast<Eigen::Index>(i - 1), 3 * static_cast<Eigen::Index>(j - 1));
+      }
+    }
+  }
+  // Edges from the root to a member inform that member's y directly (GLC's tree marginal).
+  for (const PoseEdge& e : graph.edges()) {
+    if (e.from == root && std::binary_search(members.begin(), members.end(), e.to)) {
+      information.block<3, 3>(at(e.to), at(e.to)) += e.information;
+    }
+  }
+  // The root to each member: the block of the inverse; members pairwise: their sum.
+  const Eigen::MatrixXd sigma = (information + 1e-9 * Eigen::MatrixXd::Identity(n, n)).inverse();
+  const int r = g->IndexOf(root);
+  for (std::size_t j = 0; j < members.size(); ++j) {
+    const int m = g->IndexOf(members[j]);
+    const Eigen::Matrix3d c = sigma.block<3, 3>(at(members[j]), at(members[j]));
+    g->links[static_cast<std::size_t>(r)].push_back({m, c});
+    g->links[static_cast<std::size_t>(m)].push_back({r, c});
+    for (std::size_t i = 0; i < j; ++i) {
+      const int mi = g->IndexOf(members[i]);
+      const Eigen::Matrix3d cij = c + sigma.block<3, 3>(at(members[i]), at(members[i]));
+      g->links[static_cast<std::size_t>(mi)].push_back({m, cij});
+      g->links[static_cast<std::size_t>(m)].push_back({mi, cij});
+    }
+  }
+}
+
 DenseGraph BuildDense(const PoseGraph& graph, const Values& values) {
   DenseGraph g;
   g.ids = graph.NodeIds();
@@ -54,56 +103,13 @@ DenseGraph BuildDense(const PoseGraph& graph, const Values& values) {
   // singular each; only their sum is definite. Inverted one by one, a conditional gives
   // links of ~1e9 m^2 that the projection cannot pass (pruned-glc then found a third of
   // pruned's loop candidates on Intel).
-  struct RootGroup {
-    std::vector<NodeId> members;  // nodes other than the root, ascending
-    std::vector<const CliqueFactor*> factors;
-  };
   std::map<NodeId, RootGroup> groups;
   for (const CliqueFactor& f : graph.cliques()) {
     RootGroup& group = groups[f.nodes[0]];
     group.members.insert(group.members.end(), f.nodes.begin() + 1, f.nodes.end());
     group.factors.push_back(&f);
   }
-  for (auto& [root, group] : groups) {
-    std::vector<NodeId>& members = group.members;
-    std::sort(members.begin(), members.end());
-    members.erase(std::unique(members.begin(), members.end()), members.end());
-    const auto at = [&](NodeId id) {
-      return 3 * static_cast<Eigen::Index>(std::lower_bound(members.begin(), members.end(), id) -
-                                           members.begin());
-    };
-    const Eigen::Index n = 3 * static_cast<Eigen::Index>(members.size());
-    Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
-    for (const CliqueFactor* f : group.factors) {
-      for (std::size_t i = 1; i < f->nodes.size(); ++i) {
-        for (std::size_t j = 1; j < f->nodes.size(); ++j) {
-          information.block<3, 3>(at(f->nodes[i]), at(f->nodes[j])) += f->information.block<3, 3>(
-              3 * static_cast<Eigen::Index>(i - 1), 3 * static_cast<Eigen::Index>(j - 1));
-        }
-      }
-    }
-    // Edges from the root to a member inform that member's y directly (GLC's tree marginal).
-    for (const PoseEdge& e : graph.edges()) {
-      if (e.from == root && std::binary_search(members.begin(), members.end(), e.to)) {
-        information.block<3, 3>(at(e.to), at(e.to)) += e.information;
-      }
-    }
-    // The root to each member: the block of the inverse; members pairwise: their sum.
-    const Eigen::MatrixXd sigma = (information + 1e-9 * Eigen::MatrixXd::Identity(n, n)).inverse();
-    const int r = g.IndexOf(root);
-    for (std::size_t j = 0; j < members.size(); ++j) {
-      const int m = g.IndexOf(members[j]);
-      const Eigen::Matrix3d c = sigma.block<3, 3>(at(members[j]), at(members[j]));
-      g.links[static_cast<std::size_t>(r)].push_back({m, c});
-      g.links[static_cast<std::size_t>(m)].push_back({r, c});
-      for (std::size_t i = 0; i < j; ++i) {
-        const int mi = g.IndexOf(members[i]);
-        const Eigen::Matrix3d cij = c + sigma.block<3, 3>(at(members[i]), at(members[i]));
-        g.links[static_cast<std::size_t>(mi)].push_back({m, cij});
-        g.links[static_cast<std::size_t>(m)].push_back({mi, cij});
-      }
-    }
-  }
+  for (auto& [root, group] : groups) AddCliqueLinks(graph, root, &group, &g);
   return g;
 }
 

@@ -94,6 +94,36 @@ void LoopVerifier::Accept(const LoopHypothesis& h, std::vector<LoopHypothesis>* 
   out->push_back(h);
 }
 
+namespace {
+
+/// A large clique of the consistency graph `ok` containing `self`, grown greedily: the
+/// candidate consistent with the most other candidates joins, until none is left.
+std::vector<std::size_t> GreedyClique(const std::vector<std::vector<bool>>& ok, std::size_t self) {
+  std::vector<std::size_t> clique{self}, candidates;
+  for (std::size_t i = 0; i < ok.size(); ++i) {
+    if (i != self && ok[self][i]) candidates.push_back(i);
+  }
+  while (!candidates.empty()) {
+    std::size_t best = candidates.front();
+    int best_degree = -1;
+    for (std::size_t c : candidates) {
+      const int degree = static_cast<int>(std::count_if(candidates.begin(), candidates.end(),
+                                                        [&](std::size_t o) { return ok[c][o]; }));
+      if (degree > best_degree) {
+        best_degree = degree;
+        best = c;
+      }
+    }
+    clique.push_back(best);
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [&](std::size_t o) { return o == best || !ok[best][o]; }),
+                     candidates.end());
+  }
+  return clique;
+}
+
+}  // namespace
+
 std::vector<LoopHypothesis> LoopVerifier::Add(const LoopHypothesis& h, const Values& values) {
   ++stats_.proposed;
   if (h.injected) ++stats_.injected;
@@ -124,27 +154,7 @@ std::vector<LoopHypothesis> LoopVerifier::Add(const LoopHypothesis& h, const Val
       ok[i][j] = ok[j][i] = Consistent(*members[i], *members[j], values);
     }
   }
-  std::vector<std::size_t> clique{self}, candidates;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i != self && ok[self][i]) candidates.push_back(i);
-  }
-  while (!candidates.empty()) {
-    // The candidate consistent with the most other candidates joins.
-    std::size_t best = candidates.front();
-    int best_degree = -1;
-    for (std::size_t c : candidates) {
-      const int degree = static_cast<int>(std::count_if(candidates.begin(), candidates.end(),
-                                                        [&](std::size_t o) { return ok[c][o]; }));
-      if (degree > best_degree) {
-        best_degree = degree;
-        best = c;
-      }
-    }
-    clique.push_back(best);
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                    [&](std::size_t o) { return o == best || !ok[best][o]; }),
-                     candidates.end());
-  }
+  const std::vector<std::size_t> clique = GreedyClique(ok, self);
   if (static_cast<int>(clique.size()) < config_.min_group) return out;
   std::vector<bool> confirmed(first_accepted, false);
   for (std::size_t i : clique) {

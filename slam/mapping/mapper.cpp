@@ -85,36 +85,11 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   if (!have_last) {
     values[id] = Pose2();
   } else {
-    const Pose2& X_last = values.at(last_node);
     const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
     data.travelled_m = nodes.at(last_node).travelled_m + std::hypot(delta.x, delta.y);
-    const Pose2 guess = X_last * delta;
-    std::vector<Eigen::Vector2d> reference = LocalMap();
-    PoseEdge edge;
-    edge.from = last_node;
-    edge.to = id;
-    edge.kind = EdgeKind::kOdometry;
-    Pose2 X_new = guess;
-    const Eigen::Matrix3d odometry = OdometryInformation(inc, delta);  // the same in any frame
-    edge.information = odometry;
-    CropToSearch(data.points, guess, inc.matcher, &reference);
-    if (reference.size() >= 10 && data.points.size() >= 10) {
-      match_grid.Build(reference, inc.matcher);
-      const MatchResult match = Match(match_grid, data.points, guess, inc.matcher);
-      if (match.ok) {
-        X_new = match.T_ref_cur;
-        Eigen::Matrix3d information = match.information;  // in the world frame
-        if (match.ambiguity > inc.max_ambiguity) {
-          TakeDegenerateDirectionFromGuess(guess, odometry, match, &X_new, &information);
-          stats->incremental_match_degenerate = true;
-        }
-        edge.information = RotateIntoFrame(information, X_new.theta);
-        stats->incremental_match_ok = true;
-      }
-    }
-    edge.T_from_to = Between(X_last, X_new);
+    Pose2 X_new;
+    graph.AddEdge(SequentialEdge(id, delta, data.points, &X_new, stats));
     values[id] = X_new;
-    graph.AddEdge(edge);
   }
   data.T_world_map = values.at(id);
   if (!config.pruning.mode.Prunes()) {
@@ -127,6 +102,47 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
 
+  AnchorPendingScans(obs, id);
+  scans.push_back(ScanAnchor{obs.stamp_s, id, Pose2(), obs.T_odom_robot});
+  scans_of_node[id].push_back(scans.size() - 1);
+  last_node = id;
+  have_last = true;
+}
+
+PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta,
+                                       const std::vector<Eigen::Vector2d>& points, Pose2* X_new,
+                                       StepStats* stats) {
+  const IncrementalConfig& inc = config.incremental;
+  const Pose2& X_last = values.at(last_node);
+  const Pose2 guess = X_last * delta;
+  std::vector<Eigen::Vector2d> reference = LocalMap();
+  PoseEdge edge;
+  edge.from = last_node;
+  edge.to = id;
+  edge.kind = EdgeKind::kOdometry;
+  *X_new = guess;
+  const Eigen::Matrix3d odometry = OdometryInformation(inc, delta);  // the same in any frame
+  edge.information = odometry;
+  CropToSearch(points, guess, inc.matcher, &reference);
+  if (reference.size() >= 10 && points.size() >= 10) {
+    match_grid.Build(reference, inc.matcher);
+    const MatchResult match = Match(match_grid, points, guess, inc.matcher);
+    if (match.ok) {
+      *X_new = match.T_ref_cur;
+      Eigen::Matrix3d information = match.information;  // in the world frame
+      if (match.ambiguity > inc.max_ambiguity) {
+        TakeDegenerateDirectionFromGuess(guess, odometry, match, X_new, &information);
+        stats->incremental_match_degenerate = true;
+      }
+      edge.information = RotateIntoFrame(information, X_new->theta);
+      stats->incremental_match_ok = true;
+    }
+  }
+  edge.T_from_to = Between(X_last, *X_new);
+  return edge;
+}
+
+void Mapper::State::AnchorPendingScans(const Observation& obs, NodeId id) {
   // Pending scans go to whichever of the previous and the new node is nearer by odometry.
   for (std::size_t idx : pending) {
     ScanAnchor& a = scans[idx];
@@ -138,10 +154,6 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     }
   }
   pending.clear();
-  scans.push_back(ScanAnchor{obs.stamp_s, id, Pose2(), obs.T_odom_robot});
-  scans_of_node[id].push_back(scans.size() - 1);
-  last_node = id;
-  have_last = true;
 }
 
 std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {

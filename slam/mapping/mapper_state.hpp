@@ -105,6 +105,13 @@ struct Mapper::State {
   }
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
+  /// The odometry edge last_node -> id: `points` matched against the local map around the
+  /// odometry guess X_last * delta (the odometry alone when the match fails; the odometry along
+  /// a degenerate direction). *X_new: the new node's pose.
+  PoseEdge SequentialEdge(NodeId id, const Pose2& delta, const std::vector<Eigen::Vector2d>& points,
+                          Pose2* X_new, StepStats* stats);
+  /// Pending scans go to whichever of the previous and the new node is nearer by odometry.
+  void AnchorPendingScans(const Observation& obs, NodeId id);
   void AnchorScan(const Observation& obs);
   /// The incremental matcher's reference in the world frame: the last local_map_nodes
   /// nodes' return points, or their surfaces (SurfaceRule::JoinsAny).

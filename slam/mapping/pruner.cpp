@@ -85,62 +85,74 @@ void Pruner::Remove(PoseGraph* graph, NodeId id, const Replacement& replacement,
   removals_.push_back({id, replacement.neighbours.size(), replacement.kl_divergence, gain_bits});
 }
 
+namespace {
+
+/// The nodes within `hops` edges of `centre`, ascending.
+std::vector<NodeId> Ball(const PoseGraph& graph, NodeId centre, int hops) {
+  std::set<NodeId> in{centre}, frontier{centre};
+  for (int h = 0; h < hops; ++h) {
+    std::set<NodeId> next;
+    for (NodeId u : frontier) {
+      for (NodeId w : graph.Neighbours(u)) {
+        if (in.insert(w).second) next.insert(w);
+      }
+    }
+    frontier = std::move(next);
+  }
+  return std::vector<NodeId>(in.begin(), in.end());
+}
+
+/// Edges beyond a spanning tree among the nodes of a (connected) ball: its cycle rank.
+std::size_t CycleRank(const PoseGraph& graph, const std::vector<NodeId>& set) {
+  std::size_t within = 0;
+  for (NodeId a : set) {
+    for (NodeId b : graph.Neighbours(a)) {
+      within += (a < b && std::binary_search(set.begin(), set.end(), b)) ? 1 : 0;
+    }
+  }
+  return within + 1 > set.size() ? within + 1 - set.size() : 0;
+}
+
+struct Neighbourhood {
+  NodeId centre = 0;
+  std::vector<NodeId> nodes;
+  std::size_t excess = 0;  ///< edges beyond a tree; 0: none found
+};
+
+/// The Markov blanket (one hop) with the most edges beyond a tree; when every blanket is a
+/// tree already, the two-hop neighbourhood with the most. Neighbourhoods holding an
+/// unsettled node are passed over.
+Neighbourhood DensestNeighbourhood(const PoseGraph& graph, const std::set<NodeId>& unsettled) {
+  const auto settled = [&](const std::vector<NodeId>& set) {
+    return std::none_of(set.begin(), set.end(), [&](NodeId n) { return unsettled.count(n); });
+  };
+  Neighbourhood best;
+  for (int hops = 1; hops <= 2 && best.excess == 0; ++hops) {
+    for (NodeId id : graph.NodeIds()) {
+      std::vector<NodeId> set = Ball(graph, id, hops);
+      if (!settled(set)) continue;
+      const std::size_t e = CycleRank(graph, set);
+      if (e > best.excess) best = {id, std::move(set), e};
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 void Pruner::KeepEdgeBudget(PoseGraph* graph_ptr, const Values& values,
                             const std::function<std::set<NodeId>()>& unsettled_nodes) {
   if (!sparsifier_->LeavesTrees() || config_.max_edges_per_node <= 0.0) return;
   PoseGraph& graph = *graph_ptr;
-  // The nodes within `hops` edges of `centre`, ascending.
-  const auto ball = [&graph](NodeId centre, int hops) {
-    std::set<NodeId> in{centre}, frontier{centre};
-    for (int h = 0; h < hops; ++h) {
-      std::set<NodeId> next;
-      for (NodeId u : frontier) {
-        for (NodeId w : graph.Neighbours(u)) {
-          if (in.insert(w).second) next.insert(w);
-        }
-      }
-      frontier = std::move(next);
-    }
-    return std::vector<NodeId>(in.begin(), in.end());
-  };
-  // Edges beyond a spanning tree among the nodes of a (connected) ball: its cycle rank.
-  const auto excess = [&graph](const std::vector<NodeId>& set) {
-    std::size_t within = 0;
-    for (NodeId a : set) {
-      for (NodeId b : graph.Neighbours(a)) {
-        within += (a < b && std::binary_search(set.begin(), set.end(), b)) ? 1 : 0;
-      }
-    }
-    return within + 1 > set.size() ? within + 1 - set.size() : 0;
-  };
   // Bounds the work of one observation; the budget is restored over the next ones if need be.
   constexpr int kMaxPerRound = 16;
   for (int done = 0; done < kMaxPerRound; ++done) {
     const double num_nodes = static_cast<double>(graph.NumNodes());
     if (static_cast<double>(graph.NumEdgesForGamma()) <= config_.max_edges_per_node * num_nodes)
       return;
-    // The Markov blanket (one hop) with the most edges beyond a tree; when every blanket is
-    // a tree already, the two-hop neighbourhood with the most.
-    std::vector<NodeId> best;
-    std::size_t most = 0;
-    NodeId centre = 0;
-    const std::set<NodeId> unsettled = unsettled_nodes();
-    const auto settled = [&](const std::vector<NodeId>& set) {
-      return std::none_of(set.begin(), set.end(), [&](NodeId n) { return unsettled.count(n); });
-    };
-    for (int hops = 1; hops <= 2 && most == 0; ++hops) {
-      for (NodeId id : graph.NodeIds()) {
-        std::vector<NodeId> set = ball(id, hops);
-        if (!settled(set)) continue;
-        const std::size_t e = excess(set);
-        if (e > most) {
-          most = e;
-          centre = id;
-          best = std::move(set);
-        }
-      }
-    }
-    if (most == 0) return;  // the graph is a tree near every node
+    const Neighbourhood n = DensestNeighbourhood(graph, unsettled_nodes());
+    if (n.excess == 0) return;  // the graph is a tree near every node
+    const std::vector<NodeId>& best = n.nodes;
     std::vector<WeighedEdge> weighed;
     if (config_.robust_marginal) weighed = WeighRobustEdges(&graph, values, best, optimizer_);
     SparsificationResult result = SparsifyWithin(graph, values, best);
@@ -156,7 +168,7 @@ void Pruner::KeepEdgeBudget(PoseGraph* graph_ptr, const Values& values,
     }
     ApplySparsification(&graph, result);
     sparsified_.push_back(
-        {centre, best.size(), result.edges_before, result.edges.size(), result.kl_divergence});
+        {n.centre, best.size(), result.edges_before, result.edges.size(), result.kl_divergence});
   }
 }
 

@@ -39,6 +39,31 @@ struct Beam {
   bool hit;
 };
 
+// Accumulate for a large bounding box: every traversed cell listed, sorted by (y, x) and
+// summed.
+std::vector<CellUpdate> AccumulateSorted(CellIndex origin, const std::vector<Beam>& beams) {
+  std::vector<CellUpdate> out;
+  for (const Beam& b : beams) {
+    Bresenham(origin, b.end, [&](int x, int y) {
+      const bool hit = b.hit && x == b.end.x && y == b.end.y;
+      out.push_back({{x, y}, {hit ? 1u : 0u, hit ? 0u : 1u}});
+    });
+  }
+  std::sort(out.begin(), out.end(), [](const CellUpdate& a, const CellUpdate& b) {
+    return a.cell.y != b.cell.y ? a.cell.y < b.cell.y : a.cell.x < b.cell.x;
+  });
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (n > 0 && out[n - 1].cell == out[i].cell) {
+      out[n - 1].delta.hits += out[i].delta.hits;
+      out[n - 1].delta.misses += out[i].delta.misses;
+    } else {
+      out[n++] = out[i];
+    }
+  }
+  out.resize(n);
+  return out;
+}
 // Sums the beams' increments per cell, each cell once, ordered by (y, x). When the scan's
 // bounding box is small, counts go into a dense scratch box kept per thread (a fresh one
 // costs more in page faults and zeroing than the scan itself); each row is read back over
@@ -88,26 +113,7 @@ std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& be
     drain(true);
     return out;
   }
-  for (const Beam& b : beams) {
-    Bresenham(origin, b.end, [&](int x, int y) {
-      const bool hit = b.hit && x == b.end.x && y == b.end.y;
-      out.push_back({{x, y}, {hit ? 1u : 0u, hit ? 0u : 1u}});
-    });
-  }
-  std::sort(out.begin(), out.end(), [](const CellUpdate& a, const CellUpdate& b) {
-    return a.cell.y != b.cell.y ? a.cell.y < b.cell.y : a.cell.x < b.cell.x;
-  });
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (n > 0 && out[n - 1].cell == out[i].cell) {
-      out[n - 1].delta.hits += out[i].delta.hits;
-      out[n - 1].delta.misses += out[i].delta.misses;
-    } else {
-      out[n++] = out[i];
-    }
-  }
-  out.resize(n);
-  return out;
+  return AccumulateSorted(origin, beams);
 }
 
 }  // namespace

@@ -143,7 +143,8 @@ void EliminateFirstBlock(const LocalSystem& system, MatrixXd* lambda_N, VectorXd
   const MatrixXd h_nk = system.H.bottomLeftCorner(n, 3);
   const MatrixXd lambda = system.H.bottomRightCorner(n, n) - h_nk * hkk_inv * h_nk.transpose();
   *lambda_N = 0.5 * (lambda + lambda.transpose());
-  *g_N = system.g.tail(n) - h_nk * (hkk_inv * system.g.head<3>());
+  const Eigen::Vector3d hkk_g = hkk_inv * system.g.head<3>();
+  *g_N = system.g.tail(n) - h_nk * hkk_g;
 }
 
 MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& values,
@@ -206,6 +207,105 @@ VectorXd SolveHeld(const MatrixXd& H, const VectorXd& rhs) {
   return full;
 }
 
+/// A factor's heading residual at x* and the blocks of its two nodes.
+struct FactorHeading {
+  std::size_t from, to;  // blocks
+  double residual;       // e_theta at x*
+};
+
+std::vector<FactorHeading> Headings(const std::vector<NodeId>& nodes, const Values& values,
+                                    const std::vector<PoseEdge>& edges,
+                                    const std::vector<CliqueFactor>& cliques) {
+  std::vector<FactorHeading> headings;
+  for (const PoseEdge& e : edges) {
+    headings.push_back({clique::IndexOf(nodes, e.from, "sparsifier"),
+                        clique::IndexOf(nodes, e.to, "sparsifier"),
+                        RelativeError(values.at(e.from), values.at(e.to), e.T_from_to).z()});
+  }
+  for (const CliqueFactor& c : cliques) {
+    for (std::size_t j = 1; j < c.nodes.size(); ++j) {
+      headings.push_back(
+          {clique::IndexOf(nodes, c.nodes[0], "sparsifier"),
+           clique::IndexOf(nodes, c.nodes[j], "sparsifier"),
+           RelativeError(values.at(c.nodes[0]), values.at(c.nodes[j]), c.T_root_node[j - 1]).z()});
+    }
+  }
+  return headings;
+}
+
+/// The largest target heading residual over the factors for a step (node 0 held).
+double LargestTargetHeading(const std::vector<FactorHeading>& headings, const VectorXd& step) {
+  double largest = 0.0;
+  for (const FactorHeading& f : headings) {
+    const double ta = f.from == 0 ? 0.0 : step(Block(f.from) - 1);  // step omits node 0's block
+    const double tc = f.to == 0 ? 0.0 : step(Block(f.to) - 1);
+    largest = std::max(largest, std::abs(f.residual + tc - ta));
+  }
+  return largest;
+}
+
+/// Node n's block of the displacement z.
+Eigen::Vector3d Delta(const VectorXd& z, const std::vector<NodeId>& nodes, NodeId n) {
+  return z.segment<3>(Block(clique::IndexOf(nodes, n, "sparsifier")));
+}
+
+/// Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
+/// the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T
+/// and residual P e_t keep J^T Omega J and J^T Omega e_t exactly.
+void MoveEdge(const Values& values, const Eigen::Vector3d& delta_from,
+              const Eigen::Vector3d& delta_to, PoseEdge* edge) {
+  const Pose2& Xi = values.at(edge->from);
+  const Pose2& Xj = values.at(edge->to);
+  Matrix3d Ji, Jj;
+  RelativeErrorJacobians(Xi, Xj, edge->T_from_to, &Ji, &Jj);
+  const Eigen::Vector3d e = RelativeError(Xi, Xj, edge->T_from_to);
+  const Eigen::Vector3d target = e + Ji * delta_from + Jj * delta_to;
+  const Matrix3d p = Turn(target.z() - e.z());
+  edge->T_from_to = MeasurementFor(Xi, Xj, p * target);
+  edge->information = p * edge->information * p.transpose();
+}
+
+/// A low-rank clique factor (GLC) keeps its target residual in its row space: the part
+/// along the null space of its information adds no gradient at x* but, once measured,
+/// would turn into informative error as soon as the nodes move (GLC keeps the residual
+/// of a rank-deficient factor in the span of its informative eigenvectors).
+void MoveClique(const Values& values, const VectorXd& z, const std::vector<NodeId>& nodes,
+                CliqueFactor* clique_factor) {
+  CliqueFactor& c = *clique_factor;
+  const Pose2& Xr = values.at(c.nodes[0]);
+  const Eigen::Index rows = c.information.rows();
+  VectorXd e(rows), target(rows);
+  for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
+    const Pose2& Xn = values.at(c.nodes[j + 1]);
+    Matrix3d Jr, Jn;
+    RelativeErrorJacobians(Xr, Xn, c.T_root_node[j], &Jr, &Jn);
+    e.segment<3>(Block(j)) = RelativeError(Xr, Xn, c.T_root_node[j]);
+    target.segment<3>(Block(j)) = e.segment<3>(Block(j)) + Jr * Delta(z, nodes, c.nodes[0]) +
+                                  Jn * Delta(z, nodes, c.nodes[j + 1]);
+  }
+  // Row-space projection; the identity for a well-conditioned information (skip its O(k^3)
+  // eigen-decomposition then).
+  const Eigen::LLT<MatrixXd> full_rank(c.information);
+  if (full_rank.info() != Eigen::Success || !(full_rank.rcond() > 1e-8)) {
+    target = PinvPsd(c.information, 1e-10) * (c.information * target);
+  }
+  const std::size_t k = c.nodes.size() - 1;
+  std::vector<Matrix3d> p(k);  // block-diagonal turn
+  for (std::size_t j = 0; j < k; ++j) {
+    const Pose2& Xn = values.at(c.nodes[j + 1]);
+    p[j] = Turn(target(Block(j) + 2) - e(Block(j) + 2));
+    c.T_root_node[j] = MeasurementFor(Xr, Xn, p[j] * target.segment<3>(Block(j)));
+  }
+  MatrixXd info(rows, rows);  // P Omega P^T, block by block
+  for (std::size_t a = 0; a < k; ++a) {
+    for (std::size_t c2 = 0; c2 < k; ++c2) {
+      info.block<3, 3>(Block(a), Block(c2)) =
+          p[a] * c.information.block<3, 3>(Block(a), Block(c2)) * p[c2].transpose();
+    }
+  }
+  c.information = 0.5 * (info + info.transpose());
+}
+
 }  // namespace
 
 void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, const VectorXd& g_N,
@@ -230,94 +330,16 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // MIT at 0.1, exact: 81 against 28; BENCHMARKS.md). The test is on the target residual, not
   // the displacement alone: a chain of odometry whose optimum leaves 3.05 rad of heading
   // residual (MIT, nodes 330-340) needs a large but representable target.
-  struct FactorHeading {
-    std::size_t from, to;  // blocks
-    double residual;       // e_theta at x*
-  };
-  std::vector<FactorHeading> headings;
-  for (const PoseEdge& e : *edges) {
-    headings.push_back({clique::IndexOf(nodes, e.from, "sparsifier"),
-                        clique::IndexOf(nodes, e.to, "sparsifier"),
-                        RelativeError(values.at(e.from), values.at(e.to), e.T_from_to).z()});
-  }
-  for (const CliqueFactor& c : *cliques) {
-    for (std::size_t j = 1; j < c.nodes.size(); ++j) {
-      headings.push_back(
-          {clique::IndexOf(nodes, c.nodes[0], "sparsifier"),
-           clique::IndexOf(nodes, c.nodes[j], "sparsifier"),
-           RelativeError(values.at(c.nodes[0]), values.at(c.nodes[j]), c.T_root_node[j - 1]).z()});
-    }
-  }
-  const auto heading_residual = [&](const VectorXd& step) {  // largest target over the factors
-    double largest = 0.0;
-    for (const FactorHeading& f : headings) {
-      const double ta = f.from == 0 ? 0.0 : step(Block(f.from) - 1);  // step omits node 0's block
-      const double tc = f.to == 0 ? 0.0 : step(Block(f.to) - 1);
-      largest = std::max(largest, std::abs(f.residual + tc - ta));
-    }
-    return largest;
-  };
+  const std::vector<FactorHeading> headings = Headings(nodes, values, *edges, *cliques);
   // Gradient: the new factors' gradient at x* becomes g_N. Mean: their minimum (to first
   // order) becomes the exact marginal's, x* - Lambda_N^+ g_N (the same for an exact method).
   const VectorXd full = lambda_N == nullptr
                             ? SolveHeld(now.H, g_N - now.g)
                             : VectorXd(SolveHeld(*lambda_N, g_N) - SolveHeld(now.H, now.g));
-  if (heading_residual(full) <= kMaxHeadingResidual) z.tail(d) = full;
-  const auto delta = [&](NodeId n) {
-    return z.segment<3>(Block(clique::IndexOf(nodes, n, "sparsifier")));
-  };
-  // Target residual e_t = e + J z. Writing it as the residual of a new measurement turns
-  // the error Jacobian by P = Turn(e_t,theta - e_theta) (J' = P J); information P Omega P^T
-  // and residual P e_t keep J^T Omega J and J^T Omega e_t exactly.
-  for (PoseEdge& edge : *edges) {
-    const Pose2& Xi = values.at(edge.from);
-    const Pose2& Xj = values.at(edge.to);
-    Matrix3d Ji, Jj;
-    RelativeErrorJacobians(Xi, Xj, edge.T_from_to, &Ji, &Jj);
-    const Eigen::Vector3d e = RelativeError(Xi, Xj, edge.T_from_to);
-    const Eigen::Vector3d target = e + Ji * delta(edge.from) + Jj * delta(edge.to);
-    const Matrix3d p = Turn(target.z() - e.z());
-    edge.T_from_to = MeasurementFor(Xi, Xj, p * target);
-    edge.information = p * edge.information * p.transpose();
-  }
-  // A low-rank clique factor (GLC) keeps its target residual in its row space: the part
-  // along the null space of its information adds no gradient at x* but, once measured,
-  // would turn into informative error as soon as the nodes move (GLC keeps the residual
-  // of a rank-deficient factor in the span of its informative eigenvectors).
-  for (CliqueFactor& c : *cliques) {
-    const Pose2& Xr = values.at(c.nodes[0]);
-    const Eigen::Index rows = c.information.rows();
-    VectorXd e(rows), target(rows);
-    for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
-      const Pose2& Xn = values.at(c.nodes[j + 1]);
-      Matrix3d Jr, Jn;
-      RelativeErrorJacobians(Xr, Xn, c.T_root_node[j], &Jr, &Jn);
-      e.segment<3>(Block(j)) = RelativeError(Xr, Xn, c.T_root_node[j]);
-      target.segment<3>(Block(j)) =
-          e.segment<3>(Block(j)) + Jr * delta(c.nodes[0]) + Jn * delta(c.nodes[j + 1]);
-    }
-    // Row-space projection; the identity for a well-conditioned information (skip its O(k^3)
-    // eigen-decomposition then).
-    const Eigen::LLT<MatrixXd> full_rank(c.information);
-    if (full_rank.info() != Eigen::Success || !(full_rank.rcond() > 1e-8)) {
-      target = PinvPsd(c.information, 1e-10) * (c.information * target);
-    }
-    const std::size_t k = c.nodes.size() - 1;
-    std::vector<Matrix3d> p(k);  // block-diagonal turn
-    for (std::size_t j = 0; j < k; ++j) {
-      const Pose2& Xn = values.at(c.nodes[j + 1]);
-      p[j] = Turn(target(Block(j) + 2) - e(Block(j) + 2));
-      c.T_root_node[j] = MeasurementFor(Xr, Xn, p[j] * target.segment<3>(Block(j)));
-    }
-    MatrixXd info(rows, rows);  // P Omega P^T, block by block
-    for (std::size_t a = 0; a < k; ++a) {
-      for (std::size_t c2 = 0; c2 < k; ++c2) {
-        info.block<3, 3>(Block(a), Block(c2)) =
-            p[a] * c.information.block<3, 3>(Block(a), Block(c2)) * p[c2].transpose();
-      }
-    }
-    c.information = 0.5 * (info + info.transpose());
-  }
+  if (LargestTargetHeading(headings, full) <= kMaxHeadingResidual) z.tail(d) = full;
+  for (PoseEdge& edge : *edges)
+    MoveEdge(values, Delta(z, nodes, edge.from), Delta(z, nodes, edge.to), &edge);
+  for (CliqueFactor& c : *cliques) MoveClique(values, z, nodes, &c);
 }
 
 Replacement FromMarginalization(const MarginalizationResult& m) {

@@ -270,6 +270,24 @@ int FirstBackwardLine(const std::vector<Observation>& scans, const std::vector<i
   return 0;
 }
 
+/// Whether to recover the raw odometry of a corrected log (kAuto: when it has the pattern);
+/// InputError for GMapping output whose odometry cannot be recovered.
+bool ShouldRecover(OdometryRecovery recovery, const std::vector<Event>& events,
+                   const CarmenLog& log, bool has_flasers, const std::string& path) {
+  if (recovery != OdometryRecovery::kAuto) return recovery == OdometryRecovery::kOn;
+  int scans = 0, broken = 0;
+  const bool recover = LooksCorrected(events, log, &scans, &broken);
+  if (!recover && log.skipped.count("NEFF") > 0 && has_flasers) {
+    throw InputError(path, 0, "NEFF",
+                     "GMapping output (NEFF lines) whose raw odometry cannot be recovered: " +
+                         std::to_string(broken) + " of " + std::to_string(scans) +
+                         " scans lack the pattern (an ODOM of the scan's stamp just before "
+                         "it, one repeating its corrected pose just after it); replaying the "
+                         "corrected poses as odometry would score GMapping, not the mapper");
+  }
+  return recover;
+}
+
 }  // namespace
 
 CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
@@ -317,19 +335,7 @@ CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& option
       options.flaser_range_max_m > 0.0 ? options.flaser_range_max_m : flaser_max;
   for (std::size_t i : flasers) log.observations[i].scan.range_max_m = range_max;
 
-  bool recover = options.recovery == OdometryRecovery::kOn;
-  if (options.recovery == OdometryRecovery::kAuto) {
-    int scans = 0, broken = 0;
-    recover = LooksCorrected(events, log, &scans, &broken);
-    if (!recover && log.skipped.count("NEFF") > 0 && !flasers.empty()) {
-      throw InputError(path, 0, "NEFF",
-                       "GMapping output (NEFF lines) whose raw odometry cannot be recovered: " +
-                           std::to_string(broken) + " of " + std::to_string(scans) +
-                           " scans lack the pattern (an ODOM of the scan's stamp just before "
-                           "it, one repeating its corrected pose just after it); replaying the "
-                           "corrected poses as odometry would score GMapping, not the mapper");
-    }
-  }
+  const bool recover = ShouldRecover(options.recovery, events, log, !flasers.empty(), path);
   if (recover) RecoverOdometry(events, path, &log);
   log.backward_scan_stamps = CountBackward(log.observations);
   log.first_backward_scan_line = FirstBackwardLine(log.observations, scan_lines);

@@ -31,7 +31,7 @@ def functions(lines):
         if line and not line[0].isspace() and not NOT_A_FUNCTION.match(line) and "(" in line \
                 and "=" not in line.split("(")[0]:
             k = i
-            while k < len(lines) and not lines[k].rstrip().endswith(("{", ";")):
+            while k < len(lines) and not lines[k].rstrip().endswith(("{", ";", "}")):
                 k += 1
             if k < len(lines) and lines[k].rstrip().endswith("{"):
                 j = k + 1

@@ -300,6 +300,34 @@ std::vector<Matrix3d> NfrTreeInformation(const MatrixXd& sigma,
   return info;
 }
 
+namespace {
+
+/// Backtracking along the projected arc t -> P(X + t D) (Armijo on the actual change): the
+/// first trial that lowers f enough, into *out, *f_out and *llt_out; false when none does.
+bool ArcSearch(const Whitened& w, const std::vector<Matrix3d>& x, const std::vector<Matrix3d>& g,
+               double f, const std::vector<Matrix3d>& dir, std::vector<Matrix3d>* out,
+               double* f_out, Eigen::LLT<MatrixXd>* llt_out) {
+  double t = 1.0;
+  for (int k = 0; k < kMaxHalvings; ++k, t *= 0.5) {
+    std::vector<Matrix3d> trial, change;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      trial.push_back(ClipPsd(x[i] + t * dir[i]));
+      change.push_back(trial.back() - x[i]);
+    }
+    const double slope = Inner(g, change);
+    if (!(slope < 0.0)) continue;  // not a descent change (projection undid it)
+    const double ft = w.Objective(trial, llt_out);
+    if (ft <= f + kArmijo * slope) {
+      *out = std::move(trial);
+      *f_out = ft;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 NfrResult SolveNfr(const MatrixXd& sigma, const std::vector<NfrJacobian>& jacobians,
                    const std::vector<Matrix3d>& start, const NfrOptions& options) {
   if (start.size() != jacobians.size()) {
@@ -319,26 +347,9 @@ NfrResult SolveNfr(const MatrixXd& sigma, const std::vector<NfrJacobian>& jacobi
     result.kkt = KktResidual(x, g);
     result.converged = result.kkt <= options.kkt_tolerance;
     if (result.converged || stop || result.iterations >= options.max_iterations) break;
-    // Backtracking along the projected arc t -> P(X + t D) (Armijo on the actual change).
     const auto search = [&](const std::vector<Matrix3d>& dir, std::vector<Matrix3d>* out,
                             double* f_out, Eigen::LLT<MatrixXd>* llt_out) {
-      double t = 1.0;
-      for (int k = 0; k < kMaxHalvings; ++k, t *= 0.5) {
-        std::vector<Matrix3d> trial, change;
-        for (std::size_t i = 0; i < x.size(); ++i) {
-          trial.push_back(ClipPsd(x[i] + t * dir[i]));
-          change.push_back(trial.back() - x[i]);
-        }
-        const double slope = Inner(g, change);
-        if (!(slope < 0.0)) continue;  // not a descent change (projection undid it)
-        const double ft = w.Objective(trial, llt_out);
-        if (ft <= f + kArmijo * slope) {
-          *out = std::move(trial);
-          *f_out = ft;
-          return true;
-        }
-      }
-      return false;
+      return ArcSearch(w, x, g, f, dir, out, f_out, llt_out);
     };
     std::vector<Matrix3d> next;
     double f_next = f;

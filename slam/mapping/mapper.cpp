@@ -92,13 +92,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     values[id] = X_new;
   }
   data.T_world_map = values.at(id);
-  if (!config.pruning.mode.Prunes()) {
-    map.AddScan(data.scan, data.T_world_map);
-  } else {
-    const std::vector<CellUpdate> cells = map.TouchedCells(data.scan, data.T_world_map);
-    ChangeMap(cells, true);
-    TrackAdded(id, cells);
-  }
+  keeper.Add(id, data.scan, data.T_world_map);
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
 
@@ -231,15 +225,7 @@ void Mapper::State::SyncMap() {
     const Pose2& X = values.at(id);
     const Pose2 d = Between(data.T_world_map, X);
     if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
-      if (!config.pruning.mode.Prunes()) {
-        map.MoveScan(data.scan, data.T_world_map, X);
-      } else {
-        // The cells at the old pose come from the gain index, which holds them anyway.
-        const std::vector<CellUpdate>& from = Untrack(id);
-        const std::vector<CellUpdate> to = map.TouchedCells(data.scan, X, data.cuts);
-        MoveInMap(from, to);
-        TrackAdded(id, to);
-      }
+      keeper.Move(id, data.scan, data.T_world_map, X, data.cuts);
       data.T_world_map = X;
     }
   }
@@ -251,7 +237,7 @@ void Mapper::Finish() {
 
 const PoseGraph& Mapper::graph() const { return state_->graph; }
 const Values& Mapper::values() const { return state_->values; }
-const GridMap& Mapper::map() const { return state_->map; }
+const GridMap& Mapper::map() const { return state_->keeper.grid(); }
 void Mapper::set_hypothesis_hook(std::function<void(LoopHypothesis*, const Values&)> hook) {
   state_->closer.set_hypothesis_hook(std::move(hook));
 }
@@ -272,9 +258,8 @@ double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   if (!state_->pruner) return worst;
   for (const auto& [id, data] : state_->nodes) {
-    const double fresh = state_->map.InformationGain(
-        state_->map.TouchedCells(data.scan, data.T_world_map, data.cuts));
-    worst = std::max(worst, std::abs(fresh - state_->Gain(id)));
+    const double fresh = state_->keeper.FreshGain(data.scan, data.T_world_map, data.cuts);
+    worst = std::max(worst, std::abs(fresh - state_->keeper.Gain(id)));
   }
   return worst;
 }

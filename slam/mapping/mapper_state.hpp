@@ -3,7 +3,6 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -17,48 +16,16 @@
 #include "slam/graph/pose_graph.hpp"
 #include "slam/grid/grid_map.hpp"
 #include "slam/loops/loop_closer.hpp"
+#include "slam/mapping/map_keeper.hpp"
 #include "slam/mapping/mapper.hpp"
 #include "slam/mapping/pruner.hpp"
-#include "slam/mapping/pruning_state.hpp"
 #include "slam/mapping/removal_policy.hpp"
+#include "slam/mapping/scoped_ms.hpp"
 #include "slam/matching/scan_matcher.hpp"
 #include "slam/matching/scan_store.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {
-
-/// Adds the wall time of its scope, in ms, to *total, less the time of the timers nested in
-/// it, so that the per-stage times of StepStats never count a moment twice (the map update
-/// inside the matching stage, say, is the gains' when it updates gains). Nothing when total
-/// is null. `innermost` is the timers' stack top, kept by the caller.
-class ScopedMs {
- public:
-  ScopedMs(double* total, ScopedMs** innermost)
-      : total_(total),
-        innermost_(innermost),
-        parent_(total ? *innermost : nullptr),
-        start_(std::chrono::steady_clock::now()) {
-    if (total_) *innermost_ = this;
-  }
-  ~ScopedMs() {
-    if (!total_) return;
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
-            .count();
-    *total_ += ms - nested_ms_;
-    if (parent_) parent_->nested_ms_ += ms;
-    *innermost_ = parent_;
-  }
-  ScopedMs(const ScopedMs&) = delete;
-  ScopedMs& operator=(const ScopedMs&) = delete;
-
- private:
-  double* total_;
-  ScopedMs** innermost_;
-  ScopedMs* parent_;
-  std::chrono::steady_clock::time_point start_;
-  double nested_ms_ = 0.0;
-};
 
 /// Where a scan of the stream is held: relative to an anchor node.
 struct ScanAnchor {
@@ -79,10 +46,9 @@ struct Mapper::State {
   int since_optimize = 0;                ///< closures added since the last optimization
   int since_sync = 0;            ///< closures added since the map was last re-rendered (SyncMap)
   std::optional<Pruner> pruner;  ///< in the pruned modes: which node goes, what replaces it
-  PruningState prune_state;      ///< in the pruned modes: the scans' information gains
   PoseGraph graph;
   Values values;
-  GridMap map;
+  MapKeeper keeper;  ///< the grid, and in the pruned modes the scans' information gains
   NodeStore nodes;
   std::vector<NodeId> recent;  ///< node ids in insertion order (surviving ones)
   std::vector<ScanAnchor> scans;
@@ -132,20 +98,6 @@ struct Mapper::State {
   /// next SyncMap, as it does between optimizations.
   void Optimize();
   void SyncMap();
-  /// Information gain of node `id`'s scan (pruned modes), exact for the map as it is.
-  double Gain(NodeId id) const;
-  /// Stops tracking node `id`'s gain (before its cells move or leave the map) and gives its
-  /// cells at its map pose, from the index (valid until the next call).
-  const std::vector<CellUpdate>& Untrack(NodeId id);
-  /// Adds an increment list to the map (or removes it) in a pruned mode; the gains follow.
-  void ChangeMap(const std::vector<CellUpdate>& cells, bool add);
-  /// Replaces an increment list in the map by another (GridMap::Move: a moved scan's cells
-  /// at its old and new pose); the gains of the other scans follow. The moved scan must not
-  /// be tracked; TrackAdded tracks it again.
-  void MoveInMap(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to);
-  /// Starts tracking the gain of node `id`, whose cells ChangeMap or MoveInMap has just
-  /// added: the gain comes from the states they were left in.
-  void TrackAdded(NodeId id, const std::vector<CellUpdate>& cells);
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// Traces beams of node id's scan cut in the map from now on (a policy found them

@@ -23,7 +23,10 @@
 
 namespace lifelong::slam {
 Mapper::State::State(const MapperConfig& c)
-    : config(c), closer(c.loops, c.incremental), map(c.grid) {
+    : config(c),
+      closer(c.loops, c.incremental),
+      keeper(c.grid, c.pruning.mode.Prunes(),
+             {[this] { return step ? &step->stages.gain_ms : nullptr; }, &innermost_timer}) {
   if (const std::optional<ConfigProblem> problem = Validate(c)) {
     throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
   }
@@ -57,7 +60,7 @@ void Mapper::State::Prune(NodeId current) {
     }
     gains[id] = 0.0;
   }
-  for (auto& [id, gain] : gains) gain = Gain(id);
+  for (auto& [id, gain] : gains) gain = keeper.Gain(id);
   RoundView view;
   view.current = current;
   view.footprint = [this](NodeId id) { return Footprint(id); };
@@ -72,7 +75,7 @@ void Mapper::State::Prune(NodeId current) {
   }
   for (const SampleRetirement& r : retired) CutBeams(r.node, r.cuts);
   if (!retired.empty()) {
-    for (auto& [id, gain] : gains) gain = Gain(id);
+    for (auto& [id, gain] : gains) gain = keeper.Gain(id);
   }
 
   while (!gains.empty()) {
@@ -83,7 +86,7 @@ void Mapper::State::Prune(NodeId current) {
     gains.erase(victim);
     RemoveNode(victim, gain);
     // The index has updated the gains of the scans that shared cells with it.
-    for (auto& [id, g] : gains) g = Gain(id);
+    for (auto& [id, g] : gains) g = keeper.Gain(id);
   }
   const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
   pruner->KeepEdgeBudget(&graph, values, [this] { return UnsettledNodes(); });
@@ -103,14 +106,11 @@ ScanFootprint Mapper::State::Footprint(NodeId id) const {
 
 void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts) {
   NodeData& data = nodes.at(id);
-  const std::vector<CellUpdate>& from = Untrack(id);
   std::vector<BeamCut> all;
   std::merge(data.cuts.begin(), data.cuts.end(), cuts.begin(), cuts.end(), std::back_inserter(all),
              [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
   data.cuts = std::move(all);
-  const std::vector<CellUpdate> to = map.TouchedCells(data.scan, data.T_world_map, data.cuts);
-  MoveInMap(from, to);
-  TrackAdded(id, to);
+  keeper.Retrace(id, data.scan, data.T_world_map, data.cuts);
   cut_beams += cuts.size();
 }
 
@@ -119,23 +119,23 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
   const Replacement replacement = pruner->Marginalize(&graph, values, id);
   // The removed node's scans are held relative to its nearest surviving neighbour.
   const Pose2& X = values.at(id);
-  NodeId keeper = id;
+  NodeId heir = id;
   double best = std::numeric_limits<double>::infinity();
   for (NodeId n : graph.Neighbours(id)) {
     const double d = std::hypot(values.at(n).x - X.x, values.at(n).y - X.y);
     if (d < best) {
       best = d;
-      keeper = n;
+      heir = n;
     }
   }
-  const Pose2 T_keeper_node = Between(values.at(keeper), X);
+  const Pose2 T_heir_node = Between(values.at(heir), X);
   const std::vector<std::size_t> held = scans_of_node[id];
   for (std::size_t scan : held) {
-    scans[scan].T_anchor_scan = T_keeper_node * scans[scan].T_anchor_scan;
-    Reanchor(scan, keeper);
+    scans[scan].T_anchor_scan = T_heir_node * scans[scan].T_anchor_scan;
+    Reanchor(scan, heir);
   }
   scans_of_node.erase(id);
-  ChangeMap(Untrack(id), false);
+  keeper.Remove(id);
   pruner->Remove(&graph, id, replacement, gain_bits);
   nodes.erase(id);
   values.erase(id);

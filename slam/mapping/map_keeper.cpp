@@ -1,0 +1,72 @@
+#include "slam/mapping/map_keeper.hpp"
+
+#include <utility>
+
+namespace lifelong::slam {
+
+MapKeeper::MapKeeper(const GridMapConfig& grid, bool track_gains, GainTiming timing)
+    : grid_(grid), track_gains_(track_gains), timing_(std::move(timing)) {}
+
+void MapKeeper::Add(NodeId id, const LaserScan& scan, const Pose2& T) {
+  if (!track_gains_) {
+    grid_.AddScan(scan, T);
+    return;
+  }
+  const std::vector<CellUpdate> added = grid_.TouchedCells(scan, T);
+  Change(added, true);
+  Track(id, added);
+}
+
+void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const Pose2& to,
+                     const std::vector<BeamCut>& cuts) {
+  if (!track_gains_) {
+    grid_.MoveScan(scan, from, to);
+    return;
+  }
+  Retrace(id, scan, to, cuts);
+}
+
+void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
+                        const std::vector<BeamCut>& cuts) {
+  // The cells at the old pose come from the gain index, which holds them anyway.
+  const std::vector<CellUpdate>& from = Untrack(id);
+  const std::vector<CellUpdate> to = grid_.TouchedCells(scan, T, cuts);
+  MoveCells(from, to);
+  Track(id, to);
+}
+
+void MapKeeper::Remove(NodeId id) { Change(Untrack(id), false); }
+
+double MapKeeper::Gain(NodeId id) const {
+  return static_cast<double>(gains_.Gain(id)) * kEntropyQuantumBits;
+}
+
+double MapKeeper::FreshGain(const LaserScan& scan, const Pose2& T,
+                            const std::vector<BeamCut>& cuts) const {
+  return grid_.InformationGain(grid_.TouchedCells(scan, T, cuts));
+}
+
+const std::vector<CellUpdate>& MapKeeper::Untrack(NodeId id) {
+  gains_.Cells(id, &cells_);
+  gains_.Untrack(id);
+  return cells_;
+}
+
+void MapKeeper::Change(const std::vector<CellUpdate>& update, bool add) {
+  add ? grid_.Add(update, &counts_after_) : grid_.Remove(update, &counts_after_);
+  const ScopedMs timer = GainTimer();
+  gains_.Apply(update, counts_after_, add);
+}
+
+void MapKeeper::MoveCells(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to) {
+  grid_.Move(from, to, &counts_after_, &changes_);
+  const ScopedMs timer = GainTimer();
+  gains_.Apply(changes_);
+}
+
+void MapKeeper::Track(NodeId id, const std::vector<CellUpdate>& added) {
+  const ScopedMs timer = GainTimer();
+  gains_.Track(id, added, GainOfAdded(added, counts_after_));
+}
+
+}  // namespace lifelong::slam

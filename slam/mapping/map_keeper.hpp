@@ -1,0 +1,66 @@
+// The mapper's map: the counting grid (seed §5.1) and, in the pruned modes, every scan's
+// information gain (seed eq. 5.11) kept exact through every change of the grid by a GainIndex.
+// A scan enters, moves, has beams cut and leaves through the keeper; nothing else writes the
+// grid. In the standard mode no gain is kept and a scan is rendered and moved as it is.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "sensor/laser_scan.hpp"
+#include "sensor/pose2.hpp"
+#include "slam/graph/pose_graph.hpp"
+#include "slam/grid/gain_index.hpp"
+#include "slam/grid/grid_map.hpp"
+#include "slam/mapping/scoped_ms.hpp"
+
+namespace lifelong::slam {
+
+/// Where the gain bookkeeping is timed: the current observation's gain stage (null: not
+/// timed) and the stage timers' stack top (ScopedMs).
+struct GainTiming {
+  std::function<double*()> sink;
+  ScopedMs** innermost = nullptr;
+};
+
+class MapKeeper {
+ public:
+  /// track_gains: the pruned modes' gain index.
+  MapKeeper(const GridMapConfig& grid, bool track_gains, GainTiming timing);
+
+  /// Renders node id's scan at T (and, with gains, tracks its gain).
+  void Add(NodeId id, const LaserScan& scan, const Pose2& T);
+  /// Node id's scan, rendered at `from`, rendered at `to` instead; with gains its beams
+  /// `cuts` stay cut (the standard mode cuts none).
+  void Move(NodeId id, const LaserScan& scan, const Pose2& from, const Pose2& to,
+            const std::vector<BeamCut>& cuts);
+  /// With gains: node id's scan traced again at T with the beams `cuts` cut (a policy found
+  /// them outdated); the gains of the scans sharing its cells follow.
+  void Retrace(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts);
+  /// With gains: node id's scan leaves the grid.
+  void Remove(NodeId id);
+
+  /// Information gain of node id's scan, bits, exact for the grid as it is (pruned modes).
+  double Gain(NodeId id) const;
+  /// The gain of node id's scan at T computed afresh from the grid, bits (a check of Gain).
+  double FreshGain(const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts) const;
+  const GridMap& grid() const { return grid_; }
+
+ private:
+  const std::vector<CellUpdate>& Untrack(NodeId id);
+  void Change(const std::vector<CellUpdate>& cells, bool add);
+  void MoveCells(const std::vector<CellUpdate>& from, const std::vector<CellUpdate>& to);
+  void Track(NodeId id, const std::vector<CellUpdate>& cells);
+  ScopedMs GainTimer() const { return ScopedMs(timing_.sink(), timing_.innermost); }
+
+  GridMap grid_;
+  bool track_gains_;
+  GainTiming timing_;
+  GainIndex gains_;                      ///< every node's information gain
+  std::vector<CellState> counts_after_;  ///< scratch: the cells as a change leaves them
+  std::vector<CellChange> changes_;      ///< scratch: the cells a move changed
+  std::vector<CellUpdate> cells_;        ///< scratch: a tracked scan's cells (GainIndex::Cells)
+};
+
+}  // namespace lifelong::slam

@@ -30,7 +30,7 @@
 #include "slam/loops/surface_cache.hpp"
 #include "slam/matching/incremental_config.hpp"
 #include "slam/matching/scan_matcher.hpp"
-#include "slam/matching/scan_store.hpp"
+#include "slam/matching/node_data.hpp"
 
 namespace lifelong::slam {
 

@@ -41,7 +41,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     const Pose2 delta = Between(s.nodes.at(s.last_node).T_odom_robot, obs.T_odom_robot);
     if (Norm(delta) < s.config.keyframes.min_translation_m &&
         std::abs(delta.theta) < s.config.keyframes.min_rotation_rad) {
-      s.AnchorScan(obs);
+      s.scans.AddPending(obs.stamp_s, s.last_node, delta, obs.T_odom_robot);
       return stats;
     }
   }
@@ -96,9 +96,8 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   nodes.emplace(id, std::move(data));
   recent.push_back(id);
 
-  AnchorPendingScans(obs, id);
-  scans.push_back(ScanAnchor{obs.stamp_s, id, Pose2(), obs.T_odom_robot});
-  scans_of_node[id].push_back(scans.size() - 1);
+  if (have_last) scans.AnchorPending(last_node, id, obs.T_odom_robot);
+  scans.AddNodeScan(obs.stamp_s, id, obs.T_odom_robot);
   last_node = id;
   have_last = true;
 }
@@ -136,20 +135,6 @@ PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta,
   return edge;
 }
 
-void Mapper::State::AnchorPendingScans(const Observation& obs, NodeId id) {
-  // Pending scans go to whichever of the previous and the new node is nearer by odometry.
-  for (std::size_t idx : pending) {
-    ScanAnchor& a = scans[idx];
-    if (a.anchor != last_node) continue;
-    const Pose2 from_new = Between(obs.T_odom_robot, a.T_odom_robot);
-    if (Norm(from_new) < Norm(a.T_anchor_scan)) {
-      Reanchor(idx, id);
-      scans[idx].T_anchor_scan = from_new;
-    }
-  }
-  pending.clear();
-}
-
 std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   const IncrementalConfig& inc = config.incremental;
   const auto count = static_cast<std::ptrdiff_t>(inc.local_map_nodes);
@@ -170,25 +155,6 @@ std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
   }
   local_surfaces = std::move(kept);
   return reference;
-}
-
-void Mapper::State::AnchorScan(const Observation& obs) {
-  const Pose2 rel = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
-  scans.push_back(ScanAnchor{obs.stamp_s, last_node, rel, obs.T_odom_robot});
-  scans_of_node[last_node].push_back(scans.size() - 1);
-  pending.push_back(scans.size() - 1);
-}
-
-void Mapper::State::Reanchor(std::size_t scan, NodeId anchor) {
-  auto& old_list = scans_of_node[scans[scan].anchor];
-  for (std::size_t i = 0; i < old_list.size(); ++i) {
-    if (old_list[i] == scan) {
-      old_list.erase(old_list.begin() + static_cast<std::ptrdiff_t>(i));
-      break;
-    }
-  }
-  scans[scan].anchor = anchor;
-  scans_of_node[anchor].push_back(scan);
 }
 
 void Mapper::State::OptimizeAndSyncMap() {
@@ -264,19 +230,10 @@ double Mapper::MaxGainCacheError() const {
   return worst;
 }
 
-StampedPose Mapper::LastScanPose() const {
-  if (state_->scans.empty()) return {};
-  const ScanAnchor& a = state_->scans.back();
-  return {a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan};
-}
+StampedPose Mapper::LastScanPose() const { return state_->scans.Last(state_->values); }
 
 std::vector<StampedPose> Mapper::Trajectory() const {
-  std::vector<StampedPose> out;
-  out.reserve(state_->scans.size());
-  for (const ScanAnchor& a : state_->scans) {
-    out.push_back({a.stamp_s, state_->values.at(a.anchor) * a.T_anchor_scan});
-  }
-  return out;
+  return state_->scans.Trajectory(state_->values);
 }
 
 }  // namespace lifelong::slam

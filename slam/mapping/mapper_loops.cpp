@@ -42,8 +42,8 @@ void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
   edge.information = h.information;
   graph.AddEdge(edge);
   loops.push_back({h.current, h.old,
-                   scans[static_cast<std::size_t>(nodes.at(h.current).scan_index)].stamp_s,
-                   scans[static_cast<std::size_t>(nodes.at(h.old).scan_index)].stamp_s,
+                   scans.stamp(static_cast<std::size_t>(nodes.at(h.current).scan_index)),
+                   scans.stamp(static_cast<std::size_t>(nodes.at(h.old).scan_index)),
                    edge.T_from_to, h.injected});
   ++since_optimize;
   ++since_sync;

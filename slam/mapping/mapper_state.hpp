@@ -20,20 +20,13 @@
 #include "slam/mapping/mapper.hpp"
 #include "slam/mapping/pruner.hpp"
 #include "slam/mapping/removal_policy.hpp"
+#include "slam/mapping/scan_store.hpp"
 #include "slam/mapping/scoped_ms.hpp"
+#include "slam/matching/node_data.hpp"
 #include "slam/matching/scan_matcher.hpp"
-#include "slam/matching/scan_store.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {
-
-/// Where a scan of the stream is held: relative to an anchor node.
-struct ScanAnchor {
-  double stamp_s = 0.0;
-  NodeId anchor = 0;
-  Pose2 T_anchor_scan;
-  Pose2 T_odom_robot;
-};
 
 struct Mapper::State {
   /// std::invalid_argument when the config is invalid (Validate) or names an unknown policy
@@ -51,9 +44,7 @@ struct Mapper::State {
   MapKeeper keeper;  ///< the grid, and in the pruned modes the scans' information gains
   NodeStore nodes;
   std::vector<NodeId> recent;  ///< node ids in insertion order (surviving ones)
-  std::vector<ScanAnchor> scans;
-  std::map<NodeId, std::vector<std::size_t>> scans_of_node;
-  std::vector<std::size_t> pending;  ///< non-keyframe scans since the last node
+  ScanStore scans;             ///< every scan of the stream, on the node that anchors it
   NodeId next_id = 0;
   int observations = 0;
   StepStats* step = nullptr;            ///< stats of the observation being processed
@@ -76,13 +67,9 @@ struct Mapper::State {
   /// a degenerate direction). *X_new: the new node's pose.
   PoseEdge SequentialEdge(NodeId id, const Pose2& delta, const std::vector<Eigen::Vector2d>& points,
                           Pose2* X_new, StepStats* stats);
-  /// Pending scans go to whichever of the previous and the new node is nearer by odometry.
-  void AnchorPendingScans(const Observation& obs, NodeId id);
-  void AnchorScan(const Observation& obs);
   /// The incremental matcher's reference in the world frame: the last local_map_nodes
   /// nodes' return points, or their surfaces (SurfaceRule::JoinsAny).
   std::vector<Eigen::Vector2d> LocalMap();
-  void Reanchor(std::size_t scan, NodeId anchor);
   /// Loop closing for the new node `current`: the local search, then the global one when
   /// the local one closed nothing; the closures they accept go into the graph.
   void CloseLoops(NodeId current, StepStats* stats);

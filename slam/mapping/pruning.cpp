@@ -128,13 +128,7 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
       heir = n;
     }
   }
-  const Pose2 T_heir_node = Between(values.at(heir), X);
-  const std::vector<std::size_t> held = scans_of_node[id];
-  for (std::size_t scan : held) {
-    scans[scan].T_anchor_scan = T_heir_node * scans[scan].T_anchor_scan;
-    Reanchor(scan, heir);
-  }
-  scans_of_node.erase(id);
+  scans.Handover(id, heir, Between(values.at(heir), X));
   keeper.Remove(id);
   pruner->Remove(&graph, id, replacement, gain_bits);
   nodes.erase(id);

@@ -1,4 +1,4 @@
-#include "slam/matching/scan_store.hpp"
+#include "slam/matching/node_data.hpp"
 
 #include <cmath>
 

@@ -6,8 +6,8 @@
 
 #include "slam/backend/optimizer.hpp"
 #include "slam/mapping/mapper_state.hpp"
-#include "slam/matching/match_degeneracy.hpp"
 #include "slam/matching/scan_matcher.hpp"
+#include "slam/matching/sequential_matcher.hpp"
 
 namespace lifelong::slam {
 namespace {
@@ -17,13 +17,6 @@ double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
 double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
-}
-
-// Information of the odometry fallback edge, in the edge's error frame.
-Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
-  const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * Norm(delta);
-  const double sth = c.odom_sigma_rad + c.odom_sigma_rad_per_rad * std::abs(delta.theta);
-  return Eigen::Vector3d(1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (sth * sth)).asDiagonal();
 }
 
 }  // namespace
@@ -105,56 +98,18 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
 PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta,
                                        const std::vector<Eigen::Vector2d>& points, Pose2* X_new,
                                        StepStats* stats) {
-  const IncrementalConfig& inc = config.incremental;
   const Pose2& X_last = values.at(last_node);
-  const Pose2 guess = X_last * delta;
-  std::vector<Eigen::Vector2d> reference = LocalMap();
+  const SequentialMatch m = sequential.Match(nodes, values, recent, X_last, delta, points);
+  stats->incremental_match_ok = m.matched;
+  stats->incremental_match_degenerate = m.degenerate;
+  *X_new = m.X_new;
   PoseEdge edge;
   edge.from = last_node;
   edge.to = id;
   edge.kind = EdgeKind::kOdometry;
-  *X_new = guess;
-  const Eigen::Matrix3d odometry = OdometryInformation(inc, delta);  // the same in any frame
-  edge.information = odometry;
-  CropToSearch(points, guess, inc.matcher, &reference);
-  if (reference.size() >= 10 && points.size() >= 10) {
-    match_grid.Build(reference, inc.matcher);
-    const MatchResult match = Match(match_grid, points, guess, inc.matcher);
-    if (match.ok) {
-      *X_new = match.T_ref_cur;
-      Eigen::Matrix3d information = match.information;  // in the world frame
-      if (match.ambiguity > inc.max_ambiguity) {
-        TakeDegenerateDirectionFromGuess(guess, odometry, match, X_new, &information);
-        stats->incremental_match_degenerate = true;
-      }
-      edge.information = RotateIntoFrame(information, X_new->theta);
-      stats->incremental_match_ok = true;
-    }
-  }
+  edge.information = m.information;
   edge.T_from_to = Between(X_last, *X_new);
   return edge;
-}
-
-std::vector<Eigen::Vector2d> Mapper::State::LocalMap() {
-  const IncrementalConfig& inc = config.incremental;
-  const auto count = static_cast<std::ptrdiff_t>(inc.local_map_nodes);
-  const auto first = recent.end() - std::min(count, static_cast<std::ptrdiff_t>(recent.size()));
-  std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
-  std::vector<Eigen::Vector2d> reference;
-  for (auto it = first; it != recent.end(); ++it) {
-    const NodeId id = *it;
-    const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
-    if (inc.surfaces.JoinsAny()) {
-      const auto cached = local_surfaces.find(id);
-      local = &(kept[id] = cached != local_surfaces.end()
-                               ? std::move(cached->second)
-                               : ScanSurfaces(nodes.at(id).scan, inc, inc.surfaces));
-    }
-    const auto world = ToWorld(*local, values.at(id));
-    reference.insert(reference.end(), world.begin(), world.end());
-  }
-  local_surfaces = std::move(kept);
-  return reference;
 }
 
 void Mapper::State::OptimizeAndSyncMap() {

@@ -24,6 +24,7 @@
 #include "slam/mapping/scoped_ms.hpp"
 #include "slam/matching/node_data.hpp"
 #include "slam/matching/scan_matcher.hpp"
+#include "slam/matching/sequential_matcher.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {
@@ -51,10 +52,7 @@ struct Mapper::State {
   ScopedMs* innermost_timer = nullptr;  ///< of the stage timers running
   bool have_last = false;
   NodeId last_node = 0;
-  ReferenceGrid match_grid;  ///< the incremental matcher's table, rebuilt for each match
-  /// The surface points (robot frame) of the nodes in the last local map, kept while they
-  /// stay in it (SurfaceRule::JoinsAny).
-  std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces;
+  SequentialMatcher sequential;  ///< the front end: each node against the local map
   /// Times its scope as the stage `field` of the observation being processed (none when
   /// there is none).
   ScopedMs Stage(double StageTimes::*field) {
@@ -67,9 +65,6 @@ struct Mapper::State {
   /// a degenerate direction). *X_new: the new node's pose.
   PoseEdge SequentialEdge(NodeId id, const Pose2& delta, const std::vector<Eigen::Vector2d>& points,
                           Pose2* X_new, StepStats* stats);
-  /// The incremental matcher's reference in the world frame: the last local_map_nodes
-  /// nodes' return points, or their surfaces (SurfaceRule::JoinsAny).
-  std::vector<Eigen::Vector2d> LocalMap();
   /// Loop closing for the new node `current`: the local search, then the global one when
   /// the local one closed nothing; the closures they accept go into the graph.
   void CloseLoops(NodeId current, StepStats* stats);

@@ -26,7 +26,8 @@ Mapper::State::State(const MapperConfig& c)
     : config(c),
       closer(c.loops, c.incremental),
       keeper(c.grid, c.pruning.mode.Prunes(),
-             {[this] { return step ? &step->stages.gain_ms : nullptr; }, &innermost_timer}) {
+             {[this] { return step ? &step->stages.gain_ms : nullptr; }, &innermost_timer}),
+      sequential(c.incremental) {
   if (const std::optional<ConfigProblem> problem = Validate(c)) {
     throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
   }

@@ -1,0 +1,67 @@
+#include "slam/matching/sequential_matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <utility>
+
+#include "slam/matching/match_degeneracy.hpp"
+
+namespace lifelong::slam {
+
+Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
+  const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * std::hypot(delta.x, delta.y);
+  const double sth = c.odom_sigma_rad + c.odom_sigma_rad_per_rad * std::abs(delta.theta);
+  return Eigen::Vector3d(1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (sth * sth)).asDiagonal();
+}
+
+SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& values,
+                                         const std::vector<NodeId>& recent, const Pose2& X_last,
+                                         const Pose2& delta,
+                                         const std::vector<Eigen::Vector2d>& points) {
+  const Pose2 guess = X_last * delta;
+  std::vector<Eigen::Vector2d> reference = LocalMap(nodes, values, recent);
+  SequentialMatch out;
+  out.X_new = guess;
+  const Eigen::Matrix3d odometry = OdometryInformation(config_, delta);  // the same in any frame
+  out.information = odometry;
+  CropToSearch(points, guess, config_.matcher, &reference);
+  if (reference.size() < 10 || points.size() < 10) return out;
+  grid_.Build(reference, config_.matcher);
+  const MatchResult match = ::lifelong::slam::Match(grid_, points, guess, config_.matcher);
+  if (!match.ok) return out;
+  out.X_new = match.T_ref_cur;
+  Eigen::Matrix3d information = match.information;  // in the world frame
+  if (match.ambiguity > config_.max_ambiguity) {
+    TakeDegenerateDirectionFromGuess(guess, odometry, match, &out.X_new, &information);
+    out.degenerate = true;
+  }
+  out.information = RotateIntoFrame(information, out.X_new.theta);
+  out.matched = true;
+  return out;
+}
+
+std::vector<Eigen::Vector2d> SequentialMatcher::LocalMap(const NodeStore& nodes,
+                                                         const Values& values,
+                                                         const std::vector<NodeId>& recent) {
+  const auto count = static_cast<std::ptrdiff_t>(config_.local_map_nodes);
+  const auto first = recent.end() - std::min(count, static_cast<std::ptrdiff_t>(recent.size()));
+  std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
+  std::vector<Eigen::Vector2d> reference;
+  for (auto it = first; it != recent.end(); ++it) {
+    const NodeId id = *it;
+    const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
+    if (config_.surfaces.JoinsAny()) {
+      const auto cached = local_surfaces_.find(id);
+      local = &(kept[id] = cached != local_surfaces_.end()
+                               ? std::move(cached->second)
+                               : ScanSurfaces(nodes.at(id).scan, config_, config_.surfaces));
+    }
+    const auto world = ToWorld(*local, values.at(id));
+    reference.insert(reference.end(), world.begin(), world.end());
+  }
+  local_surfaces_ = std::move(kept);
+  return reference;
+}
+
+}  // namespace lifelong::slam

@@ -1,0 +1,52 @@
+// The front end's sequential step (DESIGN.md data flow, step 2): a new node's scan matched
+// against the local map of the recent nodes' scans around the odometry guess. The match gives
+// the odometry edge's measurement and information; where it fails the odometry alone does,
+// and along a direction the match cannot tell (a corridor) the odometry does too
+// (match_degeneracy.hpp).
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sensor/pose2.hpp"
+#include "slam/graph/pose_graph.hpp"
+#include "slam/matching/incremental_config.hpp"
+#include "slam/matching/node_data.hpp"
+#include "slam/matching/scan_matcher.hpp"
+
+namespace lifelong::slam {
+
+/// Information of the odometry fallback edge over `delta`, in the edge's error frame.
+Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta);
+
+struct SequentialMatch {
+  Pose2 X_new;                  ///< the new node's pose (the guess when not matched)
+  Eigen::Matrix3d information;  ///< of the edge from the last node, in its error frame
+  bool matched = false;         ///< the match was good
+  bool degenerate = false;      ///< ...but ambiguous along a direction the odometry gave
+};
+
+class SequentialMatcher {
+ public:
+  explicit SequentialMatcher(const IncrementalConfig& config) : config_(config) {}
+
+  /// `points` (the new scan's, robot frame) matched against the last local_map_nodes nodes
+  /// of `recent` around X_last * delta (delta: the odometry since the last node).
+  SequentialMatch Match(const NodeStore& nodes, const Values& values,
+                        const std::vector<NodeId>& recent, const Pose2& X_last, const Pose2& delta,
+                        const std::vector<Eigen::Vector2d>& points);
+
+ private:
+  /// The reference in the world frame: the nodes' return points, or their surfaces
+  /// (SurfaceRule::JoinsAny, cached while a node stays in the local map).
+  std::vector<Eigen::Vector2d> LocalMap(const NodeStore& nodes, const Values& values,
+                                        const std::vector<NodeId>& recent);
+
+  IncrementalConfig config_;
+  ReferenceGrid grid_;  ///< the matcher's table, rebuilt for each match
+  std::map<NodeId, std::vector<Eigen::Vector2d>> local_surfaces_;
+};
+
+}  // namespace lifelong::slam

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "slam/backend/optimizer.hpp"
 #include "slam/mapping/mapper_state.hpp"
@@ -20,6 +23,18 @@ double MsSince(std::chrono::steady_clock::time_point start) {
 }
 
 }  // namespace
+
+Mapper::State::State(const MapperConfig& c)
+    : config(c),
+      closer(c.loops, c.incremental),
+      keeper(c.grid, c.pruning.mode.Prunes(),
+             {[this] { return step ? &step->stages.gain_ms : nullptr; }, &innermost_timer}),
+      sequential(c.incremental) {
+  if (const std::optional<ConfigProblem> problem = Validate(c)) {
+    throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
+  }
+  if (c.pruning.mode.Prunes()) pruner.emplace(c.pruning, c.optimizer);
+}
 
 Mapper::Mapper(const MapperConfig& config) : state_(std::make_unique<State>(config)) {}
 Mapper::~Mapper() = default;

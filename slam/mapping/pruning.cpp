@@ -22,17 +22,6 @@
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {
-Mapper::State::State(const MapperConfig& c)
-    : config(c),
-      closer(c.loops, c.incremental),
-      keeper(c.grid, c.pruning.mode.Prunes(),
-             {[this] { return step ? &step->stages.gain_ms : nullptr; }, &innermost_timer}),
-      sequential(c.incremental) {
-  if (const std::optional<ConfigProblem> problem = Validate(c)) {
-    throw std::invalid_argument("mapper config: " + problem->fields + ": " + problem->message);
-  }
-  if (c.pruning.mode.Prunes()) pruner.emplace(c.pruning, c.optimizer);
-}
 
 void Mapper::State::Prune(NodeId current) {
   const PruningConfig& pc = config.pruning;

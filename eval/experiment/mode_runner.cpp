@@ -230,12 +230,9 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
 
 LoopVerificationSummary ModeRunner::SummarizeLoops() const {
   const slam::Mapper& m = *mapper_;
-  LoopVerificationSummary out{m.loop_verification(), config_.mapper.loops.inject_false_share > 0.0,
-                              config_.mapper.loops.global.enabled, 0};
-  for (const std::optional<double>& chi2 : m.LoopEdgeChi2()) {
-    if (chi2 && *chi2 > config_.mapper.loops.suspect_chi2) ++out.switched_off;
-  }
-  return out;
+  return LoopVerificationSummary{m.loop_verification(),
+                                 config_.mapper.loops.inject_false_share > 0.0,
+                                 config_.mapper.loops.global.enabled, m.SuspectLoopEdges()};
 }
 
 void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajectory,

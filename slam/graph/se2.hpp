@@ -19,6 +19,14 @@ inline Eigen::Vector3d RelativeError(const Pose2& Xi, const Pose2& Xj, const Pos
   return T2V(Z.Inverse() * (Xi.Inverse() * Xj));
 }
 
+/// The chi2 of the relative-pose measurement Z between Xi and Xj under `information`:
+/// e^T Omega e with e = RelativeError(Xi, Xj, Z).
+inline double EdgeChi2(const Pose2& Xi, const Pose2& Xj, const Pose2& Z,
+                       const Eigen::Matrix3d& information) {
+  const Eigen::Vector3d e = RelativeError(Xi, Xj, Z);
+  return e.dot(information * e);
+}
+
 /// Analytic Jacobians of RelativeError with respect to additive increments of Xi and Xj.
 ///   de_t/dt_i = -R_z^T R_i^T,  de_t/dth_i = R_z^T dR_i^T/dth (t_j - t_i),  de_th/dth_i = -1
 ///   de_t/dt_j =  R_z^T R_i^T,                                            de_th/dth_j = +1

@@ -104,6 +104,9 @@ class Mapper {
   /// nullopt when the edge is no longer in the graph (marginalized). Above
   /// loops.suspect_chi2 the back-end's kernel is switching it off.
   std::vector<std::optional<double>> LoopEdgeChi2() const;
+  /// Accepted closures whose edge's chi2 exceeds loops.suspect_chi2: the robust kernel is
+  /// switching them off, and their nodes are neither removed nor sparsified.
+  int SuspectLoopEdges() const;
   /// Counts of the loop-closure verification (proposed, accepted, rejected, ...).
   const LoopVerifierStats& loop_verification() const;
   const std::vector<MarginalizationRecord>& marginalizations() const;

@@ -47,8 +47,9 @@ void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
                    edge.T_from_to, h.injected});
   ++since_optimize;
   ++since_sync;
-  const Eigen::Vector3d e = RelativeError(values.at(h.old), values.at(h.current), edge.T_from_to);
-  if (e.dot(edge.information * e) > lc.optimize_edge_chi2 || since_sync >= lc.optimize_every) {
+  const double chi2 =
+      EdgeChi2(values.at(h.old), values.at(h.current), edge.T_from_to, edge.information);
+  if (chi2 > lc.optimize_edge_chi2 || since_sync >= lc.optimize_every) {
     OptimizeAndSyncMap();
   }
 }
@@ -58,9 +59,8 @@ std::vector<std::optional<double>> Mapper::LoopEdgeChi2() const {
   std::map<std::pair<NodeId, NodeId>, double> chi2;  // (old, current) -> chi2
   for (const PoseEdge& edge : s.graph.edges()) {
     if (edge.kind != EdgeKind::kLoop) continue;
-    const Eigen::Vector3d e =
-        RelativeError(s.values.at(edge.from), s.values.at(edge.to), edge.T_from_to);
-    chi2[{edge.from, edge.to}] = e.dot(edge.information * e);
+    chi2[{edge.from, edge.to}] =
+        EdgeChi2(s.values.at(edge.from), s.values.at(edge.to), edge.T_from_to, edge.information);
   }
   std::vector<std::optional<double>> out;
   out.reserve(s.loops.size());
@@ -69,6 +69,14 @@ std::vector<std::optional<double>> Mapper::LoopEdgeChi2() const {
     out.push_back(it == chi2.end() ? std::nullopt : std::optional<double>(it->second));
   }
   return out;
+}
+
+int Mapper::SuspectLoopEdges() const {
+  int n = 0;
+  for (const std::optional<double>& chi2 : LoopEdgeChi2()) {
+    n += chi2 && *chi2 > state_->config.loops.suspect_chi2 ? 1 : 0;
+  }
+  return n;
 }
 
 std::set<NodeId> Mapper::State::UnsettledNodes() const {
@@ -81,8 +89,8 @@ std::set<NodeId> Mapper::State::UnsettledNodes() const {
     if (edge.kind != EdgeKind::kLoop) continue;
     const auto a = values.find(edge.from), b = values.find(edge.to);
     if (a == values.end() || b == values.end()) continue;
-    const Eigen::Vector3d e = RelativeError(a->second, b->second, edge.T_from_to);
-    if (e.dot(edge.information * e) > config.loops.suspect_chi2) {
+    if (EdgeChi2(a->second, b->second, edge.T_from_to, edge.information) >
+        config.loops.suspect_chi2) {
       out.insert(edge.from);
       out.insert(edge.to);
     }

@@ -23,8 +23,8 @@ std::vector<WeighedEdge> WeighRobustEdges(PoseGraph* graph, const Values& values
   for (std::size_t i = 0; i < graph->edges().size(); ++i) {
     const PoseEdge& e = graph->edges()[i];
     if (!e.robust || !in(e.from) || !in(e.to)) continue;
-    const Eigen::Vector3d r = RelativeError(values.at(e.from), values.at(e.to), e.T_from_to);
-    const double w = backend::ApplyKernel(r.dot(e.information * r), true, params).weight;
+    const double chi2 = EdgeChi2(values.at(e.from), values.at(e.to), e.T_from_to, e.information);
+    const double w = backend::ApplyKernel(chi2, true, params).weight;
     out.push_back({i, e.information});
     graph->SetEdgeInformation(i, w * e.information);
   }

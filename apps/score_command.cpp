@@ -86,7 +86,6 @@ int Score(const ScoreArgs& a) {
   page.title = "lifelong score";
   page.lead_heading = "Trajectories";
   page.summary = summary;
-  page.mode_order = summary.mode_order;
   page.command_line = a.command_line;
   page.working_dir = fs::current_path().string();
   page.build = eval::GetBuildInfo();

@@ -275,7 +275,6 @@ ReportContext MakeReportContext(const ExperimentConfig& config,
                                 const PlotConfig& plot_config) {
   ReportContext c;
   c.out_dir = config.out_dir;
-  for (const slam::Mode& mode : config.modes) c.mode_order.push_back(mode.name);
   const double res = config.mapper.grid.resolution_m;  // as in ModeRunner::Finish
   c.map_m_per_px = MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, res).m_per_px;
   c.truth_frame = truth.has_value();

@@ -1,6 +1,8 @@
 // The end-of-run console table; see console_table.hpp.
 #include "eval/report/console_table.hpp"
 
+#include "eval/report/report_table.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -74,13 +76,7 @@ std::string Format(std::optional<double> v, int precision) {
 }  // namespace
 
 std::string ConsoleTable(const RunSummary& summary) {
-  std::vector<std::string> order;
-  for (const std::string& name : summary.mode_order) {
-    if (summary.modes.count(name)) order.push_back(name);
-  }
-  for (const auto& [name, mode] : summary.modes) {
-    if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
-  }
+  const std::vector<std::string> order = OrderedModes(summary);
   const std::vector<Column> columns = Columns();
   // Drop columns no mode has a figure for (e.g. ATE in a replay).
   std::vector<const Column*> shown;

@@ -61,7 +61,7 @@ std::string RelationsAlert(const ReportPage& page) {
   const std::int64_t in_file = *s.log->relations_in_file;
   std::string used;
   bool few = false;
-  for (const std::string& mode : OrderedModes(s, page.mode_order)) {
+  for (const std::string& mode : OrderedModes(s)) {
     const auto& rel = s.modes.at(mode).relations;
     if (!rel) continue;
     few = few || rel->count * 2 < in_file;

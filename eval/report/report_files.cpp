@@ -146,7 +146,7 @@ void MapFigures(const ReportContext& c, ReportPage* page) {
   if (fs::exists(dir / "truth" / "map.png")) {
     cards.push_back({"ground truth", "", {figure("truth/map.png", "walls, doors, boxes, path")}});
   }
-  for (const std::string& mode : OrderedModes(page->summary, page->mode_order)) {
+  for (const std::string& mode : OrderedModes(page->summary)) {
     ReportMapCard card{mode, ModeColourHex(mode), {}};
     const std::string size = GraphSize(page->summary.modes.at(mode));
     const auto map = page->maps.find(mode);
@@ -200,7 +200,7 @@ std::vector<ReportLinkGroup> FileLinks(const ReportContext& c, const ReportPage&
   // summary.json (docs/output-contract.md), which marks the whole directory as incomplete anyway.
   run.links.insert(run.links.begin(), {"summary.json", "summary.json"});
   out.push_back(run);
-  for (const std::string& mode : OrderedModes(page.summary, page.mode_order)) {
+  for (const std::string& mode : OrderedModes(page.summary)) {
     ReportLinkGroup g = Links(c.out_dir, mode, mode,
                               {"timeline.csv", "marginalizations.csv", "sparsifications.csv",
                                "graph.g2o", "trajectory.tum", "map.pgm", "map.yaml", "map.png"});
@@ -238,7 +238,6 @@ std::pair<int, int> PngSize(const std::string& path) {
 }
 
 void CompleteReportPage(const ReportContext& context, ReportPage* page) {
-  page->mode_order = context.mode_order;
   Plots(context, page);
   MapFigures(context, page);
   page->files = FileLinks(context, *page);

@@ -15,8 +15,7 @@
 namespace lifelong::eval {
 
 struct ReportContext {
-  std::string out_dir;  ///< the output directory; the page's links are relative to it
-  std::vector<std::string> mode_order;  ///< the run's --modes order; the first is the baseline
+  std::string out_dir;            ///< the output directory; the page's links are relative to it
   double map_m_per_px = 0.05;     ///< m per pixel of every map figure (eval/figures/run_maps.hpp)
   bool truth_frame = false;       ///< maps drawn in the truth frame (runs with ground truth)
   int moving_average = 25;        ///< observations in time_per_obs.png's moving average
@@ -27,7 +26,7 @@ struct ReportContext {
   int max_maps_height_px = 1300;  ///< px, the maps' grid at most this tall if it can
 };
 
-/// Fills page->mode_order, lead_figures, figures, failed_figures, figures_note,
+/// Fills page->lead_figures, figures, failed_figures, figures_note,
 /// map_cards, map_columns, maps_note, true_path_in_maps, files, reference, build,
 /// working_dir and written_utc. Needs
 /// page->summary and maps (mode -> map image, relative to out_dir) to be set.

@@ -133,7 +133,7 @@ std::string Reference(const ReportPage& page) {
                            : "&ndash;")
         << "</td><td>whole log</td><td>" << HtmlEscape(e.citation) << "</td></tr>\n";
     }
-    for (const std::string& m : OrderedModes(page.summary, page.mode_order)) {
+    for (const std::string& m : OrderedModes(page.summary)) {
       const auto& rel = page.summary.modes.at(m).relations;
       if (!rel) continue;
       h << "<tr><td><span class=\"swatch\" style=\"background:" << ModeColourHex(m)
@@ -192,7 +192,7 @@ std::string Header(const ReportPage& page) {
   if (s.seed) h << ", seed " << *s.seed;
   if (s.log_duration_s) h << ", " << Num(*s.log_duration_s, "%.0f") << " s of data";
   h << ", " << Num(s.wall_time_s, "%.1f") << " s wall time; modes ";
-  const std::vector<std::string> modes = OrderedModes(s, page.mode_order);
+  const std::vector<std::string> modes = OrderedModes(s);
   for (std::size_t i = 0; i < modes.size(); ++i) {
     h << (i ? ", " : "") << "<span class=\"swatch\" style=\"background:" << ModeColourHex(modes[i])
       << "\"></span>" << HtmlEscape(modes[i]);
@@ -235,9 +235,9 @@ std::string ReportHtmlText(const ReportPage& page) {
       << Figures(page.change_strips);
   }
   h << "<h2 id=\"summary\">Key figures</h2>\n"
-    << KeyTableHtml(page.summary, page.mode_order)
+    << KeyTableHtml(page.summary)
     << "<details><summary>All figures, with their definitions</summary>\n"
-    << SummaryTableHtml(page.summary, page.mode_order) << "</details>\n"
+    << SummaryTableHtml(page.summary) << "</details>\n"
     << Reference(page);
   if (!page.figures.empty()) {
     h << "<h2 id=\"more\">More plots</h2>\n<div class=\"row plots\">\n"

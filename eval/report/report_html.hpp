@@ -47,12 +47,11 @@ struct ReportLinkGroup {
 struct ReportPage {
   std::string title = "lifelong report";
   RunSummary summary;
-  std::vector<std::string> mode_order;  ///< the run's --modes order; the first is the baseline
-  std::string command_line;             ///< as typed
-  std::string working_dir;              ///< where it was typed
-  std::string machine;                  ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
-  BuildInfo build;                      ///< version and commit of the program
-  std::string written_utc;              ///< e.g. "2026-12-01 16:23 UTC"
+  std::string command_line;  ///< as typed
+  std::string working_dir;   ///< where it was typed
+  std::string machine;       ///< e.g. CpuModelName(); empty: read /proc/cpuinfo
+  BuildInfo build;           ///< version and commit of the program
+  std::string written_utc;   ///< e.g. "2026-12-01 16:23 UTC"
   std::string lead_heading = "Runtime and graph size";  ///< over the lead figures
   std::vector<ReportFigure> lead_figures;     ///< time per observation, nodes, edges: first
   std::vector<ReportFigure> figures;          ///< the other plots, further down

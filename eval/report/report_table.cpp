@@ -282,10 +282,9 @@ std::string FormatRatio(double ratio) {
   return std::string(buf) + "\u00d7";
 }
 
-std::vector<std::string> OrderedModes(const RunSummary& summary,
-                                      const std::vector<std::string>& mode_order) {
+std::vector<std::string> OrderedModes(const RunSummary& summary) {
   std::vector<std::string> out;
-  for (const std::string& m : mode_order) {
+  for (const std::string& m : summary.mode_order) {
     if (summary.modes.count(m) && std::find(out.begin(), out.end(), m) == out.end()) {
       out.push_back(m);
     }
@@ -296,9 +295,8 @@ std::vector<std::string> OrderedModes(const RunSummary& summary,
   return out;
 }
 
-std::string SummaryTableHtml(const RunSummary& summary,
-                             const std::vector<std::string>& mode_order) {
-  const std::vector<std::string> modes = OrderedModes(summary, mode_order);
+std::string SummaryTableHtml(const RunSummary& summary) {
+  const std::vector<std::string> modes = OrderedModes(summary);
   if (modes.empty()) return "";
   const json all = ModesJson(summary);
   std::string body;
@@ -336,8 +334,8 @@ const std::vector<std::string>& KeyFigurePointers() {
   return pointers;
 }
 
-std::string KeyTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order) {
-  const std::vector<std::string> modes = OrderedModes(summary, mode_order);
+std::string KeyTableHtml(const RunSummary& summary) {
+  const std::vector<std::string> modes = OrderedModes(summary);
   if (modes.empty()) return "";
   const json all = ModesJson(summary);
   std::string body;

@@ -28,17 +28,17 @@ struct TableRow {
 /// Every row the table can show, in order, grouped.
 const std::vector<TableRow>& SummaryTableRows();
 
-/// The modes of `summary` in display order: those of `mode_order` that ran, in that order,
-/// then any others alphabetically. The first is the baseline.
-std::vector<std::string> OrderedModes(const RunSummary& summary,
-                                      const std::vector<std::string>& mode_order);
+/// The modes of `summary` in display order, the one order every table and figure uses: those
+/// of summary.mode_order (the run's --modes) that ran, in that order, then any others
+/// alphabetically. The first is the baseline.
+std::vector<std::string> OrderedModes(const RunSummary& summary);
 
 /// The table as HTML (<table class="summary">...</table> and a note on the ratios and
 /// the marks). A stage's time of 0 reads "not run"; no ratio is taken against a time
 /// under 1 ms; "relations used" reads "N of M" (M: summary.log->relations_in_file), marked
 /// class "warn" when fewer than half were used; a missing precision reads "no closures"
 /// when the mode accepted none.
-std::string SummaryTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order);
+std::string SummaryTableHtml(const RunSummary& summary);
 
 /// The pointers of the key figures, in the compact table's order (a dozen of the rows:
 /// time per observation mean and last 10 %, mapper time, nodes and edges final, scans
@@ -48,7 +48,7 @@ const std::vector<std::string>& KeyFigurePointers();
 
 /// The compact table of the key figures that any mode has (<table class="summary key">),
 /// formatted as SummaryTableHtml's, each definition in its label's tooltip.
-std::string KeyTableHtml(const RunSummary& summary, const std::vector<std::string>& mode_order);
+std::string KeyTableHtml(const RunSummary& summary);
 
 /// A value as shown: integers in full, others with 3 significant digits (whole numbers
 /// from 1000 on).

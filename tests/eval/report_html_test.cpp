@@ -30,7 +30,7 @@ ReportPage Page() {
   page.summary.modes["standard"].observations = 4;
   page.summary.modes["pruned"].observations = 4;
   page.summary.modes["pruned"].relations = RelationsSummary{12, 0.025, 0.02, 1.0, 2.0};
-  page.mode_order = {"standard", "pruned"};
+  page.summary.mode_order = {"standard", "pruned"};
   page.command_line = "lifelong run x.yaml --modes standard,pruned";
   page.working_dir = "/home/me";
   page.machine = "Test CPU";
@@ -118,7 +118,7 @@ TEST(ReportFilesTest, LinksOnlyFilesThatExistAndPlotsInTheSeedsOrder) {
   ReportPage page = Page();
   ReportContext c;
   c.out_dir = dir.string();
-  c.mode_order = {"standard", "pruned"};
+  page.summary.mode_order = {"standard", "pruned"};
   CompleteReportPage(c, &page);
   std::vector<std::string> lead, plots;
   for (const ReportFigure& f : page.lead_figures) lead.push_back(f.path);
@@ -153,7 +153,7 @@ TEST(ReportFilesTest, MapsTruthFirstAtOneDisplayScale) {
   page.maps = {{"standard", "standard/map.png"}, {"pruned", "pruned/map.png"}};
   ReportContext c;
   c.out_dir = dir.string();
-  c.mode_order = {"pruned", "standard"};
+  page.summary.mode_order = {"pruned", "standard"};
   c.truth_frame = true;
   c.page_width_px = 900;
   CompleteReportPage(c, &page);

@@ -24,7 +24,7 @@ ReportPage Page() {
   page.summary.modes["standard"].nodes_final = 4;
   page.summary.modes["pruned"].observations = 4;
   page.summary.modes["pruned"].nodes_final = 2;
-  page.mode_order = {"standard", "pruned"};
+  page.summary.mode_order = {"standard", "pruned"};
   page.lead_figures = {{"time_per_obs.png", "Time.", 0, 0}, {"nodes.png", "Nodes.", 0, 0}};
   page.figures = {{"memory.png", "Memory.", 0, 0}};
   page.map_cards = {{"ground truth", "", {{"truth/map.png", "Truth.", 450, 150}}}};
@@ -103,21 +103,20 @@ TEST(ReportLayoutTest, MapCardsFillTheirRows) {
   const fs::path dir = OutDir("cards");
   ReportPage page = Page();
   page.summary.modes["pruned-exact"].observations = 4;
-  page.mode_order = {"standard", "pruned", "pruned-exact"};
+  page.summary.mode_order = {"standard", "pruned", "pruned-exact"};
   fs::create_directories(dir / "truth");
   const auto png = [&](const std::string& rel) {
     fs::create_directories((dir / rel).parent_path());
     WritePng((dir / rel).string(), Image{841, 441, std::vector<std::uint8_t>(3u * 841 * 441, 9)});
   };
   png("truth/map.png");
-  for (const std::string& m : page.mode_order) {
+  for (const std::string& m : page.summary.mode_order) {
     png(m + "/map.png");
     png("graph_" + m + ".png");
     page.maps[m] = m + "/map.png";
   }
   ReportContext c;
   c.out_dir = dir.string();
-  c.mode_order = page.mode_order;
   CompleteReportPage(c, &page);
   ASSERT_EQ(page.map_cards.size(), 4u);
   EXPECT_EQ(page.map_columns, 4);

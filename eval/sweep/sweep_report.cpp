@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <sstream>
 
+#include "eval/common/gnuplot_run.hpp"
 #include "eval/common/html.hpp"
 #include "eval/figures/mode_colors.hpp"
 #include "eval/figures/plots.hpp"
@@ -48,9 +48,11 @@ std::string GroupLabel(const SweepStatsRow& r) {
   return label;
 }
 
-// One chart: x = source × setting, a series per mode (offset a little), mean ± 95 %.
-std::string Chart(const SweepTables& t, const std::string& figure, const std::string& dir,
-                  const std::string& gnuplot, const std::string& terminal) {
+// One chart's script, plot_data/<name>.gp (drawing the temporary of <name>.png), and its
+// data: x = source × setting, a series per mode (offset a little), mean ± 95 %. Returns the
+// name, or "" when no mode has the figure.
+std::string ChartScript(const SweepTables& t, const std::string& figure, const std::string& dir,
+                        const std::string& terminal) {
   std::vector<std::string> labels;
   std::map<std::string, std::ostringstream> data;  // mode -> rows
   for (const SweepStatsRow& r : t.aggregate) {
@@ -67,8 +69,9 @@ std::string Chart(const SweepTables& t, const std::string& figure, const std::st
   if (data.empty()) return "";
   const std::string stem = "sweep_" + SafeName(figure);
   std::ostringstream gp;
+  const std::string tmp = io::TempPathFor((fs::path(dir) / (stem + ".png")).string());
   gp << "set terminal " << terminal << " noenhanced size 800,450\nset output "
-     << Quote(stem + ".tmp.png", '\'') << "\nset ylabel " << Quote(figure, '\'')
+     << Quote(fs::path(tmp).filename().string(), '\'') << "\nset ylabel " << Quote(figure, '\'')
      << "\nset grid\nset key outside top center horizontal\nset offsets 0.5, 0.5, 0, 0\n"
      << "set yrange [0:*]\n"
      << "set xtics rotate by -20 (";
@@ -89,19 +92,28 @@ std::string Chart(const SweepTables& t, const std::string& figure, const std::st
        << " title " << Quote(mode, '\'');
   }
   gp << "\n";
-  const fs::path script = fs::path(dir) / "plot_data" / (stem + ".gp");
-  io::WriteFileAtomically(script.string(), gp.str());
-  const std::string cmd = "cd " + Quote(dir, '\'') + " && " + Quote(gnuplot, '\'') + " " +
-                          Quote("plot_data/" + stem + ".gp", '\'') + " 2> " +
-                          Quote("plot_data/" + stem + ".log", '\'');
-  std::error_code ec;
-  const fs::path tmp = fs::path(dir) / (stem + ".tmp.png");
-  if (std::system(cmd.c_str()) != 0 || !fs::exists(tmp, ec)) {
-    fs::remove(tmp, ec);
-    return "";
+  gp << "unset output\n";
+  io::WriteFileAtomically((fs::path(dir) / "plot_data" / (stem + ".gp")).string(), gp.str());
+  return stem;
+}
+
+/// The key figures' charts, drawn by the one gnuplot runner (eval/common/gnuplot_run.hpp);
+/// the PNG names of those drawn.
+std::vector<std::string> Charts(const SweepTables& t, const std::string& dir,
+                                const std::string& gnuplot, const std::string& terminal) {
+  fs::create_directories(fs::path(dir) / "plot_data");
+  std::vector<std::string> names;
+  for (const std::string& f : SweepKeyFigures()) {
+    const std::string name = ChartScript(t, f, dir, terminal);
+    if (!name.empty()) names.push_back(name);
   }
-  io::CommitTempFile(tmp.string(), (fs::path(dir) / (stem + ".png")).string());
-  return stem + ".png";
+  std::vector<std::string> charts;
+  for (const std::string& name : RunGnuplotScripts(gnuplot, dir, names).drawn) {
+    const std::string png = (fs::path(dir) / (name + ".png")).string();
+    io::CommitTempFile(io::TempPathFor(png), png);
+    charts.push_back(name + ".png");
+  }
+  return charts;
 }
 
 std::string Table(const SweepTables& t, const std::vector<SweepStatsRow>& rows,
@@ -144,13 +156,7 @@ std::vector<std::string> WriteSweepReport(const SweepTables& t, const std::strin
   std::vector<std::string> charts;
   std::string terminal;
   const bool have_gnuplot = GnuplotAvailable(gnuplot, &terminal);
-  if (have_gnuplot) {
-    fs::create_directories(fs::path(dir) / "plot_data");
-    for (const std::string& f : SweepKeyFigures()) {
-      const std::string png = Chart(t, f, dir, gnuplot, terminal);
-      if (!png.empty()) charts.push_back(png);
-    }
-  }
+  if (have_gnuplot) charts = Charts(t, dir, gnuplot, terminal);
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>lifelong sweep</title>\n"
     << "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <ostream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -130,6 +131,7 @@ struct ModeResults {
   std::map<std::string, std::vector<LoopCurvePoint>> loop_curves;
   std::vector<AlignedTrack> reference_tracks;
   ReportPage page;
+  std::set<std::string> files;  ///< written, relative to the output directory
 
   /// Evaluates a mode, writes its outputs and frees its mapper.
   void Finish(ModeRunner* r, const std::vector<Observation>& stream,
@@ -147,6 +149,7 @@ struct ModeResults {
     if (!r->changes_png().empty()) {
       page.change_strips.push_back({r->changes_png(), r->name() + ": " + r->changes_caption()});
     }
+    files.insert(r->written().begin(), r->written().end());
     r->Release();
   }
 };
@@ -206,15 +209,17 @@ void RunInTurn(const std::vector<Observation>& stream, const std::optional<Groun
   }
 }
 
-/// trajectories.png: the modes aligned to the log's reference trajectory, when it has one.
-void WriteReferenceFigure(const ExperimentConfig& config, const std::vector<AlignedTrack>& tracks) {
-  if (tracks.empty()) return;
+/// trajectories.png: the modes aligned to the log's reference trajectory, when it has one;
+/// whether it was written.
+bool WriteReferenceFigure(const ExperimentConfig& config, const std::vector<AlignedTrack>& tracks) {
+  if (tracks.empty()) return false;
   std::vector<Pose2> reference;
   for (const StampedPose& p : config.reference) reference.push_back(p.T_world_robot);
   const std::string name =
       config.log && config.log->reference ? *config.log->reference : std::string("reference");
   WriteTrajectoryFigure((fs::path(config.out_dir) / "trajectories.png").string(), reference,
                         "reference: " + name, tracks);
+  return true;
 }
 
 }  // namespace
@@ -248,8 +253,16 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     RunInTurn(stream, truth, config, runners, &results);
   }
   ThrowIfInterrupted();
-  if (truth) WriteTruth(stream, *truth, config);
-  WriteReferenceFigure(config, results.reference_tracks);
+  results.files.insert("config.yaml");
+  if (truth) {
+    WriteTruth(stream, *truth, config);
+    for (const char* f : {"map.pgm", "map.yaml", "trajectory.tum", "map.png"}) {
+      results.files.insert(std::string("truth/") + f);
+    }
+  }
+  if (WriteReferenceFigure(config, results.reference_tracks)) {
+    results.files.insert("trajectories.png");
+  }
   PlotConfig plot_config;
   plot_config.log_time = true;  // the modes differ by orders of magnitude
   plot_config.mode_order = summary.mode_order;
@@ -262,7 +275,12 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   ReportPage& page = results.page;
   page.summary = summary;
   page.command_line = config.command_line;
-  CompleteReportPage(MakeReportContext(config, stream, truth, plot_config), &page);
+  ReportContext context = MakeReportContext(config, stream, truth, plot_config);
+  context.files = std::move(results.files);
+  for (const std::string& png : plots.files) context.files.insert(fs::path(png).filename());
+  for (const FailedFigure& f : plots.failed) context.failed_plots.push_back(f.figure);
+  context.gnuplot_ran = plots.gnuplot_found;
+  CompleteReportPage(context, &page);
   WriteReportHtml((fs::path(config.out_dir) / "report.html").string(), page);
   WriteSummaryJson((fs::path(config.out_dir) / "summary.json").string(), summary);
   output.Commit();

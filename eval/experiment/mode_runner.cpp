@@ -308,6 +308,16 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                    T_truth_est,
                    MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
   *map_png = name_ + "/map.png";
+  for (const char* f : {"trajectory.tum", "graph.g2o", "map.pgm", "map.yaml", "loops.csv",
+                        "timeline.csv", "map.png"}) {
+    written_.push_back(name_ + "/" + f);
+  }
+  if (mode_.Prunes()) {
+    written_.push_back(name_ + "/marginalizations.csv");
+    written_.push_back(name_ + "/sparsifications.csv");
+  }
+  if (!changes_png_.empty()) written_.push_back(changes_png_);
+  written_.push_back("graph_" + name_ + ".png");
   return summary;
 }
 

@@ -65,7 +65,8 @@ class ModeRunner {
   std::vector<LoopCurvePoint> loop_curve_;
   std::vector<Pose2> aligned_to_reference_;
   std::string changes_png_, changes_caption_;  ///< the changed objects' strip (change_tiles)
-  std::vector<PresentAt> present_at_;          ///< ScorePresentAt's, in time order
+  std::vector<std::string> written_;
+  std::vector<PresentAt> present_at_;  ///< ScorePresentAt's, in time order
   SequentialSummary sequential_;
   std::optional<int> first_pass_end_;
   double seconds_ = 0.0;
@@ -80,6 +81,8 @@ class ModeRunner {
   /// The strip of changed doors and boxes (eval/figures/change_tiles.hpp), relative to the run's
   /// directory, and its caption; empty when nothing changed.
   const std::string& changes_png() const { return changes_png_; }
+  /// The files Finish wrote, relative to the output directory.
+  const std::vector<std::string>& written() const { return written_; }
   const std::string& changes_caption() const { return changes_caption_; }
 };
 

@@ -186,6 +186,7 @@ std::string Prepare(const std::string& out_dir, const PlotConfig& c, PlotResult*
   std::error_code ec;
   fs::create_directories(fs::path(out_dir) / "plot_data", ec);
   if (ec) r->error = out_dir + "/plot_data: " + ec.message();
+  r->gnuplot_found = !ec;
   return ec ? "" : terminal;
 }
 
@@ -353,7 +354,7 @@ PlotResult PlotRun(const ModeTimelines& timelines,
 
 PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
                          const PlotConfig& config) {
-  if (timelines.empty()) return {false, "no timelines to plot", {}, {}};
+  if (timelines.empty()) return {false, "no timelines to plot", {}, {}, false};
   return PlotRun(timelines, {}, {}, out_dir, config);
 }
 

@@ -41,6 +41,7 @@ struct PlotResult {
   std::string error;
   std::vector<std::string> files;
   std::vector<FailedFigure> failed;
+  bool gnuplot_found = false;  ///< gnuplot ran (plot_data/ was made)
 };
 
 /// mode name -> its timeline.

@@ -64,22 +64,21 @@ constexpr std::size_t kLeadPlots = 3;  // time per observation, nodes, edges
 /// The plots drawn, and those whose gnuplot script failed (eval/figures/plots.hpp: the script is
 /// in plot_data/, its messages in plot_data/<name>.log, and there is no <name>.png).
 void Plots(const ReportContext& c, ReportPage* page) {
-  const fs::path dir(c.out_dir);
   page->lead_figures.clear(), page->figures.clear(), page->failed_figures.clear();
   page->figures_note.clear();
   const auto plots = PlotCaptions(c);
   for (std::size_t i = 0; i < plots.size(); ++i) {
     const std::string file = plots[i].first;
     const std::string stem = fs::path(file).stem().string();
-    if (fs::exists(dir / file)) {
+    if (c.files.count(file)) {
       (i < kLeadPlots ? page->lead_figures : page->figures)
           .push_back({file, plots[i].second, 0, 0});
-    } else if (fs::exists(dir / "plot_data" / (stem + ".log"))) {
+    } else if (std::count(c.failed_plots.begin(), c.failed_plots.end(), file)) {
       page->failed_figures.push_back({file, "plot_data/" + stem + ".log"});
     }
   }
   if (page->lead_figures.empty() && page->figures.empty() && page->failed_figures.empty()) {
-    page->figures_note = fs::exists(dir / "plot_data")
+    page->figures_note = c.gnuplot_ran
                              ? "No charts were drawn: gnuplot failed (see plot_data/gnuplot.log)."
                              : "No charts were drawn: gnuplot was not found when this run was "
                                "made (the run printed a warning). Install gnuplot and run again.";
@@ -143,19 +142,19 @@ void MapFigures(const ReportContext& c, ReportPage* page) {
     return ReportFigure{path, caption, w, h};
   };
   std::vector<ReportMapCard> cards;
-  if (fs::exists(dir / "truth" / "map.png")) {
+  if (c.files.count("truth/map.png")) {
     cards.push_back({"ground truth", "", {figure("truth/map.png", "walls, doors, boxes, path")}});
   }
   for (const std::string& mode : OrderedModes(page->summary)) {
     ReportMapCard card{mode, ModeColourHex(mode), {}};
     const std::string size = GraphSize(page->summary.modes.at(mode));
     const auto map = page->maps.find(mode);
-    if (map != page->maps.end() && fs::exists(dir / map->second)) {
+    if (map != page->maps.end() && c.files.count(map->second)) {
       card.figures.push_back(
           figure(map->second, "map and graph" + (size.empty() ? "" : ", " + size)));
     }
     const std::string graph = "graph_" + mode + ".png";
-    if (fs::exists(dir / graph)) card.figures.push_back(figure(graph, "the graph alone"));
+    if (c.files.count(graph)) card.figures.push_back(figure(graph, "the graph alone"));
     if (!card.figures.empty()) cards.push_back(std::move(card));
   }
   const auto [columns, factor] = MapGrid(cards, c);
@@ -181,35 +180,35 @@ void MapFigures(const ReportContext& c, ReportPage* page) {
       " %; click a map for full size.";
 }
 
-/// A link for each file that exists.
-ReportLinkGroup Links(const std::string& out_dir, const std::string& name, const std::string& dir,
-                      const std::vector<const char*>& files) {
+/// A link for each of `names` (in `dir`) that the run wrote.
+ReportLinkGroup Links(const ReportContext& c, const std::string& name, const std::string& dir,
+                      const std::vector<std::string>& names) {
   ReportLinkGroup g{name, {}};
-  for (const char* f : files) {
+  for (const std::string& f : names) {
     const std::string rel = dir.empty() ? f : dir + "/" + f;
-    if (fs::exists(fs::path(out_dir) / rel)) g.links.push_back({f, rel});
+    if (c.files.count(rel)) g.links.push_back({f, rel});
   }
   return g;
 }
 
 std::vector<ReportLinkGroup> FileLinks(const ReportContext& c, const ReportPage& page) {
   std::vector<ReportLinkGroup> out;
-  ReportLinkGroup run = Links(c.out_dir, "run", "", {"config.yaml"});
+  ReportLinkGroup run = Links(c, "run", "", {"config.yaml"});
   // summary.json is written right after this page and is the one link made before its
   // file exists: it is the run's main output, and a run that fails in between leaves no
   // summary.json (docs/output-contract.md), which marks the whole directory as incomplete anyway.
   run.links.insert(run.links.begin(), {"summary.json", "summary.json"});
   out.push_back(run);
   for (const std::string& mode : OrderedModes(page.summary)) {
-    ReportLinkGroup g = Links(c.out_dir, mode, mode,
+    ReportLinkGroup g = Links(c, mode, mode,
                               {"timeline.csv", "marginalizations.csv", "sparsifications.csv",
                                "graph.g2o", "trajectory.tum", "map.pgm", "map.yaml", "map.png"});
-    const ReportLinkGroup graph = Links(c.out_dir, mode, "", {("graph_" + mode + ".png").c_str()});
+    const ReportLinkGroup graph = Links(c, mode, "", {"graph_" + mode + ".png"});
     g.links.insert(g.links.end(), graph.links.begin(), graph.links.end());
     if (!g.links.empty()) out.push_back(g);
   }
-  ReportLinkGroup truth = Links(c.out_dir, "ground truth", "truth",
-                                {"trajectory.tum", "map.pgm", "map.yaml", "map.png"});
+  ReportLinkGroup truth =
+      Links(c, "ground truth", "truth", {"trajectory.tum", "map.pgm", "map.yaml", "map.png"});
   if (!truth.links.empty()) out.push_back(truth);
   return out;
 }

@@ -6,8 +6,10 @@
 // for the log and the provenance.
 #pragma once
 
+#include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "eval/figures/plots.hpp"
 #include "eval/report/report_html.hpp"
@@ -15,7 +17,12 @@
 namespace lifelong::eval {
 
 struct ReportContext {
-  std::string out_dir;            ///< the output directory; the page's links are relative to it
+  std::string out_dir;  ///< the output directory; the page's links are relative to it
+  /// The files the run's writers wrote, relative to out_dir: the page shows and links these
+  /// and no others (summary.json, written after the page, is always linked).
+  std::set<std::string> files;
+  std::vector<std::string> failed_plots;  ///< plots whose gnuplot script failed (name.png)
+  bool gnuplot_ran = false;               ///< gnuplot was found (then no chart means it failed)
   double map_m_per_px = 0.05;     ///< m per pixel of every map figure (eval/figures/run_maps.hpp)
   bool truth_frame = false;       ///< maps drawn in the truth frame (runs with ground truth)
   int moving_average = 25;        ///< observations in time_per_obs.png's moving average

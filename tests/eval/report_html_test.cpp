@@ -106,18 +106,25 @@ void Png(const fs::path& p, int w, int h) {
   WritePng(p.string(), Image{w, h, std::vector<std::uint8_t>(3u * w * h, 255)});
 }
 
-TEST(ReportFilesTest, LinksOnlyFilesThatExistAndPlotsInTheSeedsOrder) {
+// The page links and shows the files the run's writers wrote, and no other file of the
+// directory (a stale one left there is not the run's).
+TEST(ReportFilesTest, LinksOnlyFilesTheRunWroteAndPlotsInTheSeedsOrder) {
   const fs::path dir = OutDir();
+  ReportContext c;
+  c.out_dir = dir.string();
   for (const char* f : {"config.yaml", "standard/timeline.csv", "standard/graph.g2o",
                         "pruned/timeline.csv", "pruned/marginalizations.csv"}) {
     Touch(dir / f);
+    c.files.insert(f);
   }
-  Png(dir / "nodes.png", 8, 5);
-  Png(dir / "time_per_obs.png", 8, 5);
-  Png(dir / "memory.png", 8, 5);
+  Touch(dir / "standard" / "trajectory.tum");  // on disk, but not written by this run
+  for (const char* f : {"nodes.png", "time_per_obs.png", "memory.png"}) {
+    Png(dir / f, 8, 5);
+    c.files.insert(f);
+  }
+  Png(dir / "edges.png", 8, 5);  // likewise
+  c.gnuplot_ran = true;
   ReportPage page = Page();
-  ReportContext c;
-  c.out_dir = dir.string();
   page.summary.mode_order = {"standard", "pruned"};
   CompleteReportPage(c, &page);
   std::vector<std::string> lead, plots;
@@ -153,6 +160,7 @@ TEST(ReportFilesTest, MapsTruthFirstAtOneDisplayScale) {
   page.maps = {{"standard", "standard/map.png"}, {"pruned", "pruned/map.png"}};
   ReportContext c;
   c.out_dir = dir.string();
+  c.files = {"truth/map.png", "standard/map.png", "pruned/map.png", "graph_pruned.png"};
   page.summary.mode_order = {"pruned", "standard"};
   c.truth_frame = true;
   c.page_width_px = 900;

@@ -69,6 +69,9 @@ TEST(ReportLayoutTest, AFailedFigureIsNamedWithItsLog) {
   ReportPage page = Page();
   ReportContext c;
   c.out_dir = dir.string();
+  c.files = {"nodes.png"};
+  c.failed_plots = {"kld.png"};
+  c.gnuplot_ran = true;
   CompleteReportPage(c, &page);
   ASSERT_EQ(page.failed_figures.size(), 1u);
   EXPECT_EQ(page.failed_figures[0].label, "kld.png");
@@ -91,7 +94,7 @@ TEST(ReportLayoutTest, APageWithoutChartsSaysWhy) {
   EXPECT_TRUE(page.lead_figures.empty());
   EXPECT_NE(page.figures_note.find("gnuplot was not found"), std::string::npos);
   EXPECT_NE(ReportHtmlText(page).find(page.figures_note), std::string::npos);
-  fs::create_directories(dir / "plot_data");
+  c.gnuplot_ran = true;
   ReportPage failed = Page();
   CompleteReportPage(c, &failed);
   EXPECT_NE(failed.figures_note.find("gnuplot failed"), std::string::npos);
@@ -110,13 +113,15 @@ TEST(ReportLayoutTest, MapCardsFillTheirRows) {
     WritePng((dir / rel).string(), Image{841, 441, std::vector<std::uint8_t>(3u * 841 * 441, 9)});
   };
   png("truth/map.png");
+  ReportContext c;
+  c.out_dir = dir.string();
+  c.files = {"truth/map.png"};
   for (const std::string& m : page.summary.mode_order) {
     png(m + "/map.png");
     png("graph_" + m + ".png");
     page.maps[m] = m + "/map.png";
+    c.files.insert({m + "/map.png", "graph_" + m + ".png"});
   }
-  ReportContext c;
-  c.out_dir = dir.string();
   CompleteReportPage(c, &page);
   ASSERT_EQ(page.map_cards.size(), 4u);
   EXPECT_EQ(page.map_columns, 4);

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "slam/graph/pose_graph.hpp"
-#include "slam/mapping/mapper.hpp"
 #include "slam/mapping/mapper_config.hpp"
+#include "slam/mapping/mapper_records.hpp"
 #include "slam/mapping/removal_policy.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 

@@ -1,7 +1,7 @@
 // The module liblifelong_video.so: the frame sink of eval/video/video_sink.hpp with what it needs
 // (OpenGL through EGL or OSMesa, OpenCV's video writer). `lifelong run --video/--frames`
 // loads it; every other run starts without those libraries, which cost ~0.2 s of dynamic
-// loading a process (BENCHMARKS.md).
+// loading a process (docs/results.md "Exact speed-ups").
 #pragma once
 
 #include <memory>

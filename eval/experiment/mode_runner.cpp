@@ -249,6 +249,19 @@ void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajector
   for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
 }
 
+void ModeRunner::RecordWritten() {
+  for (const char* f : {"trajectory.tum", "graph.g2o", "map.pgm", "map.yaml", "loops.csv",
+                        "timeline.csv", "map.png"}) {
+    written_.push_back(name_ + "/" + f);
+  }
+  if (mode_.Prunes()) {
+    written_.push_back(name_ + "/marginalizations.csv");
+    written_.push_back(name_ + "/sparsifications.csv");
+  }
+  if (!changes_png_.empty()) written_.push_back(changes_png_);
+  written_.push_back("graph_" + name_ + ".png");
+}
+
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                const std::optional<GroundTruth>& truth,
                                const std::vector<Relation>& relations, std::vector<double>* kld,
@@ -308,16 +321,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                    T_truth_est,
                    MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
   *map_png = name_ + "/map.png";
-  for (const char* f : {"trajectory.tum", "graph.g2o", "map.pgm", "map.yaml", "loops.csv",
-                        "timeline.csv", "map.png"}) {
-    written_.push_back(name_ + "/" + f);
-  }
-  if (mode_.Prunes()) {
-    written_.push_back(name_ + "/marginalizations.csv");
-    written_.push_back(name_ + "/sparsifications.csv");
-  }
-  if (!changes_png_.empty()) written_.push_back(changes_png_);
-  written_.push_back("graph_" + name_ + ".png");
+  RecordWritten();
   return summary;
 }
 

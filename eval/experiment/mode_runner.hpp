@@ -50,6 +50,8 @@ class ModeRunner {
   LoopVerificationSummary SummarizeLoops() const;
   /// ATE and RPE at 1 m against config.reference; keeps the aligned estimate for the figure.
   void ScoreAgainstReference(const std::vector<StampedPose>& trajectory, ModeSummary* summary);
+  /// Records the files Finish wrote (written()).
+  void RecordWritten();
 
   /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame);
   /// also fills loop_curve().

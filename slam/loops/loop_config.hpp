@@ -55,7 +55,7 @@ struct LoopClosingConfig {
   /// uncertainties than the full one, so most of pruned's searches grow to the largest
   /// window: 5 makes pruned's loop closing cheaper than standard's on freiburg-079, but
   /// loses closures on logs it was not tuned on (acapulco, the infinite corridor), so the
-  /// default stays 1 (BENCHMARKS.md "Loop closing's cost by mode").
+  /// default stays 1 (docs/results.md "Loop closing's cost by mode").
   int beyond_window_every = 1;
   int neighbours_per_candidate = 2;  ///< graph neighbours of each candidate in the submap
   /// The submap is made of its nodes' surfaces, by the incremental matcher's rule

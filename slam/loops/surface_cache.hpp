@@ -1,7 +1,7 @@
 // A bounded cache of the nodes' loop-closing reference points (surface points in the robot
 // frame, SurfacePoints). Consecutive loop-closing attempts build their submaps from mostly
 // the same nodes, whose points depend on the scan alone, so recomputing them per attempt
-// was a fifth of loop closing (BENCHMARKS.md). Least recently used entries go first, so the
+// was a fifth of loop closing (docs/results.md "Exact speed-ups"). LRU entries go first, so the
 // cache holds the neighbourhood being revisited, whatever the length of the run. Internal
 // to slam.
 #pragma once

@@ -20,7 +20,7 @@ namespace lifelong::slam {
 struct KeyframeConfig {
   /// An observation is taken after this much motion... On freiburg-079 and the freiburg campus
   /// real odometry drifts past the matcher's window within 0.5 m; 0.25 m (and 0.2 rad) maps
-  /// them, but costs the simulated scenarios ATE and time (BENCHMARKS.md "Sequential matching
+  /// them, but costs the simulated scenarios ATE and time (docs/results.md "Sequential matching
   /// on real odometry"), so it is not the default.
   double min_translation_m = 0.5;
   double min_rotation_rad = 0.35;  ///< ...or this much turning (odometry)
@@ -36,7 +36,7 @@ struct PruningConfig {
   int keep_recent_nodes = 3;  ///< the newest nodes are never removed
   /// Prune at every n-th graph node (1: at every one, the seed's rule). Larger trades the
   /// information gains' cost (most of pruned's overhead on short runs) for nodes kept a
-  /// little longer (BENCHMARKS.md "Pruning every n-th node").
+  /// little longer (docs/results.md "Pruning every n-th node").
   int round_period = 1;
   int node_budget = 0;  ///< > 0: remove the lowest gain past this many nodes
   /// > 0 (Chow-Liu mode): when the graph holds more edges than this per node, the edges in
@@ -53,7 +53,7 @@ struct PruningConfig {
   /// Where the new factors' measurements put their minimum (sparsifier.hpp "Means"): at the
   /// estimate (zero residual, the seed), or moved to keep the exact marginal's gradient or
   /// mean, so the pull of measurements the estimate has not yet followed survives a removal.
-  /// The marginal's mean with robust_marginal is the default (BENCHMARKS.md, issue #16).
+  /// Default, with robust_marginal (docs/results.md "Where a removal puts its factors' minimum").
   FactorMeans factor_means = FactorMeans::kMarginalMean;
   /// A loop edge enters a removal's marginal with the weight the optimizer's robust kernel
   /// gives it at the estimate (its IRLS weight), as in the objective the optimizer minimizes.
@@ -67,7 +67,7 @@ struct PruningConfig {
 
 /// The mapper's back-end: warm-started Gauss-Newton with a robust Cauchy kernel on the loop
 /// edges. Near the optimum it needs no damping, and every LM trial step costs a
-/// factorization (3x the back-end time on corridor_100, BENCHMARKS.md).
+/// factorization (3x the back-end time on corridor_100, measured at 98ec146 on 2026-11-22).
 inline OptimizerParams OnlineOptimizerParams() {
   OptimizerParams p;
   p.method = OptimizerMethod::kGaussNewton;

@@ -30,7 +30,7 @@ void Mapper::State::Prune(NodeId current) {
   // pruned graph is small). The map is not re-rendered for it: it follows the estimate on the
   // schedule it follows in standard mode (loops.optimize_edge_chi2, optimize_every), and the
   // gains are those of the map as rendered. Re-rendering before every round moved each scan
-  // once per closure: 4x the optimizations and 3x the map update on Intel (BENCHMARKS.md).
+  // once per closure: 4x the optimizations and 3x the map update on Intel (docs/results.md).
   if (since_optimize > 0) Optimize();
   const NodeId anchor = graph.NodeIds().front();
   std::set<NodeId> protected_ids{current, anchor};

@@ -11,7 +11,7 @@ namespace lifelong::slam {
 /// defaults). Real odometry turns by more than a simulated one between observations, and the
 /// mean likelihood of a match in a wide hall, whose returns lie far apart, is low: a 0.26 rad
 /// window and a 0.5 score failed one match in three on acapulco and edmonton and bent csail
-/// (BENCHMARKS.md "Sequential matching on real odometry"). The linear window stays 0.3 m: at
+/// (docs/results.md "Sequential matching on real odometry"). The linear window stays 0.3 m: at
 /// 0.5 m the matcher slips along the simulated corridors.
 inline MatcherConfig IncrementalMatcherDefaults() {
   MatcherConfig m;

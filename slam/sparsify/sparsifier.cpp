@@ -327,7 +327,7 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // that fit and dropping the others was tried first: the dropped ones are the barely informed
   // directions, and their gradient left in the graph then moved its optimum far along them
   // (M3500 at keep share 0.1, glc: KLD 1458 with mean term 1350, against 106 all-or-nothing;
-  // MIT at 0.1, exact: 81 against 28; BENCHMARKS.md). The test is on the target residual, not
+  // MIT at 0.1, exact: 81 against 28; commit 01338e2). The test is on the target residual, not
   // the displacement alone: a chain of odometry whose optimum leaves 3.05 rad of heading
   // residual (MIT, nodes 330-340) needs a large but representable target.
   const std::vector<FactorHeading> headings = Headings(nodes, values, *edges, *cliques);

@@ -1,6 +1,6 @@
 // Map-quality regression tests (issue #6): short scenarios with fixed seeds run through the
 // whole pipeline (simulate, map with standard and pruned, evaluate, write the outputs), and
-// their metrics must stay within bounds recorded from a good run (BENCHMARKS.md). A change
+// their metrics must stay within bounds recorded from a good run (docs/results.md). A change
 // that makes the maps worse fails here.
 #include <filesystem>
 #include <fstream>
@@ -67,7 +67,7 @@ TEST(MapQualityRegression, Corridor3) {
   const nlohmann::json s = RunScenario("corridor_3");
   const auto& standard = s["modes"]["standard"];
   const auto& pruned = s["modes"]["pruned"];
-  // Recorded (BENCHMARKS.md): standard ATE 1.8 cm, blur 2.8 cm, recall 0.89, 1.19 e/n;
+  // Recorded at 71689bb (docs/results.md): standard ATE 1.8 cm, blur 2.8 cm, recall 0.89, 1.19 e/n;
   // pruned ATE 4.0 cm, blur 1.8 cm, recall 0.82, 1.28 e/n, 7 % kept.
   // Since the seed split (678ebba): standard ATE 1.9 cm, blur 2.49 cm, recall 0.89,
   // 1.21 e/n; pruned ATE 2.4 cm, blur 2.80 cm, recall 0.84, 1.18 e/n, 7 % kept.
@@ -75,7 +75,7 @@ TEST(MapQualityRegression, Corridor3) {
   Check(pruned, {0.07, 3.5, 0.72, 2.0, 15.0, 0.95}, true);
   EXPECT_LT(pruned["nodes_final"].get<int>(), standard["nodes_final"].get<int>() / 4);
   // Not "pruned is sharper": on corridor_3 that is a coin toss of the noise draws (over six
-  // seeds pruned - standard is -0.07 cm [-0.74, 0.61], BENCHMARKS.md "Sweeps"). A pruned
+  // seeds pruned - standard -0.07 cm [-0.74, 0.61], docs/results.md "The gain threshold"). A pruned
   // map much blurrier than standard's on the same stream still fails.
   EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(),
             standard["blur"]["mean_cm"].get<double>() + 0.5);
@@ -94,7 +94,7 @@ TEST(MapQualityRegression, Office5min) {
   Check(pruned, {0.07, 4.5, 0.58, 2.0, 60.0, 0.90}, true);
   // Not "pruned is sharper" on this one seed: with the matcher's real-odometry defaults
   // (2026-12-04) seed 11 gives 2.44 cm against standard's 1.58, while over seeds 1-5 pruned -
-  // standard is -0.24 cm [-0.68, +0.21] (sweeps/twins_10min.yaml, BENCHMARKS.md "Sequential
+  // standard is -0.24 cm [-0.68, +0.21] (sweeps/twins_10min.yaml, docs/results.md "Sequential
   // matching on real odometry"). A pruned map much blurrier than standard's still fails.
   EXPECT_LT(pruned["blur"]["mean_cm"].get<double>(),
             standard["blur"]["mean_cm"].get<double>() + 1.5);

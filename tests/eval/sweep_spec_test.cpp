@@ -137,7 +137,7 @@ TEST(SweepSpec, SettingsBecomeNestedYaml) {
 }
 
 // Every SPEC shipped in sweeps/ must load (its scenarios, logs and setting keys exist and
-// check out), so that a README or BENCHMARKS command never meets a broken SPEC.
+// check out), so that a README or docs/results.md command never meets a broken SPEC.
 TEST(SweepSpec, EveryShippedSpecLoads) {
   int specs = 0;
   for (const auto& entry : fs::directory_iterator(kSource + "/sweeps")) {

@@ -1,4 +1,4 @@
-// The incremental matcher on real odometry (BENCHMARKS.md "Sequential matching on real
+// The incremental matcher on real odometry (docs/results.md "Sequential matching on real
 // odometry"): a wheel slip that turns the odometry by more than the old 0.26 rad window between
 // two observations is matched, not handed to the odometry fallback (csail bent by it); a match
 // ambiguous along one direction takes the odometry's position along it (simulated corridors

@@ -1,5 +1,6 @@
 #include "slam/mapping/map_keeper.hpp"
 
+#include <cmath>
 #include <utility>
 
 namespace lifelong::slam {
@@ -33,6 +34,18 @@ void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
   const std::vector<CellUpdate> to = grid_.TouchedCells(scan, T, cuts);
   MoveCells(from, to);
   Track(id, to);
+}
+
+void MapKeeper::Follow(const Values& values, double epsilon_m, double epsilon_rad,
+                       NodeStore* nodes) {
+  for (auto& [id, data] : *nodes) {
+    const Pose2& X = values.at(id);
+    const Pose2 d = Between(data.T_world_map, X);
+    if (std::hypot(d.x, d.y) > epsilon_m || std::abs(d.theta) > epsilon_rad) {
+      Move(id, data.scan, data.T_world_map, X, data.cuts);
+      data.T_world_map = X;
+    }
+  }
 }
 
 void MapKeeper::Remove(NodeId id) { Change(Untrack(id), false); }

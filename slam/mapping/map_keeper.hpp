@@ -14,6 +14,7 @@
 #include "slam/grid/gain_index.hpp"
 #include "slam/grid/grid_map.hpp"
 #include "slam/mapping/scoped_ms.hpp"
+#include "slam/matching/node_data.hpp"
 
 namespace lifelong::slam {
 
@@ -38,6 +39,10 @@ class MapKeeper {
   /// With gains: node id's scan traced again at T with the beams `cuts` cut (a policy found
   /// them outdated); the gains of the scans sharing its cells follow.
   void Retrace(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts);
+  /// The map follows the estimate: every node whose pose in `values` moved more than
+  /// epsilon_m or turned more than epsilon_rad from where its scan is rendered
+  /// (NodeData::T_world_map) is rendered there instead, and its T_world_map updated.
+  void Follow(const Values& values, double epsilon_m, double epsilon_rad, NodeStore* nodes);
   /// With gains: node id's scan leaves the grid.
   void Remove(NodeId id);
 

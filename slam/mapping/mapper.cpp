@@ -157,14 +157,7 @@ void Mapper::State::Optimize() {
 }
 
 void Mapper::State::SyncMap() {
-  for (auto& [id, data] : nodes) {
-    const Pose2& X = values.at(id);
-    const Pose2 d = Between(data.T_world_map, X);
-    if (Norm(d) > config.map_move_epsilon_m || std::abs(d.theta) > config.map_move_epsilon_rad) {
-      keeper.Move(id, data.scan, data.T_world_map, X, data.cuts);
-      data.T_world_map = X;
-    }
-  }
+  keeper.Follow(values, config.map_move_epsilon_m, config.map_move_epsilon_rad, &nodes);
 }
 
 void Mapper::Finish() {

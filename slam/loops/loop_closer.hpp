@@ -29,8 +29,8 @@
 #include "slam/loops/place_index.hpp"
 #include "slam/loops/surface_cache.hpp"
 #include "slam/matching/incremental_config.hpp"
-#include "slam/matching/scan_matcher.hpp"
 #include "slam/matching/node_data.hpp"
+#include "slam/matching/scan_matcher.hpp"
 
 namespace lifelong::slam {
 

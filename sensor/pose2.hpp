@@ -46,4 +46,7 @@ struct Pose2 {
 /// Relative transform from a to b: Between(a, b) = a^-1 * b.
 inline Pose2 Between(const Pose2& a, const Pose2& b) { return a.Inverse() * b; }
 
+/// Length of a pose's translation, m.
+inline double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
+
 }  // namespace lifelong

@@ -59,11 +59,16 @@ void AddVideoFrame(FrameSink* sink, const Observation& obs, const std::optional<
   sink->AddFrame(MakeScene(walls, pose, obs.scan, std::move(panels)));
 }
 
-void WriteTruth(const std::vector<Observation>& stream, const GroundTruth& truth,
-                const ExperimentConfig& config) {
+/// The truth's files; returns those the report shows and links, relative to the output
+/// directory.
+std::vector<std::string> WriteTruth(const std::vector<Observation>& stream,
+                                    const GroundTruth& truth, const ExperimentConfig& config) {
   const std::string dir = (fs::path(config.out_dir) / "truth").string();
-  WriteTruthFiles(dir, stream, truth.walls, config.mapper.grid.resolution_m);
+  std::vector<std::string> files =
+      WriteTruthFiles(dir, stream, truth.walls, config.mapper.grid.resolution_m);
   WriteTruthWalls(dir + "/", truth);
+  for (std::string& f : files) f = "truth/" + f;
+  return files;
 }
 
 }  // namespace
@@ -255,10 +260,8 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   ThrowIfInterrupted();
   results.files.insert("config.yaml");
   if (truth) {
-    WriteTruth(stream, *truth, config);
-    for (const char* f : {"map.pgm", "map.yaml", "trajectory.tum", "map.png"}) {
-      results.files.insert(std::string("truth/") + f);
-    }
+    const std::vector<std::string> written = WriteTruth(stream, *truth, config);
+    results.files.insert(written.begin(), written.end());
   }
   if (WriteReferenceFigure(config, results.reference_tracks)) {
     results.files.insert("trajectories.png");

@@ -249,17 +249,20 @@ void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajector
   for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
 }
 
-void ModeRunner::RecordWritten() {
-  for (const char* f : {"trajectory.tum", "graph.g2o", "map.pgm", "map.yaml", "loops.csv",
-                        "timeline.csv", "map.png"}) {
-    written_.push_back(name_ + "/" + f);
+ModeSummary ModeRunner::SummarizeRun(std::vector<double>* kld) const {
+  const slam::Mapper& m = *mapper_;
+  ModeSummary summary = SummarizeTimeline(timeline_, first_pass_end_);
+  summary.wall_time_s = seconds_;
+  summary.peak_rss_mb = PeakRssMb();
+  if (m.observations() > 0) {
+    summary.scans_kept_pct =
+        100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
   }
-  if (mode_.Prunes()) {
-    written_.push_back(name_ + "/marginalizations.csv");
-    written_.push_back(name_ + "/sparsifications.csv");
-  }
-  if (!changes_png_.empty()) written_.push_back(changes_png_);
-  written_.push_back("graph_" + name_ + ".png");
+  summary.edges_by_kind = EdgesByKind(m.graph());
+  if (sequential_.count > 0) summary.sequential = sequential_;
+  for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
+  if (mode_.Prunes()) summary.kld = SummarizeKld(*kld);
+  return summary;
 }
 
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
@@ -272,26 +275,20 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   const fs::path dir = fs::path(config_.out_dir) / name_;
   fs::create_directories(dir);
   const slam::Mapper& m = *mapper_;
-
-  ModeSummary summary = SummarizeTimeline(timeline_, first_pass_end_);
-  summary.wall_time_s = seconds_;
-  summary.peak_rss_mb = PeakRssMb();
-  if (m.observations() > 0) {
-    summary.scans_kept_pct =
-        100.0 * static_cast<double>(m.graph().NumNodes()) / static_cast<double>(m.observations());
-  }
-  summary.edges_by_kind = EdgesByKind(m.graph());
-  if (sequential_.count > 0) summary.sequential = sequential_;
-  for (const auto& rec : m.marginalizations()) kld->push_back(rec.kl_divergence);
-  if (mode_.Prunes()) summary.kld = SummarizeKld(*kld);
+  ModeSummary summary = SummarizeRun(kld);
 
   const std::vector<StampedPose> trajectory = m.Trajectory();
   std::vector<Pose2> estimate;
   for (const StampedPose& p : trajectory) estimate.push_back(p.T_world_robot);
-  io::WriteTum((dir / "trajectory.tum").string(), trajectory);
-  io::WriteG2o((dir / "graph.g2o").string(), m.graph(), m.values());
+  const auto out = [&](const std::string& file) {  // a file of the mode's, recorded
+    written_.push_back(name_ + "/" + file);
+    return (dir / file).string();
+  };
+  io::WriteTum(out("trajectory.tum"), trajectory);
+  io::WriteG2o(out("graph.g2o"), m.graph(), m.values());
   const OccupancyGrid grid = ToOccupancyGrid(m.map());
-  io::WritePgmMap((dir / "map.pgm").string(), grid);
+  const io::MapFilePaths map_files = io::WritePgmMap(out("map.pgm"), grid);
+  written_.push_back(name_ + "/" + fs::path(map_files.yaml).filename().string());
   const EntropyResult entropy = ComputeMapEntropy(grid);
   summary.map_entropy_bits = entropy.entropy_bits;
   summary.occupied_share = entropy.occupied_share;
@@ -303,25 +300,29 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   if (summary.change && T_truth_est) {
     changes_caption_ =
         WriteChangeTiles((dir / "changes.png").string(), *summary.change, grid, *T_truth_est);
-    if (!changes_caption_.empty()) changes_png_ = name_ + "/changes.png";
+    if (!changes_caption_.empty()) {
+      changes_png_ = name_ + "/changes.png";
+      written_.push_back(changes_png_);
+    }
   }
   if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
+  out("loops.csv");  // written by TruthMetrics when there is truth, else just above
   if (!config_.reference.empty()) ScoreAgainstReference(trajectory, &summary);
   if (!relations.empty()) {
     const RelationsResult rr = ComputeRelationsError(trajectory, relations);
     summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,
                                          rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
   }
-  WriteTimelineCsv((dir / "timeline.csv").string(), timeline_);
+  WriteTimelineCsv(out("timeline.csv"), timeline_);
   if (mode_.Prunes()) {
-    WriteMarginalizations((dir / "marginalizations.csv").string(), m);
-    WriteSparsifications((dir / "sparsifications.csv").string(), m);
+    WriteMarginalizations(out("marginalizations.csv"), m);
+    WriteSparsifications(out("sparsifications.csv"), m);
   }
-  WriteModeFigures(config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()),
-                   T_truth_est,
-                   MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
+  const std::vector<std::string> figures = WriteModeFigures(
+      config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()), T_truth_est,
+      MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
   *map_png = name_ + "/map.png";
-  RecordWritten();
+  written_.insert(written_.end(), figures.begin(), figures.end());
   return summary;
 }
 

@@ -46,12 +46,13 @@ class ModeRunner {
   /// Cumulative loop precision and recall per observation, from the closures' truth.
   std::vector<LoopCurvePoint> LoopCurve(const LoopClosureResult& truth) const;
   void WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const;
+  /// The timeline's and the graph's figures, the peak memory, and the marginalizations' KL
+  /// divergences (appended to *kld).
+  ModeSummary SummarizeRun(std::vector<double>* kld) const;
   /// The loop closer's verification counts, and the accepted edges the kernel switched off.
   LoopVerificationSummary SummarizeLoops() const;
   /// ATE and RPE at 1 m against config.reference; keeps the aligned estimate for the figure.
   void ScoreAgainstReference(const std::vector<StampedPose>& trajectory, ModeSummary* summary);
-  /// Records the files Finish wrote (written()).
-  void RecordWritten();
 
   /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame);
   /// also fills loop_curve().

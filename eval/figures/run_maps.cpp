@@ -92,9 +92,10 @@ RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
   return f;
 }
 
-void WriteModeFigures(const std::string& out_dir, const std::string& mode,
-                      const OccupancyGrid& grid, const GraphOverlay& graph,
-                      const std::optional<Pose2>& T_truth_est, const RunMapFrame& frame) {
+std::vector<std::string> WriteModeFigures(const std::string& out_dir, const std::string& mode,
+                                          const OccupancyGrid& grid, const GraphOverlay& graph,
+                                          const std::optional<Pose2>& T_truth_est,
+                                          const RunMapFrame& frame) {
   FigureLayers layers;
   layers.grid = &grid;
   Canvas canvas = frame.canvas;
@@ -111,6 +112,7 @@ void WriteModeFigures(const std::string& out_dir, const std::string& mode,
   alone.graph = std::move(layers.graph);
   alone.node_radius_px = 2.0;
   WritePng((fs::path(out_dir) / ("graph_" + mode + ".png")).string(), RenderFigure(canvas, alone));
+  return {mode + "/map.png", "graph_" + mode + ".png"};
 }
 
 void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls,
@@ -123,10 +125,12 @@ void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls
   WritePng(path, RenderFigure(canvas, layers));
 }
 
-void WriteTruthFiles(const std::string& dir, const std::vector<Observation>& stream,
-                     const std::vector<Segment>& walls, double resolution_m) {
+std::vector<std::string> WriteTruthFiles(const std::string& dir,
+                                         const std::vector<Observation>& stream,
+                                         const std::vector<Segment>& walls, double resolution_m) {
   fs::create_directories(dir);
-  io::WritePgmMap((fs::path(dir) / "map.pgm").string(), RasterizeWalls(walls, resolution_m));
+  const io::MapFilePaths map =
+      io::WritePgmMap((fs::path(dir) / "map.pgm").string(), RasterizeWalls(walls, resolution_m));
   std::vector<StampedPose> poses;
   for (const Observation& o : stream) {
     if (o.T_world_robot_true) poses.push_back({o.stamp_s, *o.T_world_robot_true});
@@ -134,6 +138,8 @@ void WriteTruthFiles(const std::string& dir, const std::vector<Observation>& str
   io::WriteTum((fs::path(dir) / "trajectory.tum").string(), poses);
   WriteTruthFigure((fs::path(dir) / "map.png").string(), walls, resolution_m,
                    MakeRunMapFrame(stream, &walls, resolution_m));
+  return {fs::path(map.pgm).filename().string(), fs::path(map.yaml).filename().string(),
+          "trajectory.tum", "map.png"};
 }
 
 }  // namespace lifelong::eval

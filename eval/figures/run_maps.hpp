@@ -36,13 +36,15 @@ struct RunMapFrame {
 RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
                             const std::vector<Segment>* walls, double resolution_m);
 
-/// Writes <out_dir>/<mode>/map.png and <out_dir>/graph_<mode>.png. `graph` is in the
+/// Writes <out_dir>/<mode>/map.png and <out_dir>/graph_<mode>.png, and returns those two
+/// paths relative to out_dir. `graph` is in the
 /// mapper's frame; T_truth_est (the ATE alignment) moves grid and graph into the world
 /// frame when the frame is the truth's. Throws std::runtime_error naming a file it cannot
 /// write.
-void WriteModeFigures(const std::string& out_dir, const std::string& mode,
-                      const OccupancyGrid& grid, const GraphOverlay& graph,
-                      const std::optional<Pose2>& T_truth_est, const RunMapFrame& frame);
+std::vector<std::string> WriteModeFigures(const std::string& out_dir, const std::string& mode,
+                                          const OccupancyGrid& grid, const GraphOverlay& graph,
+                                          const std::optional<Pose2>& T_truth_est,
+                                          const RunMapFrame& frame);
 
 /// Writes the truth map (the walls rasterized at resolution_m, the true path thin) on the
 /// frame's canvas to `path`.
@@ -51,8 +53,10 @@ void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls
 
 /// Writes the truth's files into `dir` (created): map.pgm + map.yaml (the walls rasterized
 /// at resolution_m), trajectory.tum (the true pose of every scan) and map.png (the truth
-/// figure on the run's canvas, MakeRunMapFrame(stream, &walls, resolution_m)).
-void WriteTruthFiles(const std::string& dir, const std::vector<Observation>& stream,
-                     const std::vector<Segment>& walls, double resolution_m);
+/// figure on the run's canvas, MakeRunMapFrame(stream, &walls, resolution_m)). Returns the
+/// files' names relative to `dir`.
+std::vector<std::string> WriteTruthFiles(const std::string& dir,
+                                         const std::vector<Observation>& stream,
+                                         const std::vector<Segment>& walls, double resolution_m);
 
 }  // namespace lifelong::eval

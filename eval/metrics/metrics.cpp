@@ -9,8 +9,6 @@ namespace {
 
 constexpr double kRadToDeg = 57.29577951308232;
 
-double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
-
 void RequireSameSize(std::size_t a, std::size_t b, const char* what) {
   if (a != b) throw std::invalid_argument(std::string(what) + ": estimate and truth sizes differ");
 }

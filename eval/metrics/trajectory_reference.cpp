@@ -9,8 +9,6 @@ namespace {
 
 constexpr double kRadToDeg = 57.29577951308232;
 
-double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
-
 Pose2 Interpolate(const StampedPose& a, const StampedPose& b, double t) {
   const double span = b.stamp_s - a.stamp_s;
   const double s = span > 0.0 ? (t - a.stamp_s) / span : 0.0;

@@ -41,7 +41,7 @@ void MapKeeper::Follow(const Values& values, double epsilon_m, double epsilon_ra
   for (auto& [id, data] : *nodes) {
     const Pose2& X = values.at(id);
     const Pose2 d = Between(data.T_world_map, X);
-    if (std::hypot(d.x, d.y) > epsilon_m || std::abs(d.theta) > epsilon_rad) {
+    if (Norm(d) > epsilon_m || std::abs(d.theta) > epsilon_rad) {
       Move(id, data.scan, data.T_world_map, X, data.cuts);
       data.T_world_map = X;
     }

@@ -15,8 +15,6 @@
 namespace lifelong::slam {
 namespace {
 
-double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
-
 double MsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
@@ -94,7 +92,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     values[id] = Pose2();
   } else {
     const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
-    data.travelled_m = nodes.at(last_node).travelled_m + std::hypot(delta.x, delta.y);
+    data.travelled_m = nodes.at(last_node).travelled_m + Norm(delta);
     Pose2 X_new;
     graph.AddEdge(SequentialEdge(id, delta, data.points, &X_new, stats));
     values[id] = X_new;

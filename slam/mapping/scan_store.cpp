@@ -3,12 +3,6 @@
 #include <cmath>
 
 namespace lifelong::slam {
-namespace {
-
-double Norm(const Pose2& p) { return std::hypot(p.x, p.y); }
-
-}  // namespace
-
 std::size_t ScanStore::AddNodeScan(double stamp_s, NodeId node, const Pose2& T_odom_robot) {
   scans_.push_back(Anchored{stamp_s, node, Pose2(), T_odom_robot});
   of_node_[node].push_back(scans_.size() - 1);

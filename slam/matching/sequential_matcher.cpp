@@ -10,7 +10,7 @@
 namespace lifelong::slam {
 
 Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta) {
-  const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * std::hypot(delta.x, delta.y);
+  const double sxy = c.odom_sigma_xy_m + c.odom_sigma_xy_per_m * Norm(delta);
   const double sth = c.odom_sigma_rad + c.odom_sigma_rad_per_rad * std::abs(delta.theta);
   return Eigen::Vector3d(1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (sth * sth)).asDiagonal();
 }

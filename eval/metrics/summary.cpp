@@ -135,7 +135,8 @@ json ModeSummaryJson(const ModeSummary& m) {
   if (m.sequential) {
     j["sequential"] = {{"count", m.sequential->count},
                        {"matched", m.sequential->matched},
-                       {"degenerate", m.sequential->degenerate}};
+                       {"degenerate", m.sequential->degenerate},
+                       {"weak", m.sequential->weak}};
   }
   Put(j, "loop_precision", m.loop_precision);
   Put(j, "loop_recall", m.loop_recall);

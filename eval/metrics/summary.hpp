@@ -61,6 +61,8 @@ struct SequentialSummary {
   std::int64_t matched = 0;  ///< of those, matched (the rest keep odometry alone)
   /// of the matched, ambiguous along one direction, which their odometry measured
   std::int64_t degenerate = 0;
+  /// not matched: weak and not distinct from a rival, so they kept their odometry
+  std::int64_t weak = 0;
 };
 struct KldSummary {
   std::int64_t count = 0;

@@ -188,6 +188,8 @@ const std::vector<TableRow>& SummaryTableRows() {
        "of those, the ones whose match was good; the rest kept odometry alone"},
       {kAccuracy, "/sequential/degenerate", "matches ambiguous along a direction", "", 1, false,
        "of the matched, those whose position along a corridor-like direction came from odometry"},
+      {kAccuracy, "/sequential/weak", "weak matches refused", "", 1, false,
+       "not matched: scored under incremental.weak_score with a rival too close; odometry kept"},
       {kAccuracy, "/loop_precision", "loop-closure precision", "%", 100, false,
        "share of accepted loop closures within 0.3 m and 5 deg of the true relative pose"},
       {kAccuracy, "/loop_recall", "loop-closure recall", "%", 100, false,

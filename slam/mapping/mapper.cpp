@@ -115,6 +115,7 @@ PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta,
   const SequentialMatch m = sequential.Match(nodes, values, recent, X_last, delta, points);
   stats->incremental_match_ok = m.matched;
   stats->incremental_match_degenerate = m.degenerate;
+  stats->incremental_match_weak = m.weak;
   *X_new = m.X_new;
   PoseEdge edge;
   edge.from = last_node;

@@ -111,6 +111,8 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Number("odom_sigma_rad", c.odom_sigma_rad, kPositive);
   v.Number("odom_sigma_rad_per_rad", c.odom_sigma_rad_per_rad, kNonNegative);
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
+  v.Number("weak_score", c.weak_score, kUnit);
+  v.Number("weak_max_ambiguity", c.weak_max_ambiguity, kUnit);
 }
 
 template <class V>

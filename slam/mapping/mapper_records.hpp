@@ -27,6 +27,8 @@ struct StepStats {
   bool incremental_match_ok = false;
   /// ...and ambiguous along a direction, which the odometry measured (max_ambiguity)
   bool incremental_match_degenerate = false;
+  /// ...or refused, weak and not distinct (incremental weak_score, weak_max_ambiguity)
+  bool incremental_match_weak = false;
   bool loop_closed = false;
   bool optimized = false;
   double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update

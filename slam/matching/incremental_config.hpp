@@ -39,6 +39,20 @@ struct IncrementalConfig {
   /// direction towards the rival: the odometry does (slam/matching/match_degeneracy.hpp). 1: off,
   /// the match alone (before 2026-12-04).
   double max_ambiguity = 0.95;
+  /// A weak match (mean likelihood below weak_score) counts only when it is also distinct: its
+  /// best distinct rival scores at most weak_max_ambiguity of it; otherwise the odometry gives
+  /// the edge. A weak score is what a wide hall's sparse returns give (acapulco, edmonton: the
+  /// reason min_score is 0.3), and there every rival stayed under 0.62 of the winner; where
+  /// a scan sees little of the local map (turning in place into a room) a weak winner and a
+  /// rival by 10-30 degrees score alike, and taking the winner turned freiburg-079 by 10-24
+  /// degrees at a step (docs/results.md "Sequential matching on real odometry"). 0: off.
+  double weak_score = 0.5;
+  double weak_max_ambiguity = 0.7;
 };
+
+/// The weak-match rule above: true when `match` (ok) is to be refused.
+inline bool WeakAndAmbiguous(const MatchResult& match, const IncrementalConfig& config) {
+  return match.score < config.weak_score && match.ambiguity > config.weak_max_ambiguity;
+}
 
 }  // namespace lifelong::slam

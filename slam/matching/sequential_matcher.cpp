@@ -30,6 +30,10 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
   grid_.Build(reference, config_.matcher);
   const MatchResult match = ::lifelong::slam::Match(grid_, points, guess, config_.matcher);
   if (!match.ok) return out;
+  if (WeakAndAmbiguous(match, config_)) {
+    out.weak = true;
+    return out;
+  }
   out.X_new = match.T_ref_cur;
   Eigen::Matrix3d information = match.information;  // in the world frame
   if (match.ambiguity > config_.max_ambiguity) {

@@ -1,6 +1,7 @@
 // The front end's sequential step (DESIGN.md data flow, step 2): a new node's scan matched
 // against the local map of the recent nodes' scans around the odometry guess. The match gives
-// the odometry edge's measurement and information; where it fails the odometry alone does,
+// the odometry edge's measurement and information; where it fails, or is weak and not distinct
+// (WeakAndAmbiguous), the odometry alone does,
 // and along a direction the match cannot tell (a corridor) the odometry does too
 // (match_degeneracy.hpp).
 #pragma once
@@ -26,6 +27,7 @@ struct SequentialMatch {
   Eigen::Matrix3d information;  ///< of the edge from the last node, in its error frame
   bool matched = false;         ///< the match was good
   bool degenerate = false;      ///< ...but ambiguous along a direction the odometry gave
+  bool weak = false;            ///< refused: weak and not distinct (WeakAndAmbiguous)
 };
 
 class SequentialMatcher {

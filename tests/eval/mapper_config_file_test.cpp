@@ -113,6 +113,8 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.odom_sigma_rad, ib.odom_sigma_rad);
   EXPECT_EQ(ia.odom_sigma_rad_per_rad, ib.odom_sigma_rad_per_rad);
   EXPECT_EQ(ia.max_ambiguity, ib.max_ambiguity);
+  EXPECT_EQ(ia.weak_score, ib.weak_score);
+  EXPECT_EQ(ia.weak_max_ambiguity, ib.weak_max_ambiguity);
   ExpectSameLoops(a.loops, b.loops);
   EXPECT_EQ(a.pruning.mode.name, b.pruning.mode.name);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
@@ -177,6 +179,8 @@ MapperConfig AllChanged() {
   c.incremental.odom_sigma_rad = 0.03;
   c.incremental.odom_sigma_rad_per_rad = 0.15;
   c.incremental.max_ambiguity = 0.8;
+  c.incremental.weak_score = 0.45;
+  c.incremental.weak_max_ambiguity = 0.65;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;

@@ -83,5 +83,24 @@ TEST(SequentialMatching, ARivalByHeadingAloneChangesNothing) {
   EXPECT_EQ(information(0, 0), 50.0);
 }
 
+// The weak-match rule (incremental_config.hpp): a match under weak_score must be distinct.
+TEST(SequentialMatching, AWeakMatchMustBeDistinct) {
+  const IncrementalConfig config;  // weak below 0.5, distinct at most 0.7
+  MatchResult match;
+  match.ok = true;
+  match.score = 0.36;  // freiburg-079 at 186.6 s: a rival 13 degrees off scored 0.98 of it
+  match.ambiguity = 0.98;
+  EXPECT_TRUE(WeakAndAmbiguous(match, config));
+  match.ambiguity = 0.55;  // a wide hall's weak but distinct match (acapulco) stays
+  EXPECT_FALSE(WeakAndAmbiguous(match, config));
+  match.score = 0.9;  // a strong one is the degeneracy rule's (max_ambiguity)
+  match.ambiguity = 0.98;
+  EXPECT_FALSE(WeakAndAmbiguous(match, config));
+  IncrementalConfig off;
+  off.weak_score = 0.0;
+  match.score = 0.36;
+  EXPECT_FALSE(WeakAndAmbiguous(match, off));
+}
+
 }  // namespace
 }  // namespace lifelong::slam

@@ -9,8 +9,6 @@
 
 #include "slam/backend/optimizer.hpp"
 #include "slam/mapping/mapper_state.hpp"
-#include "slam/matching/scan_matcher.hpp"
-#include "slam/matching/sequential_matcher.hpp"
 
 namespace lifelong::slam {
 namespace {
@@ -77,53 +75,6 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   stats.nodes_removed_total = s.pruner ? static_cast<int>(s.pruner->marginalizations().size()) : 0;
   if (on_observation) on_observation(stats);
   return stats;
-}
-
-void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) {
-  const IncrementalConfig& inc = config.incremental;
-  NodeData data;
-  data.scan = obs.scan;
-  data.points = ScanToPoints(obs.scan, inc.point_spacing_m);
-  data.T_odom_robot = obs.T_odom_robot;
-  data.scan_index = static_cast<int>(scans.size());
-  const NodeId id = next_id++;
-  graph.AddNode(id);
-  if (!have_last) {
-    values[id] = Pose2();
-  } else {
-    const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
-    data.travelled_m = nodes.at(last_node).travelled_m + Norm(delta);
-    Pose2 X_new;
-    graph.AddEdge(SequentialEdge(id, delta, data.points, &X_new, stats));
-    values[id] = X_new;
-  }
-  data.T_world_map = values.at(id);
-  keeper.Add(id, data.scan, data.T_world_map);
-  nodes.emplace(id, std::move(data));
-  recent.push_back(id);
-
-  if (have_last) scans.AnchorPending(last_node, id, obs.T_odom_robot);
-  scans.AddNodeScan(obs.stamp_s, id, obs.T_odom_robot);
-  last_node = id;
-  have_last = true;
-}
-
-PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta,
-                                       const std::vector<Eigen::Vector2d>& points, Pose2* X_new,
-                                       StepStats* stats) {
-  const Pose2& X_last = values.at(last_node);
-  const SequentialMatch m = sequential.Match(nodes, values, recent, X_last, delta, points);
-  stats->incremental_match_ok = m.matched;
-  stats->incremental_match_degenerate = m.degenerate;
-  stats->incremental_match_weak = m.weak;
-  *X_new = m.X_new;
-  PoseEdge edge;
-  edge.from = last_node;
-  edge.to = id;
-  edge.kind = EdgeKind::kOdometry;
-  edge.information = m.information;
-  edge.T_from_to = Between(X_last, *X_new);
-  return edge;
 }
 
 void Mapper::State::OptimizeAndSyncMap() {

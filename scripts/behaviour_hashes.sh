@@ -21,17 +21,17 @@ intel=../shared/datasets/intel/intel-raw-first1088s.clf.gz
 [[ -x $lifelong ]] || { echo "error: $lifelong not built" >&2; exit 2; }
 mkdir -p "$work"
 log="$work/progress.log"
-printf 'loops:\n  global:\n    enabled: true\n' >"$work/global.yaml"
+printf 'loops:\n  global:\n    enabled: false\n' >"$work/no_global.yaml"
 "$lifelong" run scenarios/corridor_3.yaml --modes "$modes" -o "$work/corridor_3" >"$log" 2>&1
 "$lifelong" run scenarios/office_5min.yaml --modes "$modes" -o "$work/office_5min" >>"$log" 2>&1
 "$lifelong" replay "$intel" --modes "$modes" -o "$work/intel" >>"$log" 2>&1
-# The global place search is off by default; this run covers it.
-"$lifelong" replay "$intel" --modes standard,pruned --config "$work/global.yaml" \
-  -o "$work/intel_global" >>"$log" 2>&1
+# The global place search is on by default; this run covers the local search alone.
+"$lifelong" replay "$intel" --modes standard,pruned --config "$work/no_global.yaml" \
+  -o "$work/intel_local" >>"$log" 2>&1
 
-for run in corridor_3 office_5min intel intel_global; do
+for run in corridor_3 office_5min intel intel_local; do
   for mode in ${modes//,/ }; do
-    [[ $run == intel_global && $mode != standard && $mode != pruned ]] && continue
+    [[ $run == intel_local && $mode != standard && $mode != pruned ]] && continue
     for file in graph.g2o map.pgm trajectory.tum loops.csv; do
       path="$work/$run/$mode/$file"
       if [[ -f $path ]]; then

@@ -134,6 +134,7 @@ void VisitGlobal(V& v, slam::GlobalLoopConfig& g) {
   // Each bounded: a search matches `candidates` places and compares `index_neighbours` in
   // full, and a descriptor holds rings x sectors bins for every node.
   v.Int("every", g.every, 1);
+  v.Number("after_m", g.after_m, kNonNegative);
   v.Int("candidates", g.candidates, 1, 100);
   v.Int("index_neighbours", g.index_neighbours, 1, 10000);
   v.Number("max_distance", g.max_distance, kUnit);

@@ -1,6 +1,7 @@
 // The mapper's side of loop closing: it runs the loop closer's searches for the new node
 // (slam/loops/loop_closer.hpp) and puts the closures they accept into the graph, optimizing when a
 // new edge is far off.
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <set>
@@ -23,7 +24,8 @@ void Mapper::State::CloseLoops(NodeId current, StepStats* stats) {
   // The global search reuses the local one's covariance projection: it runs only when that
   // closed nothing, so the estimate is as it was projected.
   const GlobalLoopConfig& global = config.loops.global;
-  const bool search = !stats->loop_closed && observations % global.every == 0;
+  const bool search = !stats->loop_closed && observations % global.every == 0 &&
+                      nodes.at(current).travelled_m - closed_at_m >= global.after_m;
   accepted.clear();
   const std::optional<LoopAttempt> wide = closer.SearchGlobal(View(), current, search, &accepted);
   if (wide) stats->loop_attempts.push_back(*wide);
@@ -41,6 +43,7 @@ void Mapper::State::AddLoopEdge(const LoopHypothesis& h) {
   edge.T_from_to = h.T_old_current;
   edge.information = h.information;
   graph.AddEdge(edge);
+  closed_at_m = std::max(closed_at_m, nodes.at(h.current).travelled_m);
   loops.push_back({h.current, h.old,
                    scans.stamp(static_cast<std::size_t>(nodes.at(h.current).scan_index)),
                    scans.stamp(static_cast<std::size_t>(nodes.at(h.old).scan_index)),

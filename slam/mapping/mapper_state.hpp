@@ -38,6 +38,7 @@ struct Mapper::State {
   LoopCloser closer;
   std::vector<LoopClosureRecord> loops;  ///< closures put into the graph, in order
   int since_optimize = 0;                ///< closures added since the last optimization
+  double closed_at_m = 0.0;      ///< robot path length (odometry) at the last accepted closure
   int since_sync = 0;            ///< closures added since the map was last re-rendered (SyncMap)
   std::optional<Pruner> pruner;  ///< in the pruned modes: which node goes, what replaces it
   PoseGraph graph;

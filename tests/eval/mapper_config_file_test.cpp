@@ -63,6 +63,7 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   const slam::GlobalLoopConfig &ga = a.global, &gb = b.global;
   EXPECT_EQ(ga.enabled, gb.enabled);
   EXPECT_EQ(ga.every, gb.every);
+  EXPECT_EQ(ga.after_m, gb.after_m);
   EXPECT_EQ(ga.candidates, gb.candidates);
   EXPECT_EQ(ga.index_neighbours, gb.index_neighbours);
   EXPECT_EQ(ga.max_distance, gb.max_distance);
@@ -207,7 +208,7 @@ MapperConfig AllChanged() {
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
   l.verify = {false, 2, 9.0, 30.0, 20.0, 0.004, 0.002, 0.0005, 0.0001};
-  l.global = {true, 3, 2, 30, 0.3, 20, 8, 3.0, 0.3, 2.5, {15, 72, 25.0}};
+  l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 3.0, 0.3, 2.5, {15, 72, 25.0}};
   l.suspect_chi2 = 12.0;
   l.inject_false_share = 0.05;
   l.inject_false_dx_m = 1.0;

@@ -176,13 +176,18 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   if (truth.world) {
     summary->change = ComputeChangeRecall(*truth.world, truth.end_s, stream, grid, T_truth_est);
   }
-  // Loop closures against the true poses of the observations (every node ever created,
-  // in creation order: the timeline has one row per observation).
-  std::map<double, int> index_of_stamp;
   std::vector<Pose2> true_nodes;
-  for (const TimelineRow& row : timeline_) {
-    index_of_stamp.emplace(row.t_s, static_cast<int>(true_nodes.size()));
-    true_nodes.push_back(true_at.at(row.t_s));
+  for (const TimelineRow& row : timeline_) true_nodes.push_back(true_at.at(row.t_s));
+  ScoreLoops(true_nodes, summary);
+  return T_truth_est;
+}
+
+void ModeRunner::ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* summary) {
+  // true_nodes[k] is the pose of the timeline's row k: every node ever created, in creation
+  // order (the timeline has one row per observation).
+  std::map<double, int> index_of_stamp;
+  for (std::size_t k = 0; k < timeline_.size(); ++k) {
+    index_of_stamp.emplace(timeline_[k].t_s, static_cast<int>(k));
   }
   std::vector<LoopClosure> closures;
   for (const auto& lc : mapper_->loop_closures()) {
@@ -194,7 +199,27 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
   WriteLoopsCsv(lcr, summary);
   loop_curve_ = LoopCurve(lcr);
-  return T_truth_est;
+}
+
+std::optional<std::vector<Pose2>> ModeRunner::ReferenceAtObservations(
+    const std::vector<StampedPose>& trajectory) const {
+  std::vector<StampedPose> at;  // the trajectory's poses at the observations' stamps
+  std::vector<std::size_t> scan;
+  std::size_t k = 0;
+  for (const TimelineRow& row : timeline_) {
+    while (k < trajectory.size() && trajectory[k].stamp_s < row.t_s) ++k;
+    if (k == trajectory.size() || trajectory[k].stamp_s != row.t_s) return std::nullopt;
+    at.push_back(trajectory[k]);
+    scan.push_back(k);
+  }
+  std::vector<Pose2> nodes;
+  if (config_.reference_per_scan && trajectory.size() == config_.reference.size()) {
+    for (const std::size_t i : scan) nodes.push_back(config_.reference[i].T_world_robot);
+    return nodes;
+  }
+  ReferencePairs pairs = PairWithReference(at, config_.reference);
+  if (pairs.unmatched > 0) return std::nullopt;  // closures with no reference: not scored
+  return std::move(pairs.reference);
 }
 
 void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::size_t i,
@@ -306,9 +331,18 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
       written_.push_back(changes_png_);
     }
   }
-  if (!truth) WriteLoopsCsv(LoopClosureResult{}, nullptr);
-  out("loops.csv");  // written by TruthMetrics when there is truth, else just above
-  if (!config_.reference.empty()) ScoreAgainstReference(trajectory, &summary);
+  std::optional<std::vector<Pose2>> reference_nodes;
+  if (!config_.reference.empty()) {
+    ScoreAgainstReference(trajectory, &summary);
+    reference_nodes = ReferenceAtObservations(trajectory);
+  }
+  // loops.csv: scored by TruthMetrics when there is truth, else against the reference.
+  if (!truth && reference_nodes) {
+    ScoreLoops(*reference_nodes, &summary);
+  } else if (!truth) {
+    WriteLoopsCsv(LoopClosureResult{}, nullptr);
+  }
+  out("loops.csv");
   if (!relations.empty()) {
     const RelationsResult rr = ComputeRelationsError(trajectory, relations);
     summary.relations = RelationsSummary{static_cast<std::int64_t>(rr.count), rr.trans_mean_m,

@@ -54,6 +54,13 @@ class ModeRunner {
   /// ATE and RPE at 1 m against config.reference; keeps the aligned estimate for the figure.
   void ScoreAgainstReference(const std::vector<StampedPose>& trajectory, ModeSummary* summary);
 
+  /// Loop precision and recall, loops.csv and the loop curve, from the pose of every
+  /// observation (the truth, or the log's reference).
+  void ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* summary);
+  /// The reference pose of every observation, in timeline order; nullopt when one has none.
+  std::optional<std::vector<Pose2>> ReferenceAtObservations(
+      const std::vector<StampedPose>& trajectory) const;
+
   /// Returns the ATE alignment T_truth_est (the map figures are drawn in the truth frame);
   /// also fills loop_curve().
   Pose2 TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
@@ -76,7 +83,8 @@ class ModeRunner {
 
  public:
   const std::vector<TimelineRow>& timeline() const { return timeline_; }
-  /// Loop precision and recall over the run (ground truth only; empty otherwise).
+  /// Loop precision and recall over the run (against the truth or a log's reference; empty
+  /// otherwise).
   const std::vector<LoopCurvePoint>& loop_curve() const { return loop_curve_; }
   /// The estimate at the reference's poses, moved onto it by the ATE alignment (replay with
   /// a reference; empty otherwise).

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -92,6 +93,58 @@ TEST(ReferenceCli, AGivenReferenceIsUsedAndABadOneIsNamedBeforeTheLog) {
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("read "), std::string::npos) << "the log was read first\n" << r.output;
+}
+
+// On a log, closures are scored against the reference: a simulated log replayed against its
+// own truth file gives run's loop precision and recall, and loops.csv says which closure is
+// wrong. A reference whose heading turns away over time makes the closures disagree with it.
+TEST(ReferenceCli, ClosuresAreScoredAgainstTheReference) {
+  const fs::path log = Fresh("c3.clf");
+  ASSERT_EQ(Lifelong("simulate " + kSource + "/scenarios/corridor_3.yaml -o " + log.string()).code,
+            0);
+  const fs::path truth = log.parent_path() / (log.stem().string() + ".truth.tum");
+  ASSERT_TRUE(fs::exists(truth));
+  const auto replay = [&](const fs::path& reference, const std::string& name) {
+    const fs::path out = Fresh(name);
+    const Result r = Lifelong("replay " + log.string() + " --modes standard --reference " +
+                              reference.string() + " -o " + out.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return out;
+  };
+  const fs::path ran = Fresh("c3_run");
+  ASSERT_EQ(
+      Lifelong("run " + kSource + "/scenarios/corridor_3.yaml --modes standard -o " + ran.string())
+          .code,
+      0);
+  const auto by_run = nlohmann::json::parse(Read(ran / "summary.json"))["modes"]["standard"];
+  const fs::path out = replay(truth, "c3_true");
+  const auto m = nlohmann::json::parse(Read(out / "summary.json"))["modes"]["standard"];
+  ASSERT_TRUE(m.contains("loop_precision")) << m.dump();
+  EXPECT_DOUBLE_EQ(m["loop_precision"].get<double>(), by_run["loop_precision"].get<double>());
+  EXPECT_DOUBLE_EQ(m["loop_recall"].get<double>(), by_run["loop_recall"].get<double>());
+  std::istringstream rows(Read(out / "standard" / "loops.csv"));
+  std::string row;
+  std::getline(rows, row);  // header
+  int scored = 0;
+  while (std::getline(rows, row)) scored += row.find(",0,1,") != std::string::npos ? 1 : 0;
+  EXPECT_GT(scored, 5);
+
+  // The same reference, turned by 0.01 rad per second about its start.
+  std::istringstream in(Read(truth));
+  const fs::path bent_path = Fresh("bent.tum");
+  std::ofstream bent(bent_path);
+  double t, x, y, z, qx, qy, qz, qw;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream(line) >> t >> x >> y >> z >> qx >> qy >> qz >> qw;
+    const double a = 0.01 * t, theta = 2.0 * std::atan2(qz, qw) + a;
+    bent << t << ' ' << std::cos(a) * x - std::sin(a) * y << ' '
+         << std::sin(a) * x + std::cos(a) * y << ' ' << theta << '\n';
+  }
+  bent.close();
+  const auto b = nlohmann::json::parse(
+      Read(replay(bent_path, "c3_bent") / "summary.json"))["modes"]["standard"];
+  EXPECT_LT(b["loop_precision"].get<double>(), 0.5) << b.dump();
 }
 
 }  // namespace

@@ -76,6 +76,7 @@ std::string ModeRunner::ProgressDetail() const {
 }
 
 void ModeRunner::Record(const slam::StepStats& s) {
+  observation_scans_.push_back(static_cast<std::size_t>(s.scan_index));
   TimelineRow row;
   row.obs = s.observation_index;
   row.t_s = s.stamp_s;
@@ -184,15 +185,11 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
 
 void ModeRunner::ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* summary) {
   // true_nodes[k] is the pose of the timeline's row k: every node ever created, in creation
-  // order (the timeline has one row per observation).
-  std::map<double, int> index_of_stamp;
-  for (std::size_t k = 0; k < timeline_.size(); ++k) {
-    index_of_stamp.emplace(timeline_[k].t_s, static_cast<int>(k));
-  }
+  // order (the timeline has one row per observation, and observation k is node k). Nodes are
+  // named by id, not by stamp: some logs stamp every scan alike.
   std::vector<LoopClosure> closures;
   for (const auto& lc : mapper_->loop_closures()) {
-    closures.push_back({index_of_stamp.at(lc.stamp_old_s), index_of_stamp.at(lc.stamp_current_s),
-                        lc.T_old_current});
+    closures.push_back({static_cast<int>(lc.old), static_cast<int>(lc.current), lc.T_old_current});
   }
   const LoopClosureResult lcr = ComputeLoopClosureStats(closures, true_nodes);
   if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
@@ -203,18 +200,16 @@ void ModeRunner::ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* s
 
 std::optional<std::vector<Pose2>> ModeRunner::ReferenceAtObservations(
     const std::vector<StampedPose>& trajectory) const {
-  std::vector<StampedPose> at;  // the trajectory's poses at the observations' stamps
-  std::vector<std::size_t> scan;
-  std::size_t k = 0;
-  for (const TimelineRow& row : timeline_) {
-    while (k < trajectory.size() && trajectory[k].stamp_s < row.t_s) ++k;
-    if (k == trajectory.size() || trajectory[k].stamp_s != row.t_s) return std::nullopt;
-    at.push_back(trajectory[k]);
-    scan.push_back(k);
+  std::vector<StampedPose> at;  // the trajectory's poses of the observations' scans
+  for (const std::size_t i : observation_scans_) {
+    if (i >= trajectory.size()) return std::nullopt;
+    at.push_back(trajectory[i]);
   }
   std::vector<Pose2> nodes;
   if (config_.reference_per_scan && trajectory.size() == config_.reference.size()) {
-    for (const std::size_t i : scan) nodes.push_back(config_.reference[i].T_world_robot);
+    for (const std::size_t i : observation_scans_) {
+      nodes.push_back(config_.reference[i].T_world_robot);
+    }
     return nodes;
   }
   ReferencePairs pairs = PairWithReference(at, config_.reference);

@@ -72,6 +72,7 @@ class ModeRunner {
   const ExperimentConfig& config_;
   std::unique_ptr<slam::Mapper> mapper_;
   std::vector<TimelineRow> timeline_;
+  std::vector<std::size_t> observation_scans_;  ///< per timeline row: its scan's index
   std::vector<LoopCurvePoint> loop_curve_;
   std::vector<Pose2> aligned_to_reference_;
   std::string changes_png_, changes_caption_;  ///< the changed objects' strip (change_tiles)

@@ -81,6 +81,16 @@ int Reproduce(const ReproduceArgs& a) {
       std::cout << "  not in the " << a.profile << " profile\n";
       continue;
     }
+    const std::vector<std::string>& missing =
+        a.profile == "full" ? e.full_missing : e.quick_missing;
+    if (!missing.empty()) {
+      er.not_run =
+          "its log is not here: " + missing.front() +
+          (missing.size() > 1 ? " (and " + std::to_string(missing.size() - 1) + " more)" : "") +
+          (e.get.empty() ? "" : "; get it from " + e.get);
+      std::cout << "  not run: " << er.not_run << "\n";
+      continue;
+    }
     // Experiments that name the same SPEC share its sweep (its cells run once).
     er.dir = fs::path(spec).stem().string();
     const eval::SweepOptions o = SweepOptionsFor(spec, (fs::path(a.out) / er.dir).string(), a.jobs);

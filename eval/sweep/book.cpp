@@ -25,11 +25,12 @@ Expect ParseExpect(sim::Fields& f) {
 }
 
 /// A SPEC named relative to the BOOK, loaded (so its errors surface now), made absolute.
-std::string Spec(sim::Fields& f, const std::string& key, const fs::path& dir, SweepSpec* spec) {
+std::string Spec(sim::Fields& f, const std::string& key, const fs::path& dir, MissingLogs missing,
+                 SweepSpec* spec) {
   const fs::path p = (dir / f.String(key)).lexically_normal();
   std::error_code ec;
   if (!fs::is_regular_file(p, ec)) f.FailAt(key, "no such sweep SPEC: " + p.string());
-  *spec = LoadSweepSpec(p.string());
+  *spec = LoadSweepSpec(p.string(), missing);
   return p.string();
 }
 
@@ -80,11 +81,15 @@ Book LoadBook(const std::string& path) {
     if (!std::regex_match(e.id, id_pattern)) f.FailAt("id", "expected [a-z0-9_-]+");
     if (!ids.insert(e.id).second) f.FailAt("id", "given twice");
     e.title = f.String("title");
+    const bool optional = f.Bool("logs_optional", false);
+    if (f.Has("get")) e.get = f.String("get");
+    const MissingLogs missing = optional ? MissingLogs::kRecord : MissingLogs::kRefuse;
     std::vector<SweepSpec> specs;
     for (const char* profile : {"quick", "full"}) {
       if (!f.Has(profile)) continue;
-      (profile == std::string("quick") ? e.quick_spec : e.full_spec) =
-          Spec(f, profile, dir, &specs.emplace_back());
+      const bool quick = profile == std::string("quick");
+      (quick ? e.quick_spec : e.full_spec) = Spec(f, profile, dir, missing, &specs.emplace_back());
+      (quick ? e.quick_missing : e.full_missing) = specs.back().missing_logs;
     }
     if (specs.empty()) f.FailAt("quick", "an experiment needs a quick or a full SPEC, or both");
     const YAML::Node claims = f.Required("claims");

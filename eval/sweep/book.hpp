@@ -18,6 +18,10 @@
 //           expect: lower                         # lower | higher | report (no verdict)
 //           seed: "constant node count"           # the seed's value or statement
 //           where: "Fig. 6.1"                     # the seed's figure or table
+//       logs_optional: true    # its SPECs name public logs the project does not ship: a
+//                              # missing one leaves the experiment "not run", saying where
+//                              # it was looked for and where to get it (`get`)
+//       get: "data/carmen/x-corrected.log.gz of github.com/..."
 //
 // Verdict per scenario or log: "holds" when the 95 % interval of the mean difference (mode −
 // baseline) lies on the expected side of 0, "does not hold" when it lies on the other,
@@ -45,6 +49,9 @@ struct BookExperiment {
   std::string id, title;
   std::string quick_spec, full_spec;  ///< absolute; empty: not in that profile
   std::vector<BookClaim> claims;
+  /// logs_optional: the logs each profile's SPEC names that are not here (absolute).
+  std::vector<std::string> quick_missing, full_missing;
+  std::string get;  ///< where to get them
 };
 
 struct Book {
@@ -73,7 +80,8 @@ std::vector<ClaimResult> JudgeClaim(const BookClaim& claim, const SweepTables& t
 /// An experiment's outcome: its sweep's tables (and where they are) and its claims judged.
 struct ExperimentResult {
   const BookExperiment* experiment = nullptr;
-  std::string dir;  ///< the sweep directory, relative to the book's; empty: not in the profile
+  std::string dir;      ///< the sweep directory, relative to the book's; empty: not in the profile
+  std::string not_run;  ///< why the experiment did not run (its logs are missing); empty: it ran
   SweepTables tables;
   std::vector<ClaimResult> claims;
   std::vector<std::string> charts;  ///< the sweep report's charts, relative to the book's dir

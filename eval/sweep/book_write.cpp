@@ -52,7 +52,9 @@ std::vector<Row> Rows(const ExperimentResult& e) {
     if (!c.seed_where.empty())
       seed += (seed.empty() ? "" : " (") + c.seed_where + (seed.empty() ? "" : ")");
     rows.push_back({c.claim + " (" + c.figure + ")", SourceName(r.source), seed,
-                    c.mode + " " + ExpectText(c.expect) + " than " + c.baseline,
+                    c.expect == Expect::kReport
+                        ? c.mode + " beside " + c.baseline + ", no verdict"
+                        : c.mode + " " + ExpectText(c.expect) + " than " + c.baseline,
                     c.baseline + ": " + Stats(r.baseline), c.mode + ": " + Stats(r.mode),
                     Stats(r.difference), std::to_string(r.difference.n), VerdictText(r.verdict)});
   }
@@ -86,6 +88,10 @@ std::string BookMarkdown(const BookOutcome& o) {
      << ProfileNote(o) << ".\n";
   for (const ExperimentResult& e : o.experiments) {
     md << "\n## " << e.experiment->title << "\n\n";
+    if (!e.not_run.empty()) {
+      md << "**Not run**: " << e.not_run << ".\n";
+      continue;
+    }
     if (e.dir.empty()) {
       md << "Not in the " << o.profile << " profile.\n";
       continue;
@@ -126,6 +132,10 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
     << ".</b> The same in <a href=\"results.md\">results.md</a>.</p>\n";
   for (const ExperimentResult& e : o.experiments) {
     h << "<h2>" << HtmlEscape(e.experiment->title) << "</h2>\n";
+    if (!e.not_run.empty()) {
+      h << "<p><b>Not run</b>: " << HtmlEscape(e.not_run) << ".</p>\n";
+      continue;
+    }
     if (e.dir.empty()) {
       h << "<p>Not in the " << HtmlEscape(o.profile) << " profile.</p>\n";
       continue;

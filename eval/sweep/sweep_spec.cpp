@@ -22,7 +22,8 @@ using sim::LineOf;
 
 class SpecReader {
  public:
-  SpecReader(std::string file, YAML::Node root) : file_(std::move(file)), root_(std::move(root)) {
+  SpecReader(std::string file, YAML::Node root, MissingLogs missing)
+      : file_(std::move(file)), root_(std::move(root)), missing_(missing) {
     dir_ = fs::absolute(fs::path(file_)).parent_path();
   }
 
@@ -104,7 +105,12 @@ class SpecReader {
       }
     }
     s.given = Scalar(log, field + (n.IsMap() ? ".log" : ""));
-    s.path = ExistingFile(log, field + (n.IsMap() ? ".log" : ""), "log");
+    const std::string at = field + (n.IsMap() ? ".log" : "");
+    if (missing_ == MissingLogs::kRecord) {
+      s.path = (dir_ / s.given).lexically_normal().string();  // Read() checks that it exists
+    } else {
+      s.path = ExistingFile(log, at, "log");
+    }
     return s;
   }
 
@@ -118,10 +124,18 @@ class SpecReader {
     }
     if (const YAML::Node list = root_["logs"]) {
       for (std::size_t i = 0; i < List(list, "logs").size(); ++i) {
-        spec->sources.push_back(Log(list[i], "logs[" + std::to_string(i) + "]"));
+        const SweepSource log = Log(list[i], "logs[" + std::to_string(i) + "]");
+        std::error_code ec;
+        if (fs::is_regular_file(log.path, ec)) {
+          spec->sources.push_back(log);
+        } else {
+          spec->missing_logs.push_back(log.path);
+        }
       }
     }
-    if (spec->sources.empty()) Fail(root_, "scenarios", "neither scenarios nor logs are given");
+    if (spec->sources.empty() && spec->missing_logs.empty()) {
+      Fail(root_, "scenarios", "neither scenarios nor logs are given");
+    }
     ReadSeeds(spec);
     ReadModes(spec);
     ReadSettings(spec);
@@ -202,6 +216,7 @@ class SpecReader {
 
   std::string file_;
   YAML::Node root_;
+  MissingLogs missing_;
   fs::path dir_;
 };
 
@@ -230,7 +245,7 @@ std::string SettingsConfigYaml(const std::vector<std::pair<std::string, std::str
   return std::string(out.c_str()) + "\n";
 }
 
-SweepSpec LoadSweepSpec(const std::string& path) {
+SweepSpec LoadSweepSpec(const std::string& path, MissingLogs missing) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -241,7 +256,7 @@ SweepSpec LoadSweepSpec(const std::string& path) {
   }
   SweepSpec spec;
   spec.file = path;
-  SpecReader(path, root).Read(&spec);
+  SpecReader(path, root, missing).Read(&spec);
   return spec;
 }
 

@@ -43,10 +43,16 @@ struct SweepSpec {
   std::vector<std::string> modes;   ///< the baseline first, then the others as given
   std::string baseline;
   std::vector<SweepSetting> settings;
+  /// With MissingLogs::kRecord: the logs named but not found (absolute), left out of sources.
+  std::vector<std::string> missing_logs;
 };
 
+/// What a log that does not exist is: an error (the default), or a note in missing_logs
+/// (a book's experiment on public logs the project does not ship, eval/sweep/book.hpp).
+enum class MissingLogs { kRefuse, kRecord };
+
 /// Reads and checks `path` (see above). Throws lifelong::InputError.
-SweepSpec LoadSweepSpec(const std::string& path);
+SweepSpec LoadSweepSpec(const std::string& path, MissingLogs missing = MissingLogs::kRefuse);
 
 /// The mapper-config YAML (nested sections) that sets each dotted key to its value:
 /// {"pruning.gain_threshold_bits": "5"} -> "pruning:\n  gain_threshold_bits: 5\n".

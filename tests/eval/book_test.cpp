@@ -141,7 +141,11 @@ TEST(Book, AVerdictFollowsTheIntervalOfThePairedDifferences) {
 }
 
 TEST(Book, TheMarkdownNamesTheProfileAndEachVerdict) {
-  const BookExperiment e{"corridor", "§6.1 the corridor", "q.yaml", "f.yaml", {}};
+  BookExperiment e;
+  e.id = "corridor";
+  e.title = "§6.1 the corridor";
+  e.quick_spec = "q.yaml";
+  e.full_spec = "f.yaml";
   const BookClaim fewer{"fewer nodes", "nodes_final", "pruned",       "standard",
                         "constant",    "Fig. 6.1",    Expect::kLower, 0};
   BookOutcome o;
@@ -153,11 +157,55 @@ TEST(Book, TheMarkdownNamesTheProfileAndEachVerdict) {
   r.dir = "corridor";
   r.tables = Tables();
   r.claims = JudgeClaim(fewer, r.tables);
+  BookClaim shown = fewer;
+  shown.expect = Expect::kReport;
+  for (ClaimResult& c : JudgeClaim(shown, r.tables)) r.claims.push_back(c);
   const std::string md = BookMarkdown(o);
+  EXPECT_NE(md.find("pruned beside standard, no verdict"), std::string::npos) << md;
+  EXPECT_EQ(md.find("reported than"), std::string::npos) << md;
   EXPECT_NE(md.find("profile quick: fewer seeds"), std::string::npos) << md;
   EXPECT_NE(md.find("holds at 95 %"), std::string::npos) << md;
   EXPECT_NE(md.find("constant (Fig. 6.1)"), std::string::npos) << md;
   EXPECT_NE(md.find("abc1234, 2026-12-03"), std::string::npos) << md;
+}
+
+// An experiment on a public log the project does not ship: without the log it loads, says
+// which log is missing, and the book reports it as not run; unmarked, a missing log is an error.
+TEST(Book, AnExperimentOnAnAbsentPublicLogIsNotRun) {
+  Write("log_spec.yaml", "logs: [{log: absent-corrected.log.gz}]\nmodes: [standard, pruned]\n");
+  const std::string text =
+      "experiments:\n"
+      "  - id: killian\n"
+      "    title: Killian Court\n"
+      "    full: log_spec.yaml\n"
+      "    logs_optional: true\n"
+      "    get: somewhere public\n"
+      "    claims:\n"
+      "      - {claim: consistent, figure: ate_rmse_m, mode: pruned, expect: report}\n";
+  const Book book = LoadBook(Write("optional.yaml", text));
+  ASSERT_EQ(book.experiments.size(), 1u);
+  const BookExperiment& e = book.experiments[0];
+  ASSERT_EQ(e.full_missing.size(), 1u);
+  EXPECT_NE(e.full_missing[0].find("absent-corrected.log.gz"), std::string::npos);
+  EXPECT_EQ(e.get, "somewhere public");
+  std::string strict = text;
+  strict.erase(strict.find("    logs_optional: true\n"), 24);
+  try {
+    LoadBook(Write("strict.yaml", strict));
+    ADD_FAILURE() << "a missing log loaded without logs_optional";
+  } catch (const InputError& error) {
+    EXPECT_NE(error.file().find("log_spec.yaml"), std::string::npos) << error.what();
+    EXPECT_EQ(error.field(), "logs[0].log") << error.what();
+    EXPECT_NE(std::string(error.what()).find("no such log"), std::string::npos) << error.what();
+  }
+
+  BookOutcome o;
+  o.profile = "full";
+  ExperimentResult& r = o.experiments.emplace_back();
+  r.experiment = &e;
+  r.not_run = "its log is not here: x";
+  const std::string md = BookMarkdown(o);
+  EXPECT_NE(md.find("**Not run**: its log is not here: x"), std::string::npos) << md;
 }
 
 }  // namespace

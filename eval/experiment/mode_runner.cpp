@@ -270,6 +270,21 @@ void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajector
   for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
 }
 
+void ModeRunner::ScoreReference(const std::vector<StampedPose>& trajectory, bool truth,
+                                ModeSummary* summary) {
+  std::optional<std::vector<Pose2>> nodes;
+  if (!config_.reference.empty()) {
+    ScoreAgainstReference(trajectory, summary);
+    nodes = ReferenceAtObservations(trajectory);
+  }
+  if (truth) return;  // TruthMetrics scored the closures and wrote loops.csv
+  if (nodes) {
+    ScoreLoops(*nodes, summary);
+  } else {
+    WriteLoopsCsv(LoopClosureResult{}, nullptr);
+  }
+}
+
 ModeSummary ModeRunner::SummarizeRun(std::vector<double>* kld) const {
   const slam::Mapper& m = *mapper_;
   ModeSummary summary = SummarizeTimeline(timeline_, first_pass_end_);
@@ -326,17 +341,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
       written_.push_back(changes_png_);
     }
   }
-  std::optional<std::vector<Pose2>> reference_nodes;
-  if (!config_.reference.empty()) {
-    ScoreAgainstReference(trajectory, &summary);
-    reference_nodes = ReferenceAtObservations(trajectory);
-  }
-  // loops.csv: scored by TruthMetrics when there is truth, else against the reference.
-  if (!truth && reference_nodes) {
-    ScoreLoops(*reference_nodes, &summary);
-  } else if (!truth) {
-    WriteLoopsCsv(LoopClosureResult{}, nullptr);
-  }
+  ScoreReference(trajectory, truth.has_value(), &summary);
   out("loops.csv");
   if (!relations.empty()) {
     const RelationsResult rr = ComputeRelationsError(trajectory, relations);

@@ -54,6 +54,9 @@ class ModeRunner {
   /// ATE and RPE at 1 m against config.reference; keeps the aligned estimate for the figure.
   void ScoreAgainstReference(const std::vector<StampedPose>& trajectory, ModeSummary* summary);
 
+  /// ATE and RPE against config.reference, and, without truth, the closures against it
+  /// (loops.csv, unscored when there is no reference either).
+  void ScoreReference(const std::vector<StampedPose>& trajectory, bool truth, ModeSummary* summary);
   /// Loop precision and recall, loops.csv and the loop curve, from the pose of every
   /// observation (the truth, or the log's reference).
   void ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* summary);

@@ -191,7 +191,8 @@ const std::vector<TableRow>& SummaryTableRows() {
       {kAccuracy, "/sequential/weak", "weak matches refused", "", 1, false,
        "not matched: scored under incremental.weak_score with a rival too close; odometry kept"},
       {kAccuracy, "/loop_precision", "loop-closure precision", "%", 100, false,
-       "share of accepted loop closures within 0.3 m and 5 deg of the true relative pose"},
+       "share of accepted loop closures within 0.3 m and 5 deg of the true relative pose (a log: "
+       "of its reference's)"},
       {kAccuracy, "/loop_recall", "loop-closure recall", "%", 100, false,
        "share of revisits (1 m, 30 deg of an older node) with a correct loop closure"},
       {kAccuracy, "/loop_precision_last_hour", "loop-closure precision, last hour", "%", 100, false,

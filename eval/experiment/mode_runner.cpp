@@ -200,18 +200,18 @@ void ModeRunner::ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* s
 
 std::optional<std::vector<Pose2>> ModeRunner::ReferenceAtObservations(
     const std::vector<StampedPose>& trajectory) const {
-  std::vector<StampedPose> at;  // the trajectory's poses of the observations' scans
+  const bool per_scan = config_.reference_per_scan && trajectory.size() == config_.reference.size();
+  std::vector<Pose2> nodes;     // per scan: the reference's pose of each observation's scan
+  std::vector<StampedPose> at;  // else: the observations' scans, paired by stamp below
   for (const std::size_t i : observation_scans_) {
     if (i >= trajectory.size()) return std::nullopt;
-    at.push_back(trajectory[i]);
-  }
-  std::vector<Pose2> nodes;
-  if (config_.reference_per_scan && trajectory.size() == config_.reference.size()) {
-    for (const std::size_t i : observation_scans_) {
+    if (per_scan) {
       nodes.push_back(config_.reference[i].T_world_robot);
+    } else {
+      at.push_back(trajectory[i]);
     }
-    return nodes;
   }
+  if (per_scan) return nodes;
   ReferencePairs pairs = PairWithReference(at, config_.reference);
   if (pairs.unmatched > 0) return std::nullopt;  // closures with no reference: not scored
   return std::move(pairs.reference);

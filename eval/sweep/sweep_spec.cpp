@@ -44,13 +44,18 @@ class SpecReader {
     return n.Scalar();
   }
 
+  /// A file named relative to the SPEC's folder, made absolute.
+  std::string Resolved(const YAML::Node& n, const std::string& field) const {
+    return (dir_ / Scalar(n, field)).lexically_normal().string();
+  }
+
   /// An existing file named relative to the SPEC's folder, made absolute.
   std::string ExistingFile(const YAML::Node& n, const std::string& field,
                            const std::string& what) const {
-    const fs::path p = dir_ / Scalar(n, field);
+    const std::string p = Resolved(n, field);
     std::error_code ec;
-    if (!fs::is_regular_file(p, ec)) Fail(n, field, "no such " + what + ": " + p.string());
-    return p.lexically_normal().string();
+    if (!fs::is_regular_file(p, ec)) Fail(n, field, "no such " + what + ": " + p);
+    return p;
   }
 
   void RejectUnknown(const YAML::Node& map, const std::set<std::string>& known,
@@ -104,13 +109,10 @@ class SpecReader {
         s.relations_offset_s = v;
       }
     }
-    s.given = Scalar(log, field + (n.IsMap() ? ".log" : ""));
     const std::string at = field + (n.IsMap() ? ".log" : "");
-    if (missing_ == MissingLogs::kRecord) {
-      s.path = (dir_ / s.given).lexically_normal().string();  // Read() checks that it exists
-    } else {
-      s.path = ExistingFile(log, at, "log");
-    }
+    s.given = Scalar(log, at);
+    // kRecord: Read() sets a missing log aside.
+    s.path = missing_ == MissingLogs::kRecord ? Resolved(log, at) : ExistingFile(log, at, "log");
     return s;
   }
 
@@ -126,10 +128,10 @@ class SpecReader {
       for (std::size_t i = 0; i < List(list, "logs").size(); ++i) {
         const SweepSource log = Log(list[i], "logs[" + std::to_string(i) + "]");
         std::error_code ec;
-        if (fs::is_regular_file(log.path, ec)) {
-          spec->sources.push_back(log);
-        } else {
+        if (missing_ == MissingLogs::kRecord && !fs::is_regular_file(log.path, ec)) {
           spec->missing_logs.push_back(log.path);
+        } else {
+          spec->sources.push_back(log);
         }
       }
     }

@@ -49,11 +49,15 @@ std::string WriteChangeTiles(const std::string& path, const ChangeRecall& change
   for (const auto& [name, o] : change.objects) {
     if (o.present.empty() && o.past.empty()) continue;
     tiles.push_back(Tile(o, grid, T_truth_est));
-    char seen[48] = "never seen";
-    if (o.since_seen_s)
-      std::snprintf(seen, sizeof seen, "seen %.0f s before the end", *o.since_seen_s);
-    caption += (caption.empty() ? "" : "; ") + name + ": " +
-               (o.shows_present ? "shown as it stands" : "not shown as it stands") + ", " + seen;
+    caption += (caption.empty() ? "" : "; ") + name + ": ";
+    if (!o.shows_present) {
+      caption += "not seen as it stands";
+      continue;
+    }
+    char seen[48];
+    std::snprintf(seen, sizeof seen, "seen %.0f s before the end", o.since_seen_s.value_or(0.0));
+    caption += std::string(*o.shows_present ? "shown as it stands" : "not shown as it stands") +
+               ", " + seen;
   }
   Image strip;
   for (const Image& t : tiles) {

@@ -2,16 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 
 #include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/sightings.hpp"
 #include "eval/metrics/world_state.hpp"
-#include "sim/geometry.hpp"
 
 namespace lifelong::eval {
 namespace {
 
-constexpr double kSeenM = 0.1;      // a return this close to an object saw it
 constexpr double kRecentS = 600.0;  // change_recall counts objects seen this recently
 
 struct Object {
@@ -29,33 +27,21 @@ bool Changed(const Object& o, double end_s) {
                      [&](const sim::BoxMove& m) { return m.t_s <= end_s; });
 }
 
-// The last stamp at which one of the first `scans` scans saw the object.
-std::optional<double> LastSeen(const Object& o, const std::vector<Observation>& stream,
-                               std::size_t scans) {
-  const auto end = stream.begin() + static_cast<std::ptrdiff_t>(std::min(scans, stream.size()));
-  for (auto it = std::make_reverse_iterator(end); it != stream.rend(); ++it) {
-    if (!it->T_world_robot_true) continue;
-    const double t = it->stamp_s;
-    const LaserScan& scan = it->scan;
-    const Pose2 T = *it->T_world_robot_true * scan.T_robot_laser;
-    const bool open_door = o.door && !o.door->IsClosed(t);
-    const std::vector<Segment> shape =
-        o.door ? std::vector<Segment>{o.door->segment} : BoxOutlineAt(*o.box, t);
-    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-      const bool hit = scan.IsReturn(i);
-      const double r = hit ? scan.ranges_m[i] : scan.range_max_m;
-      double x = 0.0, y = 0.0;
-      T.Apply(r * std::cos(scan.Bearing(i)), r * std::sin(scan.Bearing(i)), &x, &y);
-      if (open_door) {
-        if (sim::SegmentsIntersect({T.x, T.y, x, y}, shape[0])) return t;
-      } else if (hit) {
-        for (const Segment& s : shape) {
-          if (sim::PointSegmentDistance({x, y}, s) <= kSeenM) return t;
-        }
-      }
+// When the object last changed at or before end_s: a door's last opening or closing, a
+// box's last move; 0 when it stands as it did at the start.
+double LastChange(const Object& o, double end_s) {
+  double last = 0.0;
+  if (o.door) {
+    for (const auto& [begin, end] : o.door->closed_intervals_s) {
+      if (begin > 0.0 && begin <= end_s) last = std::max(last, begin);
+      if (end <= end_s) last = std::max(last, end);
+    }
+  } else {
+    for (const sim::BoxMove& m : o.box->moves) {
+      if (m.t_s <= end_s) last = std::max(last, m.t_s);
     }
   }
-  return std::nullopt;
+  return last;
 }
 
 }  // namespace
@@ -73,8 +59,6 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
   for (const Object& o : objects) {
     if (!Changed(o, end_s)) continue;
     ObjectPresent p;
-    const std::optional<double> seen = LastSeen(o, stream, scans);
-    if (seen) p.since_seen_s = std::max(0.0, end_s - *seen);
     // Its present and its past, each against the rest of what stands at the end.
     std::vector<Segment> present, past;
     if (o.door) {
@@ -91,17 +75,25 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
         others.push_back(s);
       }
     }
-    const std::optional<double> shown_now = present.empty()
-                                                ? std::optional<double>(1.0)
-                                                : ShownShare(map, present, others, T_truth_est);
+    // Judged on what the robot saw after the change: the present cells a return hit, the
+    // past cells a beam crossed.
+    const Sightings seen =
+        CollectSightings(stream, scans, LastChange(o, end_s), present, past, map.resolution_m);
+    if (seen.last_s) p.since_seen_s = std::max(0.0, end_s - *seen.last_s);
+    const auto hit = [&](double x, double y) { return seen.Hit(x, y); };
+    const auto freed = [&](double x, double y) { return seen.Freed(x, y); };
+    const std::optional<double> shown_now =
+        present.empty() ? std::nullopt : ShownShare(map, present, others, T_truth_est, {}, hit);
     const std::optional<double> shown_past =
-        past.empty() ? std::optional<double>(0.0) : ShownShare(map, past, now, T_truth_est);
-    p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
+        past.empty() ? std::nullopt : ShownShare(map, past, now, T_truth_est, {}, freed);
+    if (seen.last_s) {
+      p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
+    }
     p.present = present;
     p.past = past;
     if (p.since_seen_s && *p.since_seen_s <= kRecentS) {
       ++out.recent;
-      shown_recent += p.shows_present ? 1 : 0;
+      shown_recent += *p.shows_present ? 1 : 0;
     }
     out.objects[o.name] = p;
   }

@@ -1,12 +1,15 @@
 // Per changing object (issue #35): whether the final map shows the door or box as it stands
-// at the run's end, and how long before the end the robot last saw it. A closed door (or a
-// box's final pose) is shown when at least half of its cells have an occupied map cell
-// within 1.5 cells; an open door (or a box's earlier pose) is shown gone when fewer than
-// half do. Cells within 1.5 cells of a surface standing at the end are left out (a door's
-// jambs, a box's new pose over its old one). The robot saw an object at a scan when a return
-// lay within 0.1 m of it, or, for an open door, when a beam passed through the doorway.
-// change_recall is the share of the objects changed during the run and seen in its last
-// 10 minutes whose map shows their present state.
+// at the run's end, and how long before the end the robot last saw it as it stands. Only
+// what the robot saw after the object's last change is judged (sightings.hpp): the cells of
+// its present outline that a return hit, and the cells of its earlier outlines (an open
+// door, a box's old poses) that a beam crossed. A door that opened after the robot passed
+// it for the last time, a desk's face toward the wall, a place left that no beam crossed
+// since: no map can show them. The object shows its present when at least half of the
+// present cells seen have an occupied map cell within 1.5 cells, and fewer than half of the
+// past cells seen do. Cells within 1.5 cells of a surface standing at the end are left out
+// (a door's jambs, a box's new pose over its old one). change_recall is the share of the
+// objects changed during the run and seen as they stand in its last 10 minutes whose map
+// shows their present state.
 #pragma once
 
 #include <cstddef>
@@ -24,8 +27,12 @@
 namespace lifelong::eval {
 
 struct ObjectPresent {
-  bool shows_present = false;          ///< the map shows its state at the end
-  std::optional<double> since_seen_s;  ///< end minus the last scan that saw it; none: never
+  /// The map shows its state at the end; none when the robot did not see it since its last
+  /// change (then no map could).
+  std::optional<bool> shows_present;
+  /// End minus the last scan that saw it as it stands at the end; none: never since its last
+  /// change.
+  std::optional<double> since_seen_s;
   std::vector<Segment> present, past;  ///< its outline at the end, and its earlier ones
 };
 

@@ -173,7 +173,8 @@ double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
 
 std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Segment>& segments,
                                  const std::vector<Segment>& exclude, const Pose2& T_truth_est,
-                                 const BlurConfig& config) {
+                                 const BlurConfig& config,
+                                 const std::function<bool(double x, double y)>& counted) {
   if (segments.empty()) return std::nullopt;
   const std::vector<cv::Point2d> occ = OccupiedCentres(map, T_truth_est, config.occupied_threshold);
   Box box;
@@ -189,7 +190,7 @@ std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Seg
   const cv::Mat occ_dist = DistanceCells(occ_img);
   const cv::Mat exclude_dist = exclude.empty() ? cv::Mat() : DistanceCells(DrawWalls(r, exclude));
   const cv::Mat cells = DrawWalls(r, segments);
-  std::size_t counted = 0, shown = 0;
+  std::size_t cells_counted = 0, shown = 0;
   for (int row = 0; row < r.rows; ++row) {
     for (int col = 0; col < r.cols; ++col) {
       if (cells.at<uchar>(row, col) != 0) continue;
@@ -197,12 +198,13 @@ std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Seg
           exclude_dist.at<float>(row, col) <= config.recall_tolerance_cells) {
         continue;
       }
-      ++counted;
+      if (counted && !counted(r.ox + (col + 0.5) * res, r.oy + (row + 0.5) * res)) continue;
+      ++cells_counted;
       shown += (!occ.empty() && occ_dist.at<float>(row, col) <= config.recall_tolerance_cells);
     }
   }
-  if (counted == 0) return std::nullopt;
-  return static_cast<double>(shown) / static_cast<double>(counted);
+  if (cells_counted == 0) return std::nullopt;
+  return static_cast<double>(shown) / static_cast<double>(cells_counted);
 }
 
 OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -53,11 +54,13 @@ double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
                   const BlurConfig& config = {});
 
 /// The share of the cells of `segments` (rasterized in the truth frame), leaving out those
-/// within tolerance_cells of an `exclude` segment, that have an occupied map cell within
-/// tolerance_cells; nothing when no cell is left.
+/// within tolerance_cells of an `exclude` segment and, when `counted` is given, those whose
+/// centre it refuses, that have an occupied map cell within tolerance_cells; nothing when no
+/// cell is left.
 std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Segment>& segments,
                                  const std::vector<Segment>& exclude, const Pose2& T_truth_est,
-                                 const BlurConfig& config = {});
+                                 const BlurConfig& config = {},
+                                 const std::function<bool(double x, double y)>& counted = {});
 
 /// An occupancy grid holding the true walls rasterized (p = 1 on walls, 0 elsewhere) on
 /// the given geometry. Useful as truth/map.pgm and as a perfect map in tests.

@@ -92,7 +92,8 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
     j["change_recall_seen"] = m.change->recent;
     json objects = json::object();
     for (const auto& [name, o] : m.change->objects) {
-      json e = {{"shows_present", o.shows_present}};
+      json e = json::object();
+      Put(e, "shows_present", o.shows_present);
       Put(e, "since_seen_s", o.since_seen_s);
       objects[name] = e;
     }

@@ -69,26 +69,26 @@ Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, doub
 enum class Verdict { kNone, kAgree, kSeenThrough };
 
 /// How `scan` sees a point: a return along its beam within margin of it (agree), or all
-/// three beams k-1, k, k+1 returns beyond d + margin and no return of the scan within margin
+/// three beams k-1, k, k+1 returns beyond d + margin and no return of the scan within guard
 /// of the point (seen through). The last condition keeps the edge of an object, which a
 /// small error of the poses moves off the object's outline, from reading as a change.
-Verdict Judge(const LaserScan& scan, const Seen& p, double margin) {
+Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard) {
   const auto i = static_cast<std::size_t>(p.beam);
   const double d = p.distance_m;
   if (scan.IsReturn(i) && std::abs(scan.ranges_m[i] - d) <= margin) return Verdict::kAgree;
   for (std::size_t j = i - 1; j <= i + 1; ++j) {
     if (!scan.IsReturn(j) || scan.ranges_m[j] <= d + margin) return Verdict::kNone;
   }
-  // The beams whose returns could lie within margin of the point: those within
-  // asin(margin / d) of its bearing (all of them when it is that close).
+  // The beams whose returns could lie within guard of the point: those within
+  // asin(guard / d) of its bearing (all of them when it is that close).
   const std::size_t n = scan.ranges_m.size();
-  const double half = d > margin ? std::asin(margin / d) : kTwoPi;
+  const double half = d > guard ? std::asin(guard / d) : kTwoPi;
   const auto w = static_cast<std::size_t>(std::ceil(half / scan.angle_increment_rad)) + 1;
   const std::size_t lo = i > w ? i - w : 0, hi = std::min(n - 1, i + w);
   for (std::size_t j = lo; j <= hi; ++j) {
     if (!scan.IsReturn(j)) continue;
     const double r = scan.ranges_m[j], b = scan.Bearing(j);
-    if (std::hypot(r * std::cos(b) - p.x, r * std::sin(b) - p.y) <= margin) return Verdict::kNone;
+    if (std::hypot(r * std::cos(b) - p.x, r * std::sin(b) - p.y) <= guard) return Verdict::kNone;
   }
   return Verdict::kSeenThrough;
 }
@@ -97,8 +97,8 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin) {
 /// to's laser) for those seen through. Counts agreement into *c.
 template <typename F>
 void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
-           const Pose2& T_world_to, const ChangeDetectionConfig& config, ScanComparison* c,
-           F&& seen_through) {
+           const Pose2& T_world_to, const ChangeDetectionConfig& config, double min_incidence_rad,
+           ScanComparison* c, F&& seen_through) {
   const Frame T_to_world(T_world_to.Inverse());
   const Frame T_from(T_world_from);
   const std::size_t n = from.ranges_m.size();
@@ -109,13 +109,13 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     T_from.Apply(r * directions[i][0], r * directions[i][1], &p.x(), &p.y());
     return p;
   };
-  const double min_sin = std::sin(config.min_incidence_rad);
+  const double min_sin = std::sin(min_incidence_rad);
   for (std::size_t i = 0; i < n; ++i) {
     if (!from.IsReturn(i)) continue;
     const Eigen::Vector2d p = end_point(i);
     const Seen s = SeenFrom(to, T_to_world, p.x(), p.y());
     if (s.beam < 0) continue;
-    const Verdict v = Judge(to, s, config.margin_m);
+    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m);
     ++c->judged;
     if (v == Verdict::kAgree) ++c->agree;
     if (v != Verdict::kSeenThrough) continue;
@@ -175,14 +175,14 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   const Pose2 T_world_new_laser = T_world_newer * newer.T_robot_laser;
   ScanComparison c;
   // The older scan's returns that the newer one sees through: removed objects.
-  Judge(older, T_world_old_laser, newer, T_world_new_laser, config, &c,
+  Judge(older, T_world_old_laser, newer, T_world_new_laser, config, config.min_incidence_rad, &c,
         [&](std::uint32_t old_beam, std::uint32_t new_beam, double) {
           c.outdated.push_back({old_beam, older.ranges_m[old_beam]});
           c.news.push_back(new_beam);
         });
   // The newer scan's returns that the older one saw through: added objects.
-  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, &c,
-        [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
+        &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
           c.outdated.push_back(
               {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m))});
           c.news.push_back(new_beam);

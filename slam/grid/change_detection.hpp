@@ -8,7 +8,7 @@
 // outdated. The newer scan's beams that showed it are its news.
 //
 // A beam counts only when the beams on both sides of it agree (three beams beyond the
-// point), no return of the other scan lies within the margin of the point, the other
+// point), no return of the other scan lies within edge_guard_m of the point, the other
 // scan's beam meets the point's surface at min_incidence_rad or more, and it lies in a run
 // of min_run_beams: a corner, an object's edge or a grazing wall, hit by one beam and
 // missed by its neighbour or moved along the beam by a small pose error, is no change. And two
@@ -28,10 +28,18 @@ namespace lifelong::slam {
 
 struct ChangeDetectionConfig {
   double margin_m = 0.3;  ///< a beam must pass a point by this much to see through it
+  /// A point is seen through only when no return of the other scan lies this close to it:
+  /// the edge of an object, which a pose error moves off its outline, is no change.
+  double edge_guard_m = 0.1;
   /// A point is seen through only by a beam that meets its surface (the line through the
   /// neighbouring returns) at this angle or more: at a grazing angle a pose error of e
   /// moves the surface by e / sin(angle) along the beam.
   double min_incidence_rad = 0.35;
+  /// The same for an older free beam that passes where the newer scan has a return (an
+  /// object added). A lower bound serves: cutting it takes off only what lies beyond a
+  /// surface seen standing now (free space and the beam's far return), and a grazing beam
+  /// through a doorway marks many of the door's cells free.
+  double min_incidence_added_rad = 0.1;
   /// Outdated beams count only in runs of at least this many (a run may skip one beam): a
   /// change covers neighbouring beams, noise and pose error single ones.
   int min_run_beams = 4;

@@ -230,8 +230,10 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Section("dpg", [&](auto& d) {
       slam::DpgRuleConfig& r = c.pruning.dpg;
       d.Number("margin_m", r.detection.margin_m, kNonNegative);
+      d.Number("edge_guard_m", r.detection.edge_guard_m, kNonNegative);
       d.Number("min_agreement", r.detection.min_agreement, kUnit);
       d.Number("min_incidence_rad", r.detection.min_incidence_rad, kNonNegative);
+      d.Number("min_incidence_added_rad", r.detection.min_incidence_added_rad, kNonNegative);
       d.Int("min_run_beams", r.detection.min_run_beams, 1);
       d.Number("min_active_share", r.min_active_share, kUnit);
     });

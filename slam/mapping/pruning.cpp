@@ -43,15 +43,15 @@ void Mapper::State::Prune(NodeId current) {
   }
   const Pose2& X_cur = values.at(current);
   std::map<NodeId, double> gains;
+  RoundView view;
   for (const auto& [id, length] : ExpandByPathLength(graph, values, current, 3.0 * pc.radius_m)) {
     const Pose2& X = values.at(id);
-    if (protected_ids.count(id) || std::hypot(X.x - X_cur.x, X.y - X_cur.y) > pc.radius_m) {
-      continue;
-    }
-    gains[id] = 0.0;
+    if (id == current || std::hypot(X.x - X_cur.x, X.y - X_cur.y) > pc.radius_m) continue;
+    view.nearby.push_back(id);
+    if (!protected_ids.count(id)) gains[id] = 0.0;
   }
+  std::sort(view.nearby.begin(), view.nearby.end());
   for (auto& [id, gain] : gains) gain = keeper.Gain(id);
-  RoundView view;
   view.current = current;
   view.footprint = [this](NodeId id) { return Footprint(id); };
   view.scan = [this](NodeId id) {

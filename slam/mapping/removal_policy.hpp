@@ -80,10 +80,14 @@ struct ScanAt {
   Pose2 T_world_robot;
 };
 
-/// What a round shows a policy besides the gains: the current node and any node's footprint
-/// and scan.
+/// What a round shows a policy besides the gains: the current node, the nodes near it, and
+/// any node's footprint and scan.
 struct RoundView {
   NodeId current = 0;
+  /// Every node within the round's radius but the current one, ascending: the candidates
+  /// and the nodes no round removes (the newest, those of an unsettled loop closure). The
+  /// scans of the latter still show the past a change outdates.
+  std::vector<NodeId> nearby;
   std::function<ScanFootprint(NodeId)> footprint;
   std::function<ScanAt(NodeId)> scan;
 };

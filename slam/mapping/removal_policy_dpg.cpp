@@ -4,7 +4,9 @@
 // different times, marks the samples of the older scans that the newer ones show to be
 // removed (or whose free space now holds an object), keeps only active samples in the map,
 // and retires a pose from the active map when its scan has too few active samples left.
-// Here, at each round the current scan is compared with every candidate (change_detection.hpp):
+// Here, at each round the current scan is compared with every node near it, candidate or not
+// (change_detection.hpp; a node of an unsettled loop closure is no candidate, yet its scan
+// shows the past like any other):
 //   - the candidate's outdated beams are retired: the mapper takes them out of the counting
 //     grid, so the map, and every scan's information gain (seed eq. 5.11), follows the
 //     present. A scan that shows a change is no longer measured against the past it
@@ -15,6 +17,7 @@
 // (DPG-SLAM keeps a retired pose in its full graph for the history; here the mode's
 // sparsifier marginalizes it, as for any removal.)
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <utility>
@@ -35,23 +38,7 @@ class DpgPolicy final : public RemovalPolicy {
     doomed_.clear();
     const ScanAt now = view.scan(view.current);
     const LaserScan now_active = Active(now);
-    for (const auto& [id, gain] : gains) {
-      const ScanAt old = view.scan(id);
-      const LaserScan old_active = Active(old);
-      const ScanComparison c = CompareScans(old_active, old.T_world_robot, now_active,
-                                            now.T_world_robot, config_.dpg.detection);
-      // Cut beams are no evidence, so a comparison never finds one of them again.
-      std::size_t retired = old.cut->size();
-      if (!c.outdated.empty()) {
-        retired += c.outdated.size();
-        retired_.push_back({id, c.outdated});
-      }
-      const double returns = Returns(*old.scan);
-      if (retired > 0 &&
-          returns - static_cast<double>(retired) < config_.dpg.min_active_share * returns) {
-        doomed_.push_back(id);
-      }
-    }
+    for (const NodeId id : view.nearby) Compare(id, now, now_active, gains, view);
   }
 
   std::vector<SampleRetirement> TakeRetirements() override { return std::exchange(retired_, {}); }
@@ -65,10 +52,40 @@ class DpgPolicy final : public RemovalPolicy {
   }
 
  private:
+  /// Compares node id's scan with the current one: its outdated beams are retired, and it
+  /// is doomed when too few are left.
+  void Compare(NodeId id, const ScanAt& now, const LaserScan& now_active,
+               const std::map<NodeId, double>& gains, const RoundView& view) {
+    const ScanAt old = view.scan(id);
+    // The older scan whole: a beam cut before still saw through a doorway, so it still
+    // judges its neighbours and joins their run (a change is cut a few beams at a time,
+    // from each pose that sees part of it); it is not cut twice.
+    ScanComparison c = CompareScans(*old.scan, old.T_world_robot, now_active, now.T_world_robot,
+                                    config_.dpg.detection);
+    DropCut(*old.cut, &c.outdated);
+    std::size_t retired = old.cut->size();
+    if (!c.outdated.empty()) {
+      retired += c.outdated.size();
+      retired_.push_back({id, c.outdated});
+    }
+    const double returns = Returns(*old.scan);
+    if (retired > 0 && gains.count(id) &&
+        returns - static_cast<double>(retired) < config_.dpg.min_active_share * returns) {
+      doomed_.push_back(id);
+    }
+  }
   static double Returns(const LaserScan& scan) {
     int n = 0;
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) n += scan.IsReturn(i) ? 1 : 0;
     return n;
+  }
+  /// Leaves out of `outdated` (ascending) the beams `cut` (ascending) holds.
+  static void DropCut(const std::vector<BeamCut>& cut, std::vector<BeamCut>* outdated) {
+    std::vector<BeamCut> fresh;
+    std::set_difference(outdated->begin(), outdated->end(), cut.begin(), cut.end(),
+                        std::back_inserter(fresh),
+                        [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
+    *outdated = std::move(fresh);
   }
   /// The scan without its cut beams (read as 0: no evidence).
   static LaserScan Active(const ScanAt& at) {

@@ -137,8 +137,11 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.overlap.nearby_penalty, b.pruning.overlap.nearby_penalty);
   EXPECT_EQ(a.pruning.overlap.scan_buffer, b.pruning.overlap.scan_buffer);
   EXPECT_EQ(a.pruning.dpg.detection.margin_m, b.pruning.dpg.detection.margin_m);
+  EXPECT_EQ(a.pruning.dpg.detection.edge_guard_m, b.pruning.dpg.detection.edge_guard_m);
   EXPECT_EQ(a.pruning.dpg.detection.min_agreement, b.pruning.dpg.detection.min_agreement);
   EXPECT_EQ(a.pruning.dpg.detection.min_incidence_rad, b.pruning.dpg.detection.min_incidence_rad);
+  EXPECT_EQ(a.pruning.dpg.detection.min_incidence_added_rad,
+            b.pruning.dpg.detection.min_incidence_added_rad);
   EXPECT_EQ(a.pruning.dpg.detection.min_run_beams, b.pruning.dpg.detection.min_run_beams);
   EXPECT_EQ(a.pruning.dpg.min_active_share, b.pruning.dpg.min_active_share);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
@@ -226,7 +229,7 @@ MapperConfig AllChanged() {
                slam::FactorMeans::kMarginalMean,
                true,
                {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5},
-               {{0.25, 0.3, 5, 0.7}, 0.4}};
+               {{0.25, 0.15, 0.3, 0.2, 5, 0.7}, 0.4}};
   c.grid = {0.1, 6.0, 9.5, 3};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

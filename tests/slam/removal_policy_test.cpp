@@ -1,6 +1,8 @@
 // Removal policies (slam/mapping/removal_policy.hpp): which node goes, by name.
 #include "slam/mapping/removal_policy.hpp"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "synthetic_scans.hpp"
@@ -93,6 +95,7 @@ TEST(RemovalPolicy, DpgRetiresTheOutdatedBeamsAndTheNodesThatMostlyShowThePast) 
   std::map<NodeId, std::vector<BeamCut>> cut;
   RoundView view;
   view.current = 9;
+  view.nearby = {1, 2};
   view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
   RemovalPolicyConfig config;
   config.dpg.min_active_share = 0.75;
@@ -118,6 +121,48 @@ TEST(RemovalPolicy, DpgRetiresTheOutdatedBeamsAndTheNodesThatMostlyShowThePast) 
   EXPECT_TRUE(policy->TakeRetirements().empty());
   // A scan that shows no change is judged by the seed's rule.
   EXPECT_EQ(policy->Next({{2, 4.0}}, 100), NodeId{2});
+
+  // A change seen a part at a time (here: every other beam of node 2's was cut before): the
+  // beams cut before still join their neighbours' run, and the rest is cut, none twice.
+  std::vector<BeamCut> half;
+  for (std::size_t i = 0; i < out[1].cuts.size(); i += 2) half.push_back(out[1].cuts[i]);
+  cut[2] = half;
+  policy->BeginRound(gains, view);
+  const std::vector<SampleRetirement> rest = policy->TakeRetirements();
+  ASSERT_EQ(rest.size(), 1u);
+  EXPECT_EQ(rest[0].node, NodeId{2});
+  EXPECT_EQ(rest[0].cuts.size(), out[1].cuts.size() - half.size());
+  for (const BeamCut& c : rest[0].cuts) {
+    EXPECT_TRUE(
+        std::none_of(half.begin(), half.end(), [&](const BeamCut& h) { return h.beam == c.beam; }));
+  }
+}
+
+// A node no round may remove (the newest, or one of an unsettled loop closure) is no
+// candidate, yet its scan shows the past: its outdated beams are cut all the same, and it
+// never goes.
+TEST(RemovalPolicy, DpgCutsTheBeamsOfANodeNoRoundRemoves) {
+  testing::World closed, open;
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &closed);
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &open);
+  closed.push_back({6.0, 2.0, 6.0, 4.0});
+  std::map<NodeId, LaserScan> scans{{1, testing::SimulateScan(closed, {4.0, 3.0, 0.0})},
+                                    {9, testing::SimulateScan(open, {2.5, 2.9, 0.1})}};
+  std::map<NodeId, Pose2> poses{{1, {4.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
+  std::map<NodeId, std::vector<BeamCut>> cut;
+  RoundView view;
+  view.current = 9;
+  view.nearby = {1};
+  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
+  RemovalPolicyConfig config;
+  config.dpg.min_active_share = 0.75;
+  const auto policy = MakeRemovalPolicy("dpg", config);
+  policy->BeginRound({}, view);  // node 1 protected: no candidate
+  const std::vector<SampleRetirement> out = policy->TakeRetirements();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_GT(out[0].cuts.size(), 46u);  // as when it was a candidate: under 75 % left
+  EXPECT_EQ(policy->Next({}, 100), std::nullopt);
+  EXPECT_EQ(policy->Next({{7, 50.0}}, 100), std::nullopt);  // node 1 is not doomed
 }
 
 TEST(RemovalPolicy, NamesAreTheRegistry) {

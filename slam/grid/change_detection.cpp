@@ -69,14 +69,15 @@ Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, doub
 enum class Verdict { kNone, kAgree, kSeenThrough };
 
 /// How `scan` sees a point: a return along its beam within margin of it (agree), or all
-/// three beams k-1, k, k+1 returns beyond d + margin and no return of the scan within guard
+/// three beams k-1, k, k+1 (only k when `alone`) returns beyond d + margin and no return of
+/// the scan within guard
 /// of the point (seen through). The last condition keeps the edge of an object, which a
 /// small error of the poses moves off the object's outline, from reading as a change.
-Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard) {
+Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard, bool alone) {
   const auto i = static_cast<std::size_t>(p.beam);
   const double d = p.distance_m;
   if (scan.IsReturn(i) && std::abs(scan.ranges_m[i] - d) <= margin) return Verdict::kAgree;
-  for (std::size_t j = i - 1; j <= i + 1; ++j) {
+  for (std::size_t j = alone ? i : i - 1; j <= (alone ? i : i + 1); ++j) {
     if (!scan.IsReturn(j) || scan.ranges_m[j] <= d + margin) return Verdict::kNone;
   }
   // The beams whose returns could lie within guard of the point: those within
@@ -98,7 +99,7 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard)
 template <typename F>
 void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
            const Pose2& T_world_to, const ChangeDetectionConfig& config, double min_incidence_rad,
-           ScanComparison* c, F&& seen_through) {
+           bool alone, ScanComparison* c, F&& seen_through) {
   const Frame T_to_world(T_world_to.Inverse());
   const Frame T_from(T_world_from);
   const std::size_t n = from.ranges_m.size();
@@ -115,7 +116,7 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     const Eigen::Vector2d p = end_point(i);
     const Seen s = SeenFrom(to, T_to_world, p.x(), p.y());
     if (s.beam < 0) continue;
-    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m);
+    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m, alone);
     ++c->judged;
     if (v == Verdict::kAgree) ++c->agree;
     if (v != Verdict::kSeenThrough) continue;
@@ -126,11 +127,19 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     if (t.norm() > 4.0 * config.margin_m || t.norm() < 1e-9) continue;
     const Eigen::Vector2d origin(T_world_to.x, T_world_to.y);
     const Eigen::Vector2d u = (p - origin).normalized();
-    if (std::abs(u.x() * t.y() - u.y() * t.x()) / t.norm() < min_sin) continue;
-    {
-      ++c->disagree;
-      seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam), s.distance_m);
+    const double sin_a = std::abs(u.x() * t.y() - u.y() * t.x()) / t.norm();
+    if (sin_a < min_sin) continue;
+    // A beam judged alone, without its neighbours, may be half a beam off the point's
+    // bearing: on a surface met at angle a that moves its end by d (increment / 2) / tan(a)
+    // along it, so it must pass the point by that much more.
+    if (alone) {
+      const double cos_a = std::sqrt(std::max(0.0, 1.0 - sin_a * sin_a));
+      const double slack = s.distance_m * 0.5 * std::abs(to.angle_increment_rad) * cos_a / sin_a;
+      if (to.ranges_m[static_cast<std::size_t>(s.beam)] <= s.distance_m + config.margin_m + slack)
+        continue;
     }
+    ++c->disagree;
+    seen_through(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(s.beam), s.distance_m);
   }
 }
 
@@ -173,29 +182,47 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
                             const ChangeDetectionConfig& config) {
   const Pose2 T_world_old_laser = T_world_older * older.T_robot_laser;
   const Pose2 T_world_new_laser = T_world_newer * newer.T_robot_laser;
+  const auto min_run = static_cast<std::size_t>(config.min_run_beams);
   ScanComparison c;
-  // The older scan's returns that the newer one sees through: removed objects.
-  Judge(older, T_world_old_laser, newer, T_world_new_laser, config, config.min_incidence_rad, &c,
-        [&](std::uint32_t old_beam, std::uint32_t new_beam, double) {
-          c.outdated.push_back({old_beam, older.ranges_m[old_beam]});
-          c.news.push_back(new_beam);
+  // The older scan's returns that the newer one sees through: removed objects. The older
+  // beams must lie in a run (a change covers neighbouring returns).
+  std::vector<BeamCut> removed;
+  std::vector<std::uint32_t> removed_news;
+  Judge(older, T_world_old_laser, newer, T_world_new_laser, config, config.min_incidence_rad, false,
+        &c, [&](std::uint32_t old_beam, std::uint32_t new_beam, double) {
+          removed.push_back({old_beam, older.ranges_m[old_beam]});
+          removed_news.push_back(new_beam);
         });
-  // The newer scan's returns that the older one saw through: added objects.
+  // The newer scan's returns that the older one saw through: added objects. Here the newer
+  // returns must lie in a run, and every older beam through one of them is outdated, its
+  // neighbours or not: a beam that grazes a doorway from afar passes many of the door's
+  // returns, alone among its neighbours.
+  std::vector<std::pair<std::uint32_t, BeamCut>> added;  // (newer beam, older beam cut)
   Judge(newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
-        &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
-          c.outdated.push_back(
-              {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m))});
-          c.news.push_back(new_beam);
+        true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+          added.push_back(
+              {new_beam,
+               {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m))}});
         });
   c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;
-  if (!c.compared) {
-    c.outdated.clear();
-    c.news.clear();
+  if (!c.compared) return c;
+  SortUnique(&removed);
+  KeepRuns(min_run, &removed);
+  SortUnique(&removed_news);
+  KeepRuns(min_run, &removed_news);
+  std::vector<std::uint32_t> added_news;
+  for (const auto& a : added) added_news.push_back(a.first);
+  SortUnique(&added_news);
+  KeepRuns(min_run, &added_news);
+  c.outdated = removed;
+  for (const auto& [new_beam, cut] : added) {
+    if (std::binary_search(added_news.begin(), added_news.end(), new_beam))
+      c.outdated.push_back(cut);
   }
   SortUnique(&c.outdated);
+  c.news = removed_news;
+  c.news.insert(c.news.end(), added_news.begin(), added_news.end());
   SortUnique(&c.news);
-  KeepRuns(static_cast<std::size_t>(config.min_run_beams), &c.outdated);
-  KeepRuns(static_cast<std::size_t>(config.min_run_beams), &c.news);
   return c;
 }
 

@@ -7,11 +7,16 @@
 // object was added). Either way the older beam shows a state the world has left: it is
 // outdated. The newer scan's beams that showed it are its news.
 //
-// A beam counts only when the beams on both sides of it agree (three beams beyond the
-// point), no return of the other scan lies within edge_guard_m of the point, the other
-// scan's beam meets the point's surface at min_incidence_rad or more, and it lies in a run
-// of min_run_beams: a corner, an object's edge or a grazing wall, hit by one beam and
-// missed by its neighbour or moved along the beam by a small pose error, is no change. And two
+// A point seen through counts only when no return of the scan that sees through it lies
+// within edge_guard_m of the point and that scan's beam meets the point's surface at
+// min_incidence_rad or more. A removed return counts only when the beams on both sides agree
+// too (three beams beyond the point) and the older returns form a run of min_run_beams: a
+// corner, an object's edge or a grazing wall, hit by one beam and missed by its neighbour or
+// moved along the beam by a small pose error, is no change. An added object counts only
+// when the newer returns form that run; then each older beam through one of them is
+// outdated on its own (min_incidence_added_rad; passing the point by margin_m plus half a
+// beam's bearing error), for a beam that grazes a doorway from afar passes many of the
+// door's returns while its neighbours hit the wall. And two
 // scans are compared only when they agree where they overlap: when fewer than min_agreement of the
 // returns they both see lie within `margin_m` of each other, their poses disagree (drift before a
 // loop closure) and nothing is marked.

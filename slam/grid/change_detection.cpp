@@ -148,14 +148,24 @@ void SortUnique(std::vector<std::uint32_t>* v) {
   v->erase(std::unique(v->begin(), v->end()), v->end());
 }
 
-/// By beam, each beam once with the shortest free range given for it.
+/// By beam, each beam once: free up to the shortest free range given for it, resumed from
+/// the farthest resume point when every cut of it resumes (none does when its return is gone).
 void SortUnique(std::vector<BeamCut>* v) {
   std::sort(v->begin(), v->end(), [](const BeamCut& a, const BeamCut& b) {
     return a.beam < b.beam || (a.beam == b.beam && a.free_to_m < b.free_to_m);
   });
-  v->erase(std::unique(v->begin(), v->end(),
-                       [](const BeamCut& a, const BeamCut& b) { return a.beam == b.beam; }),
-           v->end());
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const BeamCut& c = (*v)[i];
+    if (n > 0 && (*v)[n - 1].beam == c.beam) {
+      BeamCut& kept = (*v)[n - 1];
+      const bool both = kept.resume_m > kept.free_to_m && c.resume_m > c.free_to_m;
+      kept.resume_m = both ? std::max(kept.resume_m, c.resume_m) : 0.0f;
+    } else {
+      (*v)[n++] = c;
+    }
+  }
+  v->resize(n);
 }
 
 std::uint32_t BeamOf(std::uint32_t b) { return b; }
@@ -198,12 +208,21 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   // neighbours or not: a beam that grazes a doorway from afar passes many of the door's
   // returns, alone among its neighbours.
   std::vector<std::pair<std::uint32_t, BeamCut>> added;  // (newer beam, older beam cut)
-  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
-        true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
-          added.push_back(
-              {new_beam,
-               {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m))}});
-        });
+  Judge(
+      newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
+      true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+        // Free up to short of the surface now standing, and its return kept: the wall it
+        // hit (a room's, behind a door now closed) still stands. The space between, the
+        // object's own depth included, is no longer known.
+        const float r = older.ranges_m[old_beam];
+        const float resume = older.IsReturn(old_beam)
+                                 ? std::max(static_cast<float>(distance_m + config.margin_m),
+                                            r - static_cast<float>(config.margin_m))
+                                 : 0.0f;
+        added.push_back(
+            {new_beam,
+             {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m)), resume}});
+      });
   c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;
   if (!c.compared) return c;
   SortUnique(&removed);

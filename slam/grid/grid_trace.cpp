@@ -35,16 +35,16 @@ void Bresenham(CellIndex a, CellIndex b, F&& f) {
 }
 
 struct Beam {
-  CellIndex end;
+  CellIndex start, end;  ///< traced from start (the laser's cell, or where a cut beam resumes)
   bool hit;
 };
 
 // Accumulate for a large bounding box: every traversed cell listed, sorted by (y, x) and
 // summed.
-std::vector<CellUpdate> AccumulateSorted(CellIndex origin, const std::vector<Beam>& beams) {
+std::vector<CellUpdate> AccumulateSorted(const std::vector<Beam>& beams) {
   std::vector<CellUpdate> out;
   for (const Beam& b : beams) {
-    Bresenham(origin, b.end, [&](int x, int y) {
+    Bresenham(b.start, b.end, [&](int x, int y) {
       const bool hit = b.hit && x == b.end.x && y == b.end.y;
       out.push_back({{x, y}, {hit ? 1u : 0u, hit ? 0u : 1u}});
     });
@@ -68,8 +68,7 @@ std::vector<CellUpdate> AccumulateSorted(CellIndex origin, const std::vector<Bea
 // bounding box is small, counts go into a dense scratch box kept per thread (a fresh one
 // costs more in page faults and zeroing than the scan itself); each row is read back over
 // the span of columns its beams touched, and zeroed for the next call. A sort otherwise.
-std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& beams, CellIndex lo,
-                                   CellIndex hi) {
+std::vector<CellUpdate> Accumulate(const std::vector<Beam>& beams, CellIndex lo, CellIndex hi) {
   constexpr std::int64_t kMaxDenseCells = std::int64_t{1} << 21;
   const std::int64_t w = hi.x - lo.x + 1, h = hi.y - lo.y + 1;
   std::vector<CellUpdate> out;
@@ -83,7 +82,7 @@ std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& be
     row_last.assign(static_cast<std::size_t>(h), -1);
     std::size_t distinct = 0;
     for (const Beam& b : beams) {
-      Bresenham(origin, b.end, [&](int x, int y) {
+      Bresenham(b.start, b.end, [&](int x, int y) {
         const int bx = x - lo.x;
         const auto by = static_cast<std::size_t>(y - lo.y);
         CellCounts& c = box[by * static_cast<std::size_t>(w) + static_cast<std::size_t>(bx)];
@@ -113,7 +112,7 @@ std::vector<CellUpdate> Accumulate(CellIndex origin, const std::vector<Beam>& be
     drain(true);
     return out;
   }
-  return AccumulateSorted(origin, beams);
+  return AccumulateSorted(beams);
 }
 
 }  // namespace
@@ -168,19 +167,31 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2
     if (!(r > 0.0)) continue;
     // Returns beyond the usable range are too sparse and too noisy to map (one beam per
     // cell at best): like "no return" beams they only clear space, up to max_free_range_m.
-    const bool hit = !is_cut && scan.IsReturn(i) && r <= config_.max_hit_range_m;
-    double range = hit ? r : std::min({r, config_.max_free_range_m, dropout_clear[i]});
-    if (is_cut) range = std::min(range, static_cast<double>(cut->free_to_m));
-    if (!(range > 0.0)) continue;
+    const bool hit = scan.IsReturn(i) && r <= config_.max_hit_range_m;
+    const double range = hit ? r : std::min({r, config_.max_free_range_m, dropout_clear[i]});
     const double a = scan.Bearing(i);
-    double x = 0.0, y = 0.0;
-    T_world_laser.Apply(range * std::cos(a), range * std::sin(a), &x, &y);
-    const CellIndex end = CellOf(x, y);
-    beams.push_back({end, hit});
-    lo = {std::min(lo.x, end.x), std::min(lo.y, end.y)};
-    hi = {std::max(hi.x, end.x), std::max(hi.y, end.y)};
+    const auto at = [&](double d) {
+      double x = 0.0, y = 0.0;
+      T_world_laser.Apply(d * std::cos(a), d * std::sin(a), &x, &y);
+      return CellOf(x, y);
+    };
+    const auto add = [&](CellIndex start, double to, bool with_hit) {
+      const CellIndex end = at(to);
+      beams.push_back({start, end, with_hit});
+      lo = {std::min(lo.x, end.x), std::min(lo.y, end.y)};
+      hi = {std::max(hi.x, end.x), std::max(hi.y, end.y)};
+    };
+    if (!is_cut) {
+      if (range > 0.0) add(origin, range, hit);
+      continue;
+    }
+    // A cut beam shows free space only, as far as a beam without a return would.
+    const double free_to = std::min(
+        {r, config_.max_free_range_m, dropout_clear[i], static_cast<double>(cut->free_to_m)});
+    if (free_to > 0.0) add(origin, free_to, false);
+    if (cut->resume_m > cut->free_to_m && cut->resume_m < range) add(at(cut->resume_m), range, hit);
   }
-  return Accumulate(origin, beams, lo, hi);
+  return Accumulate(beams, lo, hi);
 }
 
 }  // namespace lifelong::slam

@@ -63,11 +63,13 @@ class DpgPolicy final : public RemovalPolicy {
     ScanComparison c = CompareScans(*old.scan, old.T_world_robot, now_active, now.T_world_robot,
                                     config_.dpg.detection);
     DropCut(*old.cut, &c.outdated);
-    std::size_t retired = old.cut->size();
-    if (!c.outdated.empty()) {
-      retired += c.outdated.size();
-      retired_.push_back({id, c.outdated});
-    }
+    // A beam retired: its return gone. A beam an object now crosses keeps its return.
+    const auto gone = [](const std::vector<BeamCut>& cuts) {
+      return static_cast<std::size_t>(std::count_if(
+          cuts.begin(), cuts.end(), [](const BeamCut& b) { return !(b.resume_m > b.free_to_m); }));
+    };
+    const std::size_t retired = gone(*old.cut) + gone(c.outdated);
+    if (!c.outdated.empty()) retired_.push_back({id, c.outdated});
     const double returns = Returns(*old.scan);
     if (retired > 0 && gains.count(id) &&
         returns - static_cast<double>(retired) < config_.dpg.min_active_share * returns) {

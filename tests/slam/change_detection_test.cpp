@@ -71,9 +71,11 @@ TEST(ChangeDetection, AClosedDoorOutdatesTheBeamsThatPassedIt) {
   ASSERT_GE(c.outdated.size(), 20u);
   for (const BeamCut& cut : c.outdated) {
     EXPECT_GT(older.ranges_m[cut.beam], 7.0) << "beam " << cut.beam;
-    // Free only up to short of the door now standing at x = 6, 3.5-4.3 m along these beams.
+    // Free only up to short of the door now standing at x = 6, 3.5-4.3 m along these beams,
+    // and its return on the room's far wall, which still stands, kept.
     EXPECT_GT(cut.free_to_m, 3.0f);
     EXPECT_LT(cut.free_to_m, 4.1f);
+    EXPECT_NEAR(cut.resume_m, older.ranges_m[cut.beam] - 0.3f, 1e-4f);
   }
 }
 

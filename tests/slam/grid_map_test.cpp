@@ -55,6 +55,28 @@ TEST(GridMapTest, OneReturnMissesAlongTheBeamAndHitsAtTheEnd) {
   EXPECT_EQ(b.max, (CellIndex{5, 0}));
 }
 
+// A beam cut where an object now stands across it (BeamCut::resume_m): free up to short of
+// the object, nothing about it, and again free beyond it up to its return, which it keeps.
+TEST(GridMapTest, ACutBeamResumesBeyondTheObjectWithItsReturn) {
+  GridMap map;
+  // Ends at x = 0.325 (cell 6), 0.625 (cell 12) and 1.025 (cell 20).
+  const std::vector<CellUpdate> cells =
+      map.TouchedCells(OneBeam(1.0f), kCellCentre, {{0, 0.3f, 0.6f}});
+  std::map<int, CellCounts> at;
+  for (const CellUpdate& c : cells) at[c.cell.x] = c.delta;
+  for (int x = 0; x <= 20; ++x) {
+    const bool about_object = x >= 7 && x <= 11;
+    ASSERT_EQ(at.count(x), about_object ? 0u : 1u) << "cell " << x;
+    if (about_object) continue;
+    EXPECT_EQ(at[x].hits, x == 20 ? 1u : 0u) << "cell " << x;
+    EXPECT_EQ(at[x].misses, x == 20 ? 0u : 1u) << "cell " << x;
+  }
+  // Without resume_m the beam ends at free_to_m and its return is gone.
+  const std::vector<CellUpdate> ended = map.TouchedCells(OneBeam(1.0f), kCellCentre, {{0, 0.3f}});
+  ASSERT_EQ(ended.size(), 7u);
+  for (const CellUpdate& c : ended) EXPECT_EQ(c.delta.hits, 0u);
+}
+
 TEST(GridMapTest, NoReturnAddsMissesUpToMaxFreeRange) {
   GridMapConfig config;
   config.max_free_range_m = 0.5;  // end x = 0.525: cell 10

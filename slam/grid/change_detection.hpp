@@ -61,7 +61,8 @@ struct ScanComparison {
   bool compared = false;  ///< the scans overlap and agree enough (min_agreement) to judge
   /// The older scan's outdated beams, ascending, each with how far it still shows free
   /// space: up to its return for a return seen through (the space was free, the object is
-  /// gone), up to short of the newer surface for a beam that passed where an object stands.
+  /// gone), up to short of the newer surface for a beam that passed where an object stands,
+  /// which keeps its return (resume_m, margin_m short of it: what it hit still stands).
   std::vector<BeamCut> outdated;
   std::vector<std::uint32_t> news;  ///< the newer scan's beams that showed a change, ascending
 };

@@ -80,8 +80,8 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
     const Sightings seen =
         CollectSightings(stream, scans, LastChange(o, end_s), present, past, map.resolution_m);
     if (seen.last_s) p.since_seen_s = std::max(0.0, end_s - *seen.last_s);
-    const auto hit = [&](double x, double y) { return seen.Hit(x, y); };
-    const auto freed = [&](double x, double y) { return seen.Freed(x, y); };
+    const auto hit = [&](double x, double y) { return seen.hit.Near(x, y); };
+    const auto freed = [&](double x, double y) { return seen.freed.Near(x, y); };
     const std::optional<double> shown_now =
         present.empty() ? std::nullopt : ShownShare(map, present, others, T_truth_est, {}, hit);
     const std::optional<double> shown_past =

@@ -67,16 +67,16 @@ bool Span(const Bounds& b, double x, double y, double* mid, double* lo, double* 
 
 }  // namespace
 
-std::int64_t Sightings::Key(double x, double y) const {
+std::int64_t CellSet::Key(double x, double y) const {
   const auto ix = static_cast<std::int64_t>(std::floor(x / cell_m_));
   const auto iy = static_cast<std::int64_t>(std::floor(y / cell_m_));
   return (ix << 32) ^ (iy & 0xffffffffLL);
 }
 
-bool Sightings::Near(const std::unordered_set<std::int64_t>& cells, double x, double y) const {
+bool CellSet::Near(double x, double y) const {
   for (int dx = -1; dx <= 1; ++dx) {
     for (int dy = -1; dy <= 1; ++dy) {
-      if (cells.count(Key(x + dx * cell_m_, y + dy * cell_m_))) return true;
+      if (cells_.count(Key(x + dx * cell_m_, y + dy * cell_m_))) return true;
     }
   }
   return false;
@@ -87,13 +87,13 @@ Sightings CollectSightings(const std::vector<Observation>& stream, std::size_t s
                            const std::vector<Segment>& past, double cell_m) {
   Sightings out(cell_m);
   // The cells about the past outlines, where a free beam shows the place left.
-  Sightings near_past(cell_m);
+  CellSet near_past(cell_m);
   for (const Segment& s : past) {
     const double len = std::hypot(s.x1 - s.x0, s.y1 - s.y0);
     const int steps = static_cast<int>(std::ceil(len / (0.5 * cell_m))) + 1;
     for (int i = 0; i <= steps; ++i) {
       const double f = static_cast<double>(i) / steps;
-      near_past.AddHit(s.x0 + f * (s.x1 - s.x0), s.y0 + f * (s.y1 - s.y0));
+      near_past.Add(s.x0 + f * (s.x1 - s.x0), s.y0 + f * (s.y1 - s.y0));
     }
   }
   Bounds all, past_box;
@@ -124,7 +124,7 @@ Sightings CollectSightings(const std::vector<Observation>& stream, std::size_t s
       if (hit && std::any_of(present.begin(), present.end(), [&](const Segment& s) {
             return sim::PointSegmentDistance(end, s) <= kSeenM;
           })) {
-        out.AddHit(end.x, end.y);
+        out.hit.Add(end.x, end.y);
         saw = true;
       }
       double t0 = 0.0, t1 = 0.0;
@@ -133,8 +133,8 @@ Sightings CollectSightings(const std::vector<Observation>& stream, std::size_t s
         continue;
       for (double t = t0; t <= t1; t += 0.5 * cell_m) {
         const double x = T.x + t * ux, y = T.y + t * uy;
-        if (!near_past.Hit(x, y)) continue;
-        out.AddFree(x, y);
+        if (!near_past.Near(x, y)) continue;
+        out.freed.Add(x, y);
         saw = true;
       }
     }

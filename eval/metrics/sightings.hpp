@@ -16,26 +16,28 @@
 
 namespace lifelong::eval {
 
-class Sightings {
+/// Cells of cell_m (truth frame) holding at least one point.
+class CellSet {
  public:
-  explicit Sightings(double cell_m) : cell_m_(cell_m) {}
-
-  /// A return of a scan after the change hit within one cell of (x, y) (truth frame).
-  bool Hit(double x, double y) const { return Near(hit_, x, y); }
-  /// A beam of a scan after the change crossed within one cell of (x, y), short of its return.
-  bool Freed(double x, double y) const { return Near(free_, x, y); }
-  /// The stamp of the last scan that hit the present outline or crossed a past one.
-  std::optional<double> last_s;
-
-  void AddHit(double x, double y) { hit_.insert(Key(x, y)); }
-  void AddFree(double x, double y) { free_.insert(Key(x, y)); }
+  explicit CellSet(double cell_m) : cell_m_(cell_m) {}
+  void Add(double x, double y) { cells_.insert(Key(x, y)); }
+  /// A point was added within one cell of (x, y).
+  bool Near(double x, double y) const;
 
  private:
   std::int64_t Key(double x, double y) const;
-  bool Near(const std::unordered_set<std::int64_t>& cells, double x, double y) const;
 
   double cell_m_;
-  std::unordered_set<std::int64_t> hit_, free_;
+  std::unordered_set<std::int64_t> cells_;
+};
+
+struct Sightings {
+  explicit Sightings(double cell_m) : hit(cell_m), freed(cell_m) {}
+
+  CellSet hit;    ///< where returns of scans after the change hit the present outline
+  CellSet freed;  ///< where their beams crossed a past outline, short of their return
+  /// The stamp of the last scan that hit the present outline or crossed a past one.
+  std::optional<double> last_s;
 };
 
 /// The sightings of an object whose outline is `present` at the end and was `past` before,

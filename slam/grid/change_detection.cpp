@@ -159,7 +159,7 @@ void SortUnique(std::vector<BeamCut>* v) {
     const BeamCut& c = (*v)[i];
     if (n > 0 && (*v)[n - 1].beam == c.beam) {
       BeamCut& kept = (*v)[n - 1];
-      const bool both = kept.resume_m > kept.free_to_m && c.resume_m > c.free_to_m;
+      const bool both = kept.Resumes() && c.Resumes();
       kept.resume_m = both ? std::max(kept.resume_m, c.resume_m) : 0.0f;
     } else {
       (*v)[n++] = c;

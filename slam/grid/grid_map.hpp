@@ -66,6 +66,7 @@ struct BeamCut {
   std::uint32_t beam = 0;
   float free_to_m = 0.0f;
   float resume_m = 0.0f;  ///< 0: the beam ends at free_to_m
+  bool Resumes() const { return resume_m > free_to_m; }
 };
 
 /// Inclusive cell-index box. `empty` when the map holds no counts.

@@ -189,7 +189,7 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2
     const double free_to = std::min(
         {r, config_.max_free_range_m, dropout_clear[i], static_cast<double>(cut->free_to_m)});
     if (free_to > 0.0) add(origin, free_to, false);
-    if (cut->resume_m > cut->free_to_m && cut->resume_m < range) add(at(cut->resume_m), range, hit);
+    if (cut->Resumes() && cut->resume_m < range) add(at(cut->resume_m), range, hit);
   }
   return Accumulate(beams, lo, hi);
 }

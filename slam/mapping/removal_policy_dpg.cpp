@@ -37,8 +37,8 @@ class DpgPolicy final : public RemovalPolicy {
   void BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) override {
     doomed_.clear();
     const ScanAt now = view.scan(view.current);
-    const LaserScan now_active = Active(now);
-    for (const NodeId id : view.nearby) Compare(id, now, now_active, gains, view);
+    // The current node is the newest: no round has compared it yet, so none has cut it.
+    for (const NodeId id : view.nearby) Compare(id, now, gains, view);
   }
 
   std::vector<SampleRetirement> TakeRetirements() override { return std::exchange(retired_, {}); }
@@ -54,19 +54,19 @@ class DpgPolicy final : public RemovalPolicy {
  private:
   /// Compares node id's scan with the current one: its outdated beams are retired, and it
   /// is doomed when too few are left.
-  void Compare(NodeId id, const ScanAt& now, const LaserScan& now_active,
-               const std::map<NodeId, double>& gains, const RoundView& view) {
+  void Compare(NodeId id, const ScanAt& now, const std::map<NodeId, double>& gains,
+               const RoundView& view) {
     const ScanAt old = view.scan(id);
     // The older scan whole: a beam cut before still saw through a doorway, so it still
     // judges its neighbours and joins their run (a change is cut a few beams at a time,
     // from each pose that sees part of it); it is not cut twice.
-    ScanComparison c = CompareScans(*old.scan, old.T_world_robot, now_active, now.T_world_robot,
+    ScanComparison c = CompareScans(*old.scan, old.T_world_robot, *now.scan, now.T_world_robot,
                                     config_.dpg.detection);
     DropCut(*old.cut, &c.outdated);
     // A beam retired: its return gone. A beam an object now crosses keeps its return.
     const auto gone = [](const std::vector<BeamCut>& cuts) {
-      return static_cast<std::size_t>(std::count_if(
-          cuts.begin(), cuts.end(), [](const BeamCut& b) { return !(b.resume_m > b.free_to_m); }));
+      return static_cast<std::size_t>(
+          std::count_if(cuts.begin(), cuts.end(), [](const BeamCut& b) { return !b.Resumes(); }));
     };
     const std::size_t retired = gone(*old.cut) + gone(c.outdated);
     if (!c.outdated.empty()) retired_.push_back({id, c.outdated});
@@ -88,12 +88,6 @@ class DpgPolicy final : public RemovalPolicy {
                         std::back_inserter(fresh),
                         [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
     *outdated = std::move(fresh);
-  }
-  /// The scan without its cut beams (read as 0: no evidence).
-  static LaserScan Active(const ScanAt& at) {
-    LaserScan scan = *at.scan;
-    for (const BeamCut& c : *at.cut) scan.ranges_m.at(c.beam) = 0.0f;
-    return scan;
   }
 
   RemovalPolicyConfig config_;

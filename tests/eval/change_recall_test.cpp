@@ -31,14 +31,21 @@ sim::World DoorWorld() {
   return w;
 }
 
-// One scan at t_s from (4.5, 2) looking down (-y) through the doorway, beams +-10 deg.
-Observation LookThrough(double t_s) {
+// A scan at t_s from (x, y) looking down (-y), its beams from angle_min by increment; a
+// 30 m laser, its ranges left to the caller.
+Observation LookingDown(double t_s, double x, double y, double angle_min, double increment) {
   Observation o;
   o.stamp_s = t_s;
-  o.T_world_robot_true = Pose2(4.5, 2.0, -M_PI / 2.0);
-  o.scan.angle_min_rad = -0.17;
-  o.scan.angle_increment_rad = 0.017;
+  o.T_world_robot_true = Pose2(x, y, -M_PI / 2.0);
+  o.scan.angle_min_rad = angle_min;
+  o.scan.angle_increment_rad = increment;
   o.scan.range_max_m = 30.0;
+  return o;
+}
+
+// One scan at t_s from (4.5, 2) looking down (-y) through the doorway, beams +-10 deg.
+Observation LookThrough(double t_s) {
+  Observation o = LookingDown(t_s, 4.5, 2.0, -0.17, 0.017);
   o.scan.ranges_m.assign(21, 30.0f);  // no return: the room beyond is deep
   return o;
 }
@@ -107,12 +114,7 @@ sim::World MovedBoxWorld() {
 }
 
 Observation LookDownAt(const std::vector<Segment>& outline, double t_s) {
-  Observation o;
-  o.stamp_s = t_s;
-  o.T_world_robot_true = Pose2(3.5, 4.0, -M_PI / 2.0);
-  o.scan.angle_min_rad = -1.2;
-  o.scan.angle_increment_rad = 0.01;
-  o.scan.range_max_m = 30.0;
+  Observation o = LookingDown(t_s, 3.5, 4.0, -1.2, 0.01);
   for (int i = 0; i <= 240; ++i) {
     const double a = -M_PI / 2.0 + o.scan.Bearing(static_cast<std::size_t>(i));
     double best = 30.0;

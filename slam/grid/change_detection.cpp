@@ -211,14 +211,13 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   Judge(
       newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
       true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
-        // Free up to short of the surface now standing, and its return kept: the wall it
-        // hit (a room's, behind a door now closed) still stands. The space between, the
-        // object's own depth included, is no longer known.
-        const float r = older.ranges_m[old_beam];
-        const float resume = older.IsReturn(old_beam)
-                                 ? std::max(static_cast<float>(distance_m + config.margin_m),
-                                            r - static_cast<float>(config.margin_m))
-                                 : 0.0f;
+        // Free up to short of the surface now standing, and traced again past the
+        // object's unseen depth behind it, its return kept: the room behind a door now
+        // closed was free when the beam crossed it, and the wall it hit still stands.
+        const double r = older.ranges_m[old_beam];
+        const auto resume = static_cast<float>(std::max(
+            distance_m + config.margin_m,
+            std::min(r - config.margin_m, distance_m + config.margin_m + config.added_depth_m)));
         added.push_back(
             {new_beam,
              {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m)), resume}});

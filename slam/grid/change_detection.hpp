@@ -45,6 +45,10 @@ struct ChangeDetectionConfig {
   /// surface seen standing now (free space and the beam's far return), and a grazing beam
   /// through a doorway marks many of the door's cells free.
   double min_incidence_added_rad = 0.1;
+  /// How far behind a surface seen standing now an older beam that passed there no longer
+  /// shows free space (the object's unseen depth, beyond margin_m); past it the beam is
+  /// traced again to its return. Infinity: nothing behind the surface is kept but the return.
+  double added_depth_m = 1.0;
   /// Outdated beams count only in runs of at least this many (a run may skip one beam): a
   /// change covers neighbouring beams, noise and pose error single ones.
   int min_run_beams = 4;
@@ -62,7 +66,8 @@ struct ScanComparison {
   /// The older scan's outdated beams, ascending, each with how far it still shows free
   /// space: up to its return for a return seen through (the space was free, the object is
   /// gone), up to short of the newer surface for a beam that passed where an object stands,
-  /// which keeps its return (resume_m, margin_m short of it: what it hit still stands).
+  /// which is traced again past the object (resume_m: margin_m and added_depth_m behind the
+  /// surface, at most margin_m short of its return, which is kept: what it hit still stands).
   std::vector<BeamCut> outdated;
   std::vector<std::uint32_t> news;  ///< the newer scan's beams that showed a change, ascending
 };

@@ -234,6 +234,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       d.Number("min_agreement", r.detection.min_agreement, kUnit);
       d.Number("min_incidence_rad", r.detection.min_incidence_rad, kNonNegative);
       d.Number("min_incidence_added_rad", r.detection.min_incidence_added_rad, kNonNegative);
+      d.Number("added_depth_m", r.detection.added_depth_m, kNonNegative);
       d.Int("min_run_beams", r.detection.min_run_beams, 1);
       d.Number("min_active_share", r.min_active_share, kUnit);
     });

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -70,13 +71,25 @@ TEST(ChangeDetection, AClosedDoorOutdatesTheBeamsThatPassedIt) {
   ASSERT_TRUE(c.compared);
   ASSERT_GE(c.outdated.size(), 20u);
   for (const BeamCut& cut : c.outdated) {
-    EXPECT_GT(older.ranges_m[cut.beam], 7.0) << "beam " << cut.beam;
-    // Free only up to short of the door now standing at x = 6, 3.5-4.3 m along these beams,
-    // and its return on the room's far wall, which still stands, kept.
+    const float r = older.ranges_m[cut.beam];
+    EXPECT_GT(r, 7.0) << "beam " << cut.beam;
+    // Free only up to short of the door now standing at x = 6, 3.5-4.3 m along these beams;
+    // unknown for the margin on both sides of it and the door's unseen depth (1 m); then
+    // the room behind, free when the beam crossed it, and the return on its far wall,
+    // which still stands, traced again.
     EXPECT_GT(cut.free_to_m, 3.0f);
     EXPECT_LT(cut.free_to_m, 4.1f);
-    EXPECT_NEAR(cut.resume_m, older.ranges_m[cut.beam] - 0.3f, 1e-4f);
+    EXPECT_GT(cut.resume_m, cut.free_to_m + 1.55f) << "beam " << cut.beam;
+    EXPECT_LT(cut.resume_m, cut.free_to_m + 1.8f) << "beam " << cut.beam;
+    EXPECT_LT(cut.resume_m, r - 0.3f) << "beam " << cut.beam;
   }
+  // With no depth bound, the beam keeps its return alone.
+  ChangeDetectionConfig whole;
+  whole.added_depth_m = std::numeric_limits<double>::infinity();
+  const ScanComparison w = CompareScans(older, kOld, newer, kNew, whole);
+  ASSERT_EQ(w.outdated.size(), c.outdated.size());
+  for (const BeamCut& cut : w.outdated)
+    EXPECT_NEAR(cut.resume_m, older.ranges_m[cut.beam] - 0.3f, 1e-4f);
 }
 
 // A corridor (y in [0, 3]) with a 1 m door in its north wall at x in [12.5, 13.5] and a room

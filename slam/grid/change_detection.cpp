@@ -148,21 +148,16 @@ void SortUnique(std::vector<std::uint32_t>* v) {
   v->erase(std::unique(v->begin(), v->end()), v->end());
 }
 
-/// By beam, each beam once: free up to the shortest free range given for it, resumed from
-/// the farthest resume point when every cut of it resumes (none does when its return is gone).
+/// By beam, each beam once, the cuts of a beam merged (Merge).
 void SortUnique(std::vector<BeamCut>* v) {
-  std::sort(v->begin(), v->end(), [](const BeamCut& a, const BeamCut& b) {
-    return a.beam < b.beam || (a.beam == b.beam && a.free_to_m < b.free_to_m);
-  });
+  std::sort(v->begin(), v->end(),
+            [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
   std::size_t n = 0;
   for (std::size_t i = 0; i < v->size(); ++i) {
-    const BeamCut& c = (*v)[i];
-    if (n > 0 && (*v)[n - 1].beam == c.beam) {
-      BeamCut& kept = (*v)[n - 1];
-      const bool both = kept.Resumes() && c.Resumes();
-      kept.resume_m = both ? std::max(kept.resume_m, c.resume_m) : 0.0f;
+    if (n > 0 && (*v)[n - 1].beam == (*v)[i].beam) {
+      (*v)[n - 1] = Merge((*v)[n - 1], (*v)[i]);
     } else {
-      (*v)[n++] = c;
+      (*v)[n++] = (*v)[i];
     }
   }
   v->resize(n);
@@ -183,6 +178,79 @@ void KeepRuns(std::size_t min_run, std::vector<T>* v) {
     start = i;
   }
   *v = std::move(kept);
+}
+
+/// The older beam cut where it passed a surface now standing at distance_m along it: free up
+/// to margin_m short of the surface, then traced again past the object's unseen depth behind
+/// it to its return (kept: the room behind a door now closed was free when the beam crossed
+/// it, and the wall it hit still stands).
+BeamCut CutBefore(const LaserScan& older, std::uint32_t beam, double distance_m,
+                  const ChangeDetectionConfig& config) {
+  const double r = older.ranges_m[beam];
+  const double resume =
+      std::max(distance_m + config.margin_m,
+               std::min(r - config.margin_m, distance_m + config.margin_m + config.added_depth_m));
+  return {beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m)),
+          static_cast<float>(resume)};
+}
+
+/// Every older beam that crosses the newer surface between a return of an added run
+/// (`added_news`, ascending) and its neighbouring returns: seen from afar such returns lie a
+/// beam's width apart, wider than the older beams through the same doorway seen up close,
+/// and the point test cuts only the older beam nearest each return. The neighbours of a
+/// run's ends count too: a door's returns by its jambs are no evidence (edge_guard_m), yet
+/// the door spans up to them. A beam must meet the surface at min_incidence_added_rad and
+/// pass it as the point test asks (margin_m and half a beam's bearing error).
+void CutAcrossSurfaces(const LaserScan& older, const Pose2& T_world_old_laser,
+                       const LaserScan& newer, const Pose2& T_world_new_laser,
+                       const std::vector<std::uint32_t>& added_news,
+                       const ChangeDetectionConfig& config, std::vector<BeamCut>* out) {
+  const Frame T_new(T_world_new_laser);
+  const Frame T_old_world(T_world_old_laser.Inverse());
+  const std::vector<std::array<double, 2>>& dir_new = Directions(newer);
+  const auto in_old = [&](std::uint32_t j) {  // newer return j in the older laser's frame
+    const double r = newer.ranges_m[j];
+    double wx = 0.0, wy = 0.0;
+    T_new.Apply(r * dir_new[j][0], r * dir_new[j][1], &wx, &wy);
+    Eigen::Vector2d p;
+    T_old_world.Apply(wx, wy, &p.x(), &p.y());
+    return p;
+  };
+  const double inc = older.angle_increment_rad;
+  const double min_sin = std::sin(config.min_incidence_added_rad);
+  const auto n = static_cast<long>(older.ranges_m.size());
+  std::vector<std::uint32_t> starts;  // j: the surface from newer return j to j + 1
+  for (const std::uint32_t j : added_news) {
+    if (j > 0) starts.push_back(j - 1);
+    starts.push_back(j);
+  }
+  SortUnique(&starts);
+  for (const std::uint32_t j : starts) {
+    if (j + 1 >= newer.ranges_m.size() || !newer.IsReturn(j) || !newer.IsReturn(j + 1)) continue;
+    const Eigen::Vector2d p = in_old(j), q = in_old(j + 1);
+    const Eigen::Vector2d pq = q - p;
+    if (pq.norm() > 4.0 * config.margin_m || pq.norm() < 1e-9 || inc <= 0.0) continue;
+    double a0 = std::atan2(p.y(), p.x()) - older.angle_min_rad;
+    a0 -= kTwoPi * std::floor(a0 / kTwoPi);
+    double span = std::atan2(q.y(), q.x()) - std::atan2(p.y(), p.x());
+    span -= kTwoPi * std::round(span / kTwoPi);
+    const double lo = std::min(a0, a0 + span), hi = std::max(a0, a0 + span);
+    for (long i = std::max(0L, static_cast<long>(std::ceil(lo / inc)));
+         i <= std::min(n - 1, static_cast<long>(std::floor(hi / inc))); ++i) {
+      const auto b = static_cast<std::uint32_t>(i);
+      if (!older.IsReturn(b)) continue;
+      const Eigen::Vector2d u(std::cos(older.Bearing(b)), std::sin(older.Bearing(b)));
+      const double cross = u.x() * pq.y() - u.y() * pq.x();  // u x pq
+      const double sin_a = std::abs(cross) / pq.norm();
+      if (sin_a < min_sin) continue;
+      const double t = (p.x() * pq.y() - p.y() * pq.x()) / cross;  // o + t u on p + s pq
+      if (t <= 0.0) continue;
+      const double cos_a = std::sqrt(std::max(0.0, 1.0 - sin_a * sin_a));
+      const double slack = t * 0.5 * std::abs(inc) * cos_a / sin_a;
+      if (older.ranges_m[b] <= t + config.margin_m + slack) continue;
+      out->push_back(CutBefore(older, b, t, config));
+    }
+  }
 }
 
 }  // namespace
@@ -208,20 +276,10 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   // neighbours or not: a beam that grazes a doorway from afar passes many of the door's
   // returns, alone among its neighbours.
   std::vector<std::pair<std::uint32_t, BeamCut>> added;  // (newer beam, older beam cut)
-  Judge(
-      newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
-      true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
-        // Free up to short of the surface now standing, and traced again past the
-        // object's unseen depth behind it, its return kept: the room behind a door now
-        // closed was free when the beam crossed it, and the wall it hit still stands.
-        const double r = older.ranges_m[old_beam];
-        const auto resume = static_cast<float>(std::max(
-            distance_m + config.margin_m,
-            std::min(r - config.margin_m, distance_m + config.margin_m + config.added_depth_m)));
-        added.push_back(
-            {new_beam,
-             {old_beam, static_cast<float>(std::max(0.0, distance_m - config.margin_m)), resume}});
-      });
+  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
+        true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+          added.push_back({new_beam, CutBefore(older, old_beam, distance_m, config)});
+        });
   c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;
   if (!c.compared) return c;
   SortUnique(&removed);
@@ -237,6 +295,8 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
     if (std::binary_search(added_news.begin(), added_news.end(), new_beam))
       c.outdated.push_back(cut);
   }
+  CutAcrossSurfaces(older, T_world_old_laser, newer, T_world_new_laser, added_news, config,
+                    &c.outdated);
   SortUnique(&c.outdated);
   c.news = removed_news;
   c.news.insert(c.news.end(), added_news.begin(), added_news.end());

@@ -16,10 +16,12 @@
 // when the newer returns form that run; then each older beam through one of them is
 // outdated on its own (min_incidence_added_rad; passing the point by margin_m plus half a
 // beam's bearing error), for a beam that grazes a doorway from afar passes many of the
-// door's returns while its neighbours hit the wall. And two
-// scans are compared only when they agree where they overlap: when fewer than min_agreement of the
-// returns they both see lie within `margin_m` of each other, their poses disagree (drift before a
-// loop closure) and nothing is marked.
+// door's returns while its neighbours hit the wall; and so is each older beam that crosses
+// the newer surface between a return of the run and its neighbouring return, for a door
+// seen from afar has its returns a beam's width apart, while up close many older beams
+// crossed it between them. And two scans are compared only when they agree where they
+// overlap: when fewer than min_agreement of the returns they both see lie within `margin_m`
+// of each other, their poses disagree (drift before a loop closure) and nothing is marked.
 #pragma once
 
 #include <cstdint>

@@ -18,6 +18,7 @@
 
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
+#include "slam/grid/beam_cut.hpp"
 
 namespace lifelong::slam {
 
@@ -55,18 +56,6 @@ struct CellState {
 struct CellChange {
   CellIndex cell;
   CellState before, after;
-};
-
-/// A beam of a scan traced as free space up to free_to_m, without its return: the part of
-/// a beam that still shows the world when its return (or its end) no longer does (a removal
-/// policy's verdict, removal_policy_dpg.cpp). free_to_m <= 0 leaves the beam out. With
-/// resume_m > free_to_m the beam is traced again from resume_m to its end, with its return:
-/// an object now stands across it, and what lay beyond still does.
-struct BeamCut {
-  std::uint32_t beam = 0;
-  float free_to_m = 0.0f;
-  float resume_m = 0.0f;  ///< 0: the beam ends at free_to_m
-  bool Resumes() const { return resume_m > free_to_m; }
 };
 
 /// Inclusive cell-index box. `empty` when the map holds no counts.

@@ -84,8 +84,8 @@ struct Mapper::State {
   void Prune(NodeId current);
   void RemoveNode(NodeId id, double gain_bits);
   /// Traces beams of node id's scan cut in the map from now on (a policy found them
-  /// outdated, SampleRetirement; a beam is cut once: a cut beam is no evidence); the gains
-  /// follow.
+  /// outdated, SampleRetirement; a beam cut again is cut by the two cuts merged, Merge);
+  /// the gains follow.
   void CutBeams(NodeId id, const std::vector<BeamCut>& cuts);
   std::size_t cut_beams = 0;  ///< beams CutBeams cut, in all
   /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <set>
@@ -17,6 +16,7 @@
 #include "slam/backend/optimizer_problem.hpp"
 #include "slam/graph/dijkstra.hpp"
 #include "slam/graph/se2.hpp"
+#include "slam/grid/beam_cut.hpp"
 #include "slam/mapping/mapper_state.hpp"
 #include "slam/sparsify/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
@@ -96,10 +96,7 @@ ScanFootprint Mapper::State::Footprint(NodeId id) const {
 
 void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts) {
   NodeData& data = nodes.at(id);
-  std::vector<BeamCut> all;
-  std::merge(data.cuts.begin(), data.cuts.end(), cuts.begin(), cuts.end(), std::back_inserter(all),
-             [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
-  data.cuts = std::move(all);
+  data.cuts = MergeCuts(data.cuts, cuts);
   keeper.Retrace(id, data.scan, data.T_world_map, data.cuts);
   cut_beams += cuts.size();
 }

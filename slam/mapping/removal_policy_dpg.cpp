@@ -17,12 +17,12 @@
 // (DPG-SLAM keeps a retired pose in its full graph for the history; here the mode's
 // sparsifier marginalizes it, as for any removal.)
 #include <algorithm>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <utility>
 #include <vector>
 
+#include "slam/grid/beam_cut.hpp"
 #include "slam/mapping/removal_policy.hpp"
 
 namespace lifelong::slam {
@@ -59,20 +59,20 @@ class DpgPolicy final : public RemovalPolicy {
     const ScanAt old = view.scan(id);
     // The older scan whole: a beam cut before still saw through a doorway, so it still
     // judges its neighbours and joins their run (a change is cut a few beams at a time,
-    // from each pose that sees part of it); it is not cut twice.
+    // from each pose that sees part of it).
     ScanComparison c = CompareScans(*old.scan, old.T_world_robot, *now.scan, now.T_world_robot,
                                     config_.dpg.detection);
-    DropCut(*old.cut, &c.outdated);
+    // A beam cut before is cut again only where the new verdict takes out more (a beam
+    // through a doorway whose far return went, then the door closed).
+    const std::vector<BeamCut> fresh = Tighter(*old.cut, c.outdated);
     // A beam retired: its return gone. A beam an object now crosses keeps its return.
-    const auto gone = [](const std::vector<BeamCut>& cuts) {
-      return static_cast<std::size_t>(
-          std::count_if(cuts.begin(), cuts.end(), [](const BeamCut& b) { return !b.Resumes(); }));
-    };
-    const std::size_t retired = gone(*old.cut) + gone(c.outdated);
-    if (!c.outdated.empty()) retired_.push_back({id, c.outdated});
+    const std::vector<BeamCut> after = MergeCuts(*old.cut, fresh);
+    const auto retired = static_cast<double>(
+        std::count_if(after.begin(), after.end(), [](const BeamCut& b) { return !b.Resumes(); }));
+    if (!fresh.empty()) retired_.push_back({id, fresh});
     const double returns = Returns(*old.scan);
     if (retired > 0 && gains.count(id) &&
-        returns - static_cast<double>(retired) < config_.dpg.min_active_share * returns) {
+        returns - retired < config_.dpg.min_active_share * returns) {
       doomed_.push_back(id);
     }
   }
@@ -81,13 +81,21 @@ class DpgPolicy final : public RemovalPolicy {
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) n += scan.IsReturn(i) ? 1 : 0;
     return n;
   }
-  /// Leaves out of `outdated` (ascending) the beams `cut` (ascending) holds.
-  static void DropCut(const std::vector<BeamCut>& cut, std::vector<BeamCut>* outdated) {
-    std::vector<BeamCut> fresh;
-    std::set_difference(outdated->begin(), outdated->end(), cut.begin(), cut.end(),
-                        std::back_inserter(fresh),
-                        [](const BeamCut& a, const BeamCut& b) { return a.beam < b.beam; });
-    *outdated = std::move(fresh);
+  /// The cuts of `outdated` (ascending) that take out more than `cut` (ascending) does:
+  /// a beam not cut yet, or one whose merged cut (Merge) differs from its cut.
+  static std::vector<BeamCut> Tighter(const std::vector<BeamCut>& cut,
+                                      const std::vector<BeamCut>& outdated) {
+    std::vector<BeamCut> out;
+    auto k = cut.begin();
+    for (const BeamCut& b : outdated) {
+      while (k != cut.end() && k->beam < b.beam) ++k;
+      if (k == cut.end() || k->beam != b.beam) {
+        out.push_back(b);
+      } else if (!(Merge(*k, b) == *k)) {
+        out.push_back(b);
+      }
+    }
+    return out;
   }
 
   RemovalPolicyConfig config_;

@@ -140,6 +140,47 @@ TEST(ChangeDetection, ABeamGrazingAClosedDoorwayFromAfarIsOutdated) {
   }
 }
 
+// The doorway seen open up close, where some thirty beams cross it, then the door closed
+// from down the corridor, where six returns fall on it: every older beam through the door
+// between them is outdated, not only the six nearest their bearings. Seen closed both
+// times, with a 3 cm error of the poses, nothing is.
+TEST(ChangeDetection, ADoorClosedSeenFromAfarOutdatesEveryBeamThatCrossedIt) {
+  const Pose2 close(13.0, 1.5, 1.5707963267948966), far(9.0, 1.0, 0.3);
+  const LaserScan older = SimulateScan(CorridorWithDoor(false), close);
+  const LaserScan newer = SimulateScan(CorridorWithDoor(true), far);
+  double x_lo = 99.0, x_hi = -99.0;  // the door's returns in the newer scan
+  for (std::size_t b = 0; b < newer.ranges_m.size(); ++b) {
+    const double a = far.theta + newer.Bearing(b), r = newer.ranges_m[b];
+    const double x = far.x + r * std::cos(a), y = far.y + r * std::sin(a);
+    if (std::abs(y - 3.0) < 1e-6 && x > 12.5 && x < 13.5)
+      x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
+  }
+  ASSERT_GT(x_hi - x_lo, 0.5);
+  std::vector<std::uint32_t> through;  // the older beams that crossed the door between them
+  for (std::uint32_t b = 0; b < older.ranges_m.size(); ++b) {
+    const double a = close.theta + older.Bearing(b);
+    if (std::sin(a) <= 0.0) continue;
+    const double x = close.x + (3.0 - close.y) / std::sin(a) * std::cos(a);
+    if (x > x_lo + 0.02 && x < x_hi - 0.02) through.push_back(b);
+  }
+  ASSERT_GE(through.size(), 20u);
+  const ScanComparison c = CompareScans(older, close, newer, far, {});
+  ASSERT_TRUE(c.compared);
+  std::vector<std::uint32_t> cut;
+  for (const BeamCut& b : c.outdated) cut.push_back(b.beam);
+  for (const std::uint32_t b : through)
+    EXPECT_TRUE(std::binary_search(cut.begin(), cut.end(), b)) << "beam " << b;
+  for (const BeamCut& b : c.outdated) {
+    const double a = close.theta + older.Bearing(b.beam);
+    const double to_door = (3.0 - close.y) / std::sin(a);
+    EXPECT_NEAR(b.free_to_m, to_door - 0.3, 0.02) << "beam " << b.beam;  // short of the door
+  }
+
+  const LaserScan same = SimulateScan(CorridorWithDoor(true), close);
+  const ScanComparison none = CompareScans(same, close * Pose2(0.03, -0.03, 0.0), newer, far, {});
+  EXPECT_TRUE(none.outdated.empty()) << none.outdated.size();
+}
+
 // Scans of an unchanged room whose poses disagree by 0.4-0.8 m (drift before a loop
 // closure) are not compared: their disagreement is the poses', not the world's. An error of
 // 0.2 m or 0.06 rad, within the margin, finds no change either.

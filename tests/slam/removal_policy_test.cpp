@@ -165,6 +165,53 @@ TEST(RemovalPolicy, DpgCutsTheBeamsOfANodeNoRoundRemoves) {
   EXPECT_EQ(policy->Next({{7, 50.0}}, 100), std::nullopt);  // node 1 is not doomed
 }
 
+// A beam cut before is cut again where a later verdict takes out more: node 1 saw a box
+// through an open door; node 9 sees the box gone (node 1's returns on it are cut, free up to
+// them), node 10 the door closed, so those beams are now free only up to short of the door.
+TEST(RemovalPolicy, DpgCutsABeamAgainWhenALaterChangeStandsNearerOnIt) {
+  const auto room = [](bool door_closed, bool box) {
+    testing::World w;
+    testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &w);
+    w.push_back({6.0, 0.0, 6.0, 2.0});
+    w.push_back({6.0, 4.0, 6.0, 6.0});
+    if (door_closed) w.push_back({6.0, 2.0, 6.0, 4.0});
+    if (box) testing::AddRectangle(8.0, 2.5, 8.5, 3.5, &w);
+    return w;
+  };
+  std::map<NodeId, Pose2> poses{
+      {1, {2.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}, {10, {3.0, 3.1, -0.05}}};
+  std::map<NodeId, LaserScan> scans{{1, testing::SimulateScan(room(false, true), poses[1])},
+                                    {9, testing::SimulateScan(room(false, false), poses[9])},
+                                    {10, testing::SimulateScan(room(true, false), poses[10])}};
+  std::map<NodeId, std::vector<BeamCut>> cut;
+  RoundView view;
+  view.nearby = {1};
+  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
+  const auto policy = MakeRemovalPolicy("dpg", RemovalPolicyConfig{});
+  view.current = 9;
+  policy->BeginRound({}, view);
+  std::vector<SampleRetirement> out = policy->TakeRetirements();
+  ASSERT_EQ(out.size(), 1u);
+  std::vector<std::uint32_t> box;  // node 1's beams whose return on the box went
+  for (const BeamCut& c : out[0].cuts) {
+    if (!c.Resumes() && scans[1].ranges_m[c.beam] < 6.6f) box.push_back(c.beam);
+  }
+  ASSERT_GE(box.size(), 4u);
+  cut[1] = out[0].cuts;
+
+  view.current = 10;
+  policy->BeginRound({}, view);
+  out = policy->TakeRetirements();
+  ASSERT_EQ(out.size(), 1u);
+  for (const std::uint32_t b : box) {
+    const auto c = std::find_if(out[0].cuts.begin(), out[0].cuts.end(),
+                                [&](const BeamCut& x) { return x.beam == b; });
+    ASSERT_NE(c, out[0].cuts.end()) << "beam " << b;
+    EXPECT_LT(c->free_to_m, 3.9f) << "beam " << b;  // short of the door, 4 m along it
+    EXPECT_GT(c->free_to_m, 3.0f) << "beam " << b;
+  }
+}
+
 TEST(RemovalPolicy, NamesAreTheRegistry) {
   for (const std::string& name : RemovalPolicyNames()) {
     const auto policy = MakeRemovalPolicy(name, {});

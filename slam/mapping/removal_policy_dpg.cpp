@@ -62,9 +62,11 @@ class DpgPolicy final : public RemovalPolicy {
     // from each pose that sees part of it).
     ScanComparison c = CompareScans(*old.scan, old.T_world_robot, *now.scan, now.T_world_robot,
                                     config_.dpg.detection);
-    // A beam cut before is cut again only where the new verdict takes out more (a beam
-    // through a doorway whose far return went, then the door closed).
-    const std::vector<BeamCut> fresh = Tighter(*old.cut, c.outdated);
+    // A beam cut before is cut again only where the new verdict takes out more, by more
+    // than edge_guard_m (a beam through a doorway whose far return went, then the door
+    // closed).
+    const std::vector<BeamCut> fresh =
+        Tighter(*old.cut, c.outdated, config_.dpg.detection.edge_guard_m);
     // A beam retired: its return gone. A beam an object now crosses keeps its return.
     const std::vector<BeamCut> after = MergeCuts(*old.cut, fresh);
     const auto retired = static_cast<double>(
@@ -81,17 +83,23 @@ class DpgPolicy final : public RemovalPolicy {
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) n += scan.IsReturn(i) ? 1 : 0;
     return n;
   }
-  /// The cuts of `outdated` (ascending) that take out more than `cut` (ascending) does:
-  /// a beam not cut yet, or one whose merged cut (Merge) differs from its cut.
+  /// The cuts of `outdated` (ascending) that take out more than `cut` (ascending) does: a
+  /// beam not cut yet, or one whose merged cut (Merge) ends its free space, or resumes it,
+  /// more than `slack_m` away from where its cut does, or no longer resumes. A verdict a few
+  /// centimetres off an earlier one (pose noise) would retrace the scan for nothing.
   static std::vector<BeamCut> Tighter(const std::vector<BeamCut>& cut,
-                                      const std::vector<BeamCut>& outdated) {
+                                      const std::vector<BeamCut>& outdated, double slack_m) {
     std::vector<BeamCut> out;
     auto k = cut.begin();
     for (const BeamCut& b : outdated) {
       while (k != cut.end() && k->beam < b.beam) ++k;
       if (k == cut.end() || k->beam != b.beam) {
         out.push_back(b);
-      } else if (!(Merge(*k, b) == *k)) {
+        continue;
+      }
+      const BeamCut m = Merge(*k, b);
+      if (m.Resumes() != k->Resumes() || k->free_to_m - m.free_to_m > slack_m ||
+          m.resume_m - k->resume_m > slack_m) {
         out.push_back(b);
       }
     }

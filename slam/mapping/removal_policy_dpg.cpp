@@ -60,8 +60,8 @@ class DpgPolicy final : public RemovalPolicy {
     // The older scan whole: a beam cut before still saw through a doorway, so it still
     // judges its neighbours and joins their run (a change is cut a few beams at a time,
     // from each pose that sees part of it).
-    ScanComparison c = CompareScans(*old.scan, old.T_world_robot, *now.scan, now.T_world_robot,
-                                    config_.dpg.detection);
+    const ScanComparison c = CompareScans(*old.scan, old.T_world_robot, *now.scan,
+                                          now.T_world_robot, config_.dpg.detection);
     // A beam cut before is cut again only where the new verdict takes out more, by more
     // than edge_guard_m (a beam through a doorway whose far return went, then the door
     // closed).

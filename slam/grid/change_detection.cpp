@@ -50,6 +50,20 @@ struct Seen {
   double x = 0.0, y = 0.0;  ///< in that scan's laser frame
 };
 
+/// The bearing of (x, y) (the scan's laser frame) past the scan's first beam, in [0, 2 pi).
+double PastFirstBeam(const LaserScan& scan, double x, double y) {
+  const double rel = std::atan2(y, x) - scan.angle_min_rad;
+  return rel - kTwoPi * std::floor(rel / kTwoPi);
+}
+
+/// How much farther than a point a beam judged alone must pass it: half a beam's bearing
+/// error, at `distance_m`, on a surface the beam meets at an angle of sine sin_a, moves the
+/// beam's end along it by that much.
+double BearingSlack(const LaserScan& scan, double distance_m, double sin_a) {
+  const double cos_a = std::sqrt(std::max(0.0, 1.0 - sin_a * sin_a));
+  return distance_m * 0.5 * std::abs(scan.angle_increment_rad) * cos_a / sin_a;
+}
+
 Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, double wy) {
   double x = 0.0, y = 0.0;
   T_laser_world.Apply(wx, wy, &x, &y);
@@ -58,9 +72,7 @@ Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, doub
   s.y = y;
   s.distance_m = std::hypot(x, y);
   if (s.distance_m < 1e-3 || scan.angle_increment_rad <= 0.0) return s;
-  double rel = std::atan2(y, x) - scan.angle_min_rad;
-  rel -= kTwoPi * std::floor(rel / kTwoPi);
-  const long k = std::lround(rel / scan.angle_increment_rad);
+  const long k = std::lround(PastFirstBeam(scan, x, y) / scan.angle_increment_rad);
   // The beams on both sides must exist too (three beams judge a point).
   if (k >= 1 && k + 1 < static_cast<long>(scan.ranges_m.size())) s.beam = k;
   return s;
@@ -133,8 +145,7 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     // bearing: on a surface met at angle a that moves its end by d (increment / 2) / tan(a)
     // along it, so it must pass the point by that much more.
     if (alone) {
-      const double cos_a = std::sqrt(std::max(0.0, 1.0 - sin_a * sin_a));
-      const double slack = s.distance_m * 0.5 * std::abs(to.angle_increment_rad) * cos_a / sin_a;
+      const double slack = BearingSlack(to, s.distance_m, sin_a);
       if (to.ranges_m[static_cast<std::size_t>(s.beam)] <= s.distance_m + config.margin_m + slack)
         continue;
     }
@@ -230,8 +241,7 @@ void CutAcrossSurfaces(const LaserScan& older, const Pose2& T_world_old_laser,
     const Eigen::Vector2d p = in_old(j), q = in_old(j + 1);
     const Eigen::Vector2d pq = q - p;
     if (pq.norm() > 4.0 * config.margin_m || pq.norm() < 1e-9 || inc <= 0.0) continue;
-    double a0 = std::atan2(p.y(), p.x()) - older.angle_min_rad;
-    a0 -= kTwoPi * std::floor(a0 / kTwoPi);
+    const double a0 = PastFirstBeam(older, p.x(), p.y());
     double span = std::atan2(q.y(), q.x()) - std::atan2(p.y(), p.x());
     span -= kTwoPi * std::round(span / kTwoPi);
     const double lo = std::min(a0, a0 + span), hi = std::max(a0, a0 + span);
@@ -245,9 +255,7 @@ void CutAcrossSurfaces(const LaserScan& older, const Pose2& T_world_old_laser,
       if (sin_a < min_sin) continue;
       const double t = (p.x() * pq.y() - p.y() * pq.x()) / cross;  // o + t u on p + s pq
       if (t <= 0.0) continue;
-      const double cos_a = std::sqrt(std::max(0.0, 1.0 - sin_a * sin_a));
-      const double slack = t * 0.5 * std::abs(inc) * cos_a / sin_a;
-      if (older.ranges_m[b] <= t + config.margin_m + slack) continue;
+      if (older.ranges_m[b] <= t + config.margin_m + BearingSlack(older, t, sin_a)) continue;
       out->push_back(CutBefore(older, b, t, config));
     }
   }

@@ -60,7 +60,8 @@ class Mapper {
   const std::vector<MarginalizationRecord>& marginalizations() const;
   const std::vector<SparsificationRecord>& sparsifications() const;
   int observations() const;
-  /// Beams the removal policy cut in the map (mode pruned-dpg, BeamCut), in all.
+  /// Cuts the removal policy applied in the map (mode pruned-dpg, BeamCut), in all; a beam
+  /// cut again counts again.
   std::size_t cut_beams() const;
   /// Self-check of the pruned modes' remembered information gains: the largest difference
   /// (bits) between a remembered gain that would be reused (valid, and no pending map change

@@ -87,7 +87,7 @@ struct Mapper::State {
   /// outdated, SampleRetirement; a beam cut again is cut by the two cuts merged, Merge);
   /// the gains follow.
   void CutBeams(NodeId id, const std::vector<BeamCut>& cuts);
-  std::size_t cut_beams = 0;  ///< beams CutBeams cut, in all
+  std::size_t cut_beams = 0;  ///< cuts CutBeams applied, in all (a beam cut again counts again)
   /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
   ScanFootprint Footprint(NodeId id) const;
 };

@@ -26,6 +26,7 @@
 #include "eval/figures/video.hpp"
 #include "eval/metrics/metrics.hpp"
 #include "eval/metrics/summary.hpp"
+#include "eval/metrics/truth_raster.hpp"
 #include "eval/metrics/world_state.hpp"
 #include "eval/report/report_files.hpp"
 #include "io/atomic_file.hpp"
@@ -59,13 +60,26 @@ void AddVideoFrame(FrameSink* sink, const Observation& obs, const std::optional<
   sink->AddFrame(MakeScene(walls, pose, obs.scan, std::move(panels)));
 }
 
+/// The truth with its raster, made here once for the run unless the caller made it.
+std::optional<GroundTruth> Rasterized(const std::optional<GroundTruth>& truth,
+                                      const std::vector<Observation>& stream, double resolution_m) {
+  if (!truth || truth->raster) return truth;
+  GroundTruth t = *truth;
+  std::vector<Pose2> path;
+  for (const Observation& o : stream) {
+    if (o.T_world_robot_true) path.push_back(*o.T_world_robot_true);
+  }
+  t.raster = std::make_shared<const TruthRaster>(t, path, resolution_m);
+  return t;
+}
+
 /// The truth's files; returns those the report shows and links, relative to the output
 /// directory.
 std::vector<std::string> WriteTruth(const std::vector<Observation>& stream,
-                                    const GroundTruth& truth, const ExperimentConfig& config) {
+                                    const GroundTruth& truth, const RunMapFrame& frame,
+                                    const ExperimentConfig& config) {
   const std::string dir = (fs::path(config.out_dir) / "truth").string();
-  std::vector<std::string> files =
-      WriteTruthFiles(dir, stream, truth.walls, config.mapper.grid.resolution_m);
+  std::vector<std::string> files = WriteTruthFiles(dir, stream, truth.raster->WallGrid(), frame);
   WriteTruthWalls(dir + "/", truth);
   for (std::string& f : files) f = "truth/" + f;
   return files;
@@ -137,13 +151,14 @@ struct ModeResults {
   std::vector<AlignedTrack> reference_tracks;
   ReportPage page;
   std::set<std::string> files;  ///< written, relative to the output directory
+  RunMapFrame frame;            ///< the run's one scale and canvas of map figures
 
   /// Evaluates a mode, writes its outputs and frees its mapper.
   void Finish(ModeRunner* r, const std::vector<Observation>& stream,
               const std::optional<GroundTruth>& truth, const std::vector<Relation>& relations) {
     std::vector<double> kl;
     std::string map_png;
-    summary.modes[r->name()] = r->Finish(stream, truth, relations, &kl, &map_png);
+    summary.modes[r->name()] = r->Finish(stream, truth, relations, frame, &kl, &map_png);
     timelines[r->name()] = r->timeline();
     if (!kl.empty()) kld[r->name()] = std::move(kl);
     if (!r->loop_curve().empty()) loop_curves[r->name()] = r->loop_curve();
@@ -230,9 +245,11 @@ bool WriteReferenceFigure(const ExperimentConfig& config, const std::vector<Alig
 }  // namespace
 
 RunSummary RunExperiment(const std::vector<Observation>& stream,
-                         const std::optional<GroundTruth>& truth,
+                         const std::optional<GroundTruth>& given_truth,
                          const ExperimentConfig& final_config) {
   const auto start = Clock::now();
+  const double res = final_config.mapper.grid.resolution_m;
+  const std::optional<GroundTruth> truth = Rasterized(given_truth, stream, res);
   StagedOutput output(final_config.out_dir);
   ExperimentConfig config = final_config;
   config.out_dir = output.path();
@@ -252,6 +269,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   summary.simulation = config.simulation;
   if (!stream.empty()) summary.log_duration_s = StreamSpan(stream).Covered(stream.size());
   for (const auto& r : runners) summary.mode_order.push_back(r->name());
+  results.frame = MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, res);
   if (sink) {
     RunLockstep(stream, truth, config, sink.get(), runners, &results);
   } else {
@@ -260,7 +278,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   ThrowIfInterrupted();
   results.files.insert("config.yaml");
   if (truth) {
-    const std::vector<std::string> written = WriteTruth(stream, *truth, config);
+    const std::vector<std::string> written = WriteTruth(stream, *truth, results.frame, config);
     results.files.insert(written.begin(), written.end());
   }
   if (WriteReferenceFigure(config, results.reference_tracks)) {
@@ -278,7 +296,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   ReportPage& page = results.page;
   page.summary = summary;
   page.command_line = config.command_line;
-  ReportContext context = MakeReportContext(config, stream, truth, plot_config);
+  ReportContext context = MakeReportContext(config, results.frame, truth, plot_config);
   context.files = std::move(results.files);
   for (const std::string& png : plots.files) context.files.insert(fs::path(png).filename());
   for (const FailedFigure& f : plots.failed) context.failed_plots.push_back(f.figure);
@@ -290,14 +308,12 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   return summary;
 }
 
-ReportContext MakeReportContext(const ExperimentConfig& config,
-                                const std::vector<Observation>& stream,
+ReportContext MakeReportContext(const ExperimentConfig& config, const RunMapFrame& frame,
                                 const std::optional<GroundTruth>& truth,
                                 const PlotConfig& plot_config) {
   ReportContext c;
   c.out_dir = config.out_dir;
-  const double res = config.mapper.grid.resolution_m;  // as in ModeRunner::Finish
-  c.map_m_per_px = MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, res).m_per_px;
+  c.map_m_per_px = frame.m_per_px;
   c.truth_frame = truth.has_value();
   c.moving_average = plot_config.moving_average;
   c.log_time = plot_config.log_time;

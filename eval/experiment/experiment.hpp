@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/figures/run_maps.hpp"
 #include "eval/figures/video.hpp"
 #include "eval/metrics/ground_truth.hpp"
 #include "eval/metrics/summary.hpp"
@@ -59,9 +60,9 @@ struct ExperimentConfig {
 /// The mapper's counting grid as an OccupancyGrid (p = hits / (hits + misses)).
 OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
 
-/// What the report of a run of RunExperiment needs to know of it.
-ReportContext MakeReportContext(const ExperimentConfig& config,
-                                const std::vector<Observation>& stream,
+/// What the report of a run of RunExperiment needs to know of it; `frame` is the run's
+/// (MakeRunMapFrame).
+ReportContext MakeReportContext(const ExperimentConfig& config, const RunMapFrame& frame,
                                 const std::optional<GroundTruth>& truth,
                                 const PlotConfig& plot_config);
 

@@ -303,8 +303,8 @@ ModeSummary ModeRunner::SummarizeRun(std::vector<double>* kld) const {
 
 ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                const std::optional<GroundTruth>& truth,
-                               const std::vector<Relation>& relations, std::vector<double>* kld,
-                               std::string* map_png) {
+                               const std::vector<Relation>& relations, const RunMapFrame& frame,
+                               std::vector<double>* kld, std::string* map_png) {
   const auto start = Clock::now();
   mapper_->Finish();
   seconds_ += Seconds(start);
@@ -354,8 +354,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     WriteSparsifications(out("sparsifications.csv"), m);
   }
   const std::vector<std::string> figures = WriteModeFigures(
-      config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()), T_truth_est,
-      MakeRunMapFrame(stream, truth ? &truth->walls : nullptr, grid.resolution_m));
+      config_.out_dir, name_, grid, MakeGraphOverlay(m.graph(), m.values()), T_truth_est, frame);
   *map_png = name_ + "/map.png";
   written_.insert(written_.end(), figures.begin(), figures.end());
   return summary;

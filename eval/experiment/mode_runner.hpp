@@ -33,10 +33,11 @@ class ModeRunner {
   std::string ProgressDetail() const;
 
   // Finishes the mapper, writes DIR/<mode>/... and returns the mode's summary.
+  // `frame` is the run's scale and canvas of map figures (MakeRunMapFrame).
   ModeSummary Finish(const std::vector<Observation>& stream,
                      const std::optional<GroundTruth>& truth,
-                     const std::vector<Relation>& relations, std::vector<double>* kld,
-                     std::string* map_png);
+                     const std::vector<Relation>& relations, const RunMapFrame& frame,
+                     std::vector<double>* kld, std::string* map_png);
 
  private:
   void Record(const slam::StepStats& s);

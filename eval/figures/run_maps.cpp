@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/truth_raster.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
 
@@ -60,12 +60,11 @@ RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
                             const std::vector<Segment>* walls, double resolution_m) {
   RunMapFrame f;
   if (walls) {
-    const OccupancyGrid truth = RasterizeWalls(*walls, resolution_m);
-    // The truth map's extent, cut down to what the laser saw plus a margin.
+    // The truth map's extent (RasterizeWalls'), cut down to what the laser saw plus a margin.
+    const Lattice truth = LatticeCovering(*walls, {}, resolution_m, kMarginM);
     Box box;
-    box.Add(truth.origin_x_m, truth.origin_y_m);
-    box.Add(truth.origin_x_m + truth.width * resolution_m,
-            truth.origin_y_m + truth.height * resolution_m);
+    box.Add(truth.ox, truth.oy);
+    box.Add(truth.ox + truth.cols * resolution_m, truth.oy + truth.rows * resolution_m);
     const Box seen = SeenBox(stream);
     if (!seen.empty()) {
       Box cut = box;
@@ -115,29 +114,26 @@ std::vector<std::string> WriteModeFigures(const std::string& out_dir, const std:
   return {mode + "/map.png", "graph_" + mode + ".png"};
 }
 
-void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls,
-                      double resolution_m, const RunMapFrame& frame) {
-  const OccupancyGrid truth = RasterizeWalls(walls, resolution_m);
+void WriteTruthFigure(const std::string& path, const OccupancyGrid& truth_map,
+                      const RunMapFrame& frame) {
   FigureLayers layers;
-  layers.grid = &truth;
+  layers.grid = &truth_map;
   layers.trajectories.push_back({TrajectoryKind::kTrue, frame.true_path});
-  const Canvas canvas = frame.truth_frame ? frame.canvas : CanvasOfGrid(truth, frame.m_per_px);
+  const Canvas canvas = frame.truth_frame ? frame.canvas : CanvasOfGrid(truth_map, frame.m_per_px);
   WritePng(path, RenderFigure(canvas, layers));
 }
 
 std::vector<std::string> WriteTruthFiles(const std::string& dir,
                                          const std::vector<Observation>& stream,
-                                         const std::vector<Segment>& walls, double resolution_m) {
+                                         const OccupancyGrid& truth_map, const RunMapFrame& frame) {
   fs::create_directories(dir);
-  const io::MapFilePaths map =
-      io::WritePgmMap((fs::path(dir) / "map.pgm").string(), RasterizeWalls(walls, resolution_m));
+  const io::MapFilePaths map = io::WritePgmMap((fs::path(dir) / "map.pgm").string(), truth_map);
   std::vector<StampedPose> poses;
   for (const Observation& o : stream) {
     if (o.T_world_robot_true) poses.push_back({o.stamp_s, *o.T_world_robot_true});
   }
   io::WriteTum((fs::path(dir) / "trajectory.tum").string(), poses);
-  WriteTruthFigure((fs::path(dir) / "map.png").string(), walls, resolution_m,
-                   MakeRunMapFrame(stream, &walls, resolution_m));
+  WriteTruthFigure((fs::path(dir) / "map.png").string(), truth_map, frame);
   return {fs::path(map.pgm).filename().string(), fs::path(map.yaml).filename().string(),
           "trajectory.tum", "map.png"};
 }

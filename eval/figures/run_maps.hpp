@@ -30,9 +30,10 @@ struct RunMapFrame {
 /// Upscaling: k = clamp(1600 / (larger side in cells), 1, 4) pixels per cell, so a map is
 /// about 1600 px wide at most; m_per_px = resolution_m / k. With walls the side is the
 /// canvas's: the box of every beam's end point seen from the true poses, plus 1 m, cut to
-/// the truth map (RasterizeWalls(walls, resolution_m)); without, the odometry path's
+/// the truth map's extent (the walls plus 1 m); without, the odometry path's
 /// bounding box plus 10 m (the laser sees beyond the path). Both depend only on what
-/// every mode shares, so each mode can draw its figures as soon as it is finished.
+/// every mode shares: a run makes it once, and each mode draws its figures with it as soon
+/// as it is finished.
 RunMapFrame MakeRunMapFrame(const std::vector<Observation>& stream,
                             const std::vector<Segment>* walls, double resolution_m);
 
@@ -46,17 +47,17 @@ std::vector<std::string> WriteModeFigures(const std::string& out_dir, const std:
                                           const std::optional<Pose2>& T_truth_est,
                                           const RunMapFrame& frame);
 
-/// Writes the truth map (the walls rasterized at resolution_m, the true path thin) on the
-/// frame's canvas to `path`.
-void WriteTruthFigure(const std::string& path, const std::vector<Segment>& walls,
-                      double resolution_m, const RunMapFrame& frame);
+/// Writes the truth map (TruthRaster::WallGrid, the true path thin) on the frame's canvas to
+/// `path`.
+void WriteTruthFigure(const std::string& path, const OccupancyGrid& truth_map,
+                      const RunMapFrame& frame);
 
-/// Writes the truth's files into `dir` (created): map.pgm + map.yaml (the walls rasterized
-/// at resolution_m), trajectory.tum (the true pose of every scan) and map.png (the truth
-/// figure on the run's canvas, MakeRunMapFrame(stream, &walls, resolution_m)). Returns the
-/// files' names relative to `dir`.
+/// Writes the truth's files into `dir` (created): map.pgm + map.yaml (truth_map, the walls
+/// rasterized: TruthRaster::WallGrid), trajectory.tum (the true pose of every scan) and
+/// map.png (the truth figure on the run's frame, MakeRunMapFrame). Returns the files' names
+/// relative to `dir`.
 std::vector<std::string> WriteTruthFiles(const std::string& dir,
                                          const std::vector<Observation>& stream,
-                                         const std::vector<Segment>& walls, double resolution_m);
+                                         const OccupancyGrid& truth_map, const RunMapFrame& frame);
 
 }  // namespace lifelong::eval

@@ -9,6 +9,8 @@
 
 namespace lifelong::eval {
 
+class TruthRaster;
+
 /// What is known of the truth (simulation only).
 struct GroundTruth {
   /// Every surface that stood during the run (TrueWalls), world frame: blur and recall.
@@ -21,6 +23,10 @@ struct GroundTruth {
   /// none when the truth came from files.
   std::shared_ptr<const sim::World> world;
   double end_s = 0.0;
+  /// These surfaces and the run's true trajectory rasterized at the map resolution, made
+  /// once per run (eval/metrics/truth_raster.hpp) and read by every mode's scoring; none: a
+  /// scorer rasterizes for itself.
+  std::shared_ptr<const TruthRaster> raster;
 };
 
 }  // namespace lifelong::eval

@@ -1,9 +1,8 @@
 // Map quality. Against ground truth (issue #5, DESIGN.md "Metrics"): the true walls are
-// rasterized at the map resolution (cv::line), distance-transformed (cv::distanceTransform,
-// DIST_L2, DIST_MASK_PRECISE), and every occupied cell of the estimated map, moved into the
-// true frame by the ATE alignment T_truth_est, is scored by its distance to the nearest
-// true wall. Without truth (real logs): map entropy, seed eqs. (5.8)-(5.9), and the
-// occupied share.
+// rasterized at the map resolution once per run (TruthRaster), and every occupied cell of the
+// estimated map, moved into the true frame by the ATE alignment T_truth_est, is scored by its
+// distance to the nearest true wall. Without truth (real logs): map entropy, seed eqs. (5.8)-(5.9),
+// and the occupied share.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "eval/metrics/truth_raster.hpp"
 #include "sensor/pose2.hpp"
 #include "types/occupancy_grid.hpp"
 #include "types/segment.hpp"
@@ -37,18 +37,29 @@ struct BlurResult {
   double recall = 0.0;  ///< wall_cells_recalled / wall_cells
 };
 
-/// Scores `map` against the true `walls`. T_truth_est maps the estimate's frame into the
-/// truth frame (AteResult::T_truth_est). `true_trajectory` (truth frame) limits recall and
-/// thickness to the walls the robot could have seen; pass {} to use every wall.
-/// Distances are between cell centres, so they are quantized to the resolution.
+/// Scores `map` against `walls`, one of truth's fields (truth.walls() or truth.walls_now()).
+/// T_truth_est maps the estimate's frame into the truth frame (AteResult::T_truth_est).
+/// truth's trajectory, when it has one, limits recall and thickness to the walls the robot
+/// could have seen. Distances are between cell centres, so they are quantized to the
+/// resolution. Throws std::invalid_argument when the map's resolution is not the raster's.
+BlurResult ComputeBlur(const OccupancyGrid& map, const TruthRaster& truth,
+                       const SegmentField& walls, const Pose2& T_truth_est,
+                       const BlurConfig& config = {});
+
+/// The same, rasterizing `walls` and `true_trajectory` (truth frame; {} for every wall) for
+/// this call alone.
 BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& walls,
                        const Pose2& T_truth_est, const std::vector<Pose2>& true_trajectory,
                        const BlurConfig& config = {});
 
 /// The share of the map's occupied cells that show a surface gone by the end of the run
-/// (issue #35 stale_cells): within tolerance_cells of a `gone` segment (GoneSurfaces) and
-/// farther than that from every segment standing `now` (WallsAt the end). 0 when the map has
-/// no occupied cell or nothing is gone.
+/// (issue #35 stale_cells): within tolerance_cells of a gone surface (truth.gone(),
+/// GoneSurfaces) and farther than that from every surface standing at the end
+/// (truth.walls_now(), WallsAt). 0 when the map has no occupied cell or nothing is gone.
+double StaleShare(const OccupancyGrid& map, const TruthRaster& truth, const Pose2& T_truth_est,
+                  const BlurConfig& config = {});
+
+/// The same, rasterizing `gone` and `now` for this call alone.
 double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
                   const std::vector<Segment>& now, const Pose2& T_truth_est,
                   const BlurConfig& config = {});
@@ -61,11 +72,6 @@ std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Seg
                                  const std::vector<Segment>& exclude, const Pose2& T_truth_est,
                                  const BlurConfig& config = {},
                                  const std::function<bool(double x, double y)>& counted = {});
-
-/// An occupancy grid holding the true walls rasterized (p = 1 on walls, 0 elsewhere) on
-/// the given geometry. Useful as truth/map.pgm and as a perfect map in tests.
-OccupancyGrid RasterizeWalls(const std::vector<Segment>& walls, double resolution_m,
-                             double margin_m = 1.0);
 
 struct EntropyResult {
   double entropy_bits = 0.0;       ///< sum over known cells of H(p) (seed eq. 5.8), bits

@@ -1,5 +1,7 @@
 #include "eval/metrics/truth_metrics.hpp"
 
+#include <memory>
+
 #include "eval/metrics/map_quality.hpp"
 #include "eval/metrics/metrics.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
@@ -34,10 +36,14 @@ Pose2 ScoreAgainstTruth(const std::vector<Pose2>& estimate, const std::vector<Po
   summary->rpe_1m = Rpe1m(estimate, truth);
   const Pose2 T_truth_est = AlignSE2(estimate, truth);
   if (!walls || !map) return T_truth_est;
-  summary->blur = Summarize(ComputeBlur(*map, walls->walls, T_truth_est, truth));
+  std::shared_ptr<const TruthRaster> raster = walls->raster;
+  if (!raster || raster->lattice().res != map->resolution_m) {
+    raster = std::make_shared<const TruthRaster>(*walls, truth, map->resolution_m);
+  }
+  summary->blur = Summarize(ComputeBlur(*map, *raster, raster->walls(), T_truth_est));
   if (!walls->gone.empty()) {
-    summary->current_blur = Summarize(ComputeBlur(*map, walls->walls_now, T_truth_est, truth));
-    summary->stale_cells = StaleShare(*map, walls->gone, walls->walls_now, T_truth_est);
+    summary->current_blur = Summarize(ComputeBlur(*map, *raster, raster->walls_now(), T_truth_est));
+    summary->stale_cells = StaleShare(*map, *raster, T_truth_est);
   }
   return T_truth_est;
 }

@@ -68,8 +68,12 @@ std::vector<Segment> GoneSurfaces(const sim::World& world, double end_s) {
 }
 
 GroundTruth TruthOf(const sim::World& world, double end_s) {
-  return {TrueWalls(world, end_s), WallsAt(world, end_s), GoneSurfaces(world, end_s),
-          std::make_shared<const sim::World>(world), end_s};
+  return {TrueWalls(world, end_s),
+          WallsAt(world, end_s),
+          GoneSurfaces(world, end_s),
+          std::make_shared<const sim::World>(world),
+          end_s,
+          nullptr};
 }
 
 void WriteTruthWalls(const std::string& prefix, const GroundTruth& truth) {

@@ -186,7 +186,7 @@ TEST(RunMapFrameTest, ModeFiguresShareTheTruthCanvasOrTheScale) {
   const fs::path dir = TempDir("run_maps");
   const std::vector<Segment> walls = {{0, 0, 4, 0}, {4, 0, 4, 3}};
   const RunMapFrame f = MakeRunMapFrame(Stream(2.0), &walls, 0.1);
-  WriteTruthFiles((dir / "truth").string(), Stream(2.0), walls, 0.1);
+  WriteTruthFiles((dir / "truth").string(), Stream(2.0), RasterizeWalls(walls, 0.1), f);
   EXPECT_TRUE(fs::exists(dir / "truth" / "map.pgm"));
   EXPECT_TRUE(fs::exists(dir / "truth" / "trajectory.tum"));
   WriteModeFigures(dir.string(), "a", Grid(), {}, Pose2(0.5, 0.5, 0.3), f);

@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "sensor/input_error.hpp"
 #include "sim/yaml_fields.hpp"
@@ -192,7 +193,43 @@ slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
   return config;
 }
 
+/// Dotted settings as nested sections: {"a.b.c", v} -> a: {b: {c: v}}.
+YAML::Node SettingsNode(const std::vector<std::pair<std::string, std::string>>& settings) {
+  YAML::Node root(YAML::NodeType::Map);
+  for (const auto& [key, value] : settings) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1) {
+      parts.push_back(key.substr(start, dot - start));
+    }
+    parts.push_back(key.substr(start));
+    YAML::Node node = root;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+      if (!node[parts[i]] || !node[parts[i]].IsMap()) {
+        node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      }
+      node.reset(node[parts[i]]);
+    }
+    node[parts.back()] = value;
+  }
+  return root;
+}
+
 }  // namespace
+
+slam::MapperConfig ApplyMapperSettings(
+    const std::vector<std::pair<std::string, std::string>>& settings, const std::string& name,
+    const slam::MapperConfig& base) {
+  return Apply(SettingsNode(settings), name, base);
+}
+
+std::string MapperSettingsYaml(const std::vector<std::pair<std::string, std::string>>& settings) {
+  const YAML::Node root = SettingsNode(settings);
+  if (root.size() == 0) return "{}\n";
+  YAML::Emitter out;
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
 
 slam::MapperConfig LoadMapperConfigFromString(const std::string& yaml, const std::string& name,
                                               const slam::MapperConfig& base) {

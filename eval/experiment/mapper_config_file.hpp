@@ -15,6 +15,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "slam/mapping/mapper_config.hpp"
 
@@ -29,6 +31,17 @@ slam::MapperConfig LoadMapperConfig(const std::string& path,
 slam::MapperConfig LoadMapperConfigFromString(
     const std::string& yaml, const std::string& name,
     const slam::MapperConfig& base = slam::MapperConfig{});
+
+/// Dotted settings ("loops.verify.min_group", "4"), as a sweep gives them, applied on top of
+/// `base` by the same reader and checks as a file, with no text in between; `name` stands for
+/// the file name in error messages.
+slam::MapperConfig ApplyMapperSettings(
+    const std::vector<std::pair<std::string, std::string>>& settings, const std::string& name,
+    const slam::MapperConfig& base = slam::MapperConfig{});
+
+/// The same settings as a YAML document that LoadMapperConfigFromString reads to the config
+/// ApplyMapperSettings gives ("{}" for none): a sweep cell's config file.
+std::string MapperSettingsYaml(const std::vector<std::pair<std::string, std::string>>& settings);
 
 /// Every setting of `config` (except those listed above) as a YAML document that
 /// LoadMapperConfigFromString reads back to an equal config (doubles in shortest exact form).

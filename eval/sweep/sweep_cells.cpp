@@ -128,9 +128,9 @@ SweepPlan ExpandSweep(const SweepSpec& spec, const std::string& program) {
       for (const Settings& settings : combinations) {
         SweepPlanCell cell{"", source.given, source.is_log, seed, settings, "", {}, ""};
         cell.name = CellName(source, cell, full_keys);
-        const std::string config = SettingsConfigYaml(settings);
+        const std::string config = MapperSettingsYaml(settings);
         try {  // a combination can break a rule one value alone keeps (min <= max)
-          LoadMapperConfigFromString(config, "settings");
+          ApplyMapperSettings(settings, "settings");
         } catch (const InputError& e) {
           throw InputError(spec.file, spec.settings.empty() ? 0 : spec.settings.front().line,
                            "settings", "the combination of cell " + cell.name + ": " + e.what());
@@ -150,7 +150,7 @@ SweepPlan ExpandSweep(const SweepSpec& spec, const std::string& program) {
 
 CellInputs MakeCellInputs(const SweepSpec& spec, const SweepPlanCell& cell) {
   CellInputs in;
-  in.config_yaml = SettingsConfigYaml(cell.settings);
+  in.config_yaml = MapperSettingsYaml(cell.settings);
   const SweepSource& source = SourceOf(spec, cell);
   if (source.is_log) return in;
   YAML::Node scenario = YAML::LoadFile(source.path);

@@ -206,10 +206,10 @@ class SpecReader {
     sim::RejectDuplicateKeys(file_, map, "settings");
   }
 
-  /// The real config reader decides: a config holding just this key and value must load.
+  /// The real config reader decides: this key and value alone must apply.
   void CheckSetting(const std::string& key, const std::string& value, const YAML::Node& at) const {
     try {
-      LoadMapperConfigFromString(SettingsConfigYaml({{key, value}}), "setting");
+      ApplyMapperSettings({{key, value}}, "setting");
     } catch (const InputError& e) {
       Fail(at, "settings." + key,
            std::string("not a valid mapper setting (configs/default.yaml): ") + e.what());
@@ -223,29 +223,6 @@ class SpecReader {
 };
 
 }  // namespace
-
-std::string SettingsConfigYaml(const std::vector<std::pair<std::string, std::string>>& settings) {
-  YAML::Node root(YAML::NodeType::Map);
-  for (const auto& [key, value] : settings) {
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1) {
-      parts.push_back(key.substr(start, dot - start));
-    }
-    parts.push_back(key.substr(start));
-    YAML::Node node = root;
-    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-      if (!node[parts[i]] || !node[parts[i]].IsMap())
-        node[parts[i]] = YAML::Node(YAML::NodeType::Map);
-      node.reset(node[parts[i]]);
-    }
-    node[parts.back()] = value;
-  }
-  if (root.size() == 0) return "{}\n";
-  YAML::Emitter out;
-  out << root;
-  return std::string(out.c_str()) + "\n";
-}
 
 SweepSpec LoadSweepSpec(const std::string& path, MissingLogs missing) {
   YAML::Node root;

@@ -54,8 +54,4 @@ enum class MissingLogs { kRefuse, kRecord };
 /// Reads and checks `path` (see above). Throws lifelong::InputError.
 SweepSpec LoadSweepSpec(const std::string& path, MissingLogs missing = MissingLogs::kRefuse);
 
-/// The mapper-config YAML (nested sections) that sets each dotted key to its value:
-/// {"pruning.gain_threshold_bits": "5"} -> "pruning:\n  gain_threshold_bits: 5\n".
-std::string SettingsConfigYaml(const std::vector<std::pair<std::string, std::string>>& settings);
-
 }  // namespace lifelong::eval

@@ -128,12 +128,31 @@ TEST(SweepSpec, ExpandsScenariosSeedsAndSettingsIntoNamedCells) {
 }
 
 TEST(SweepSpec, SettingsBecomeNestedYaml) {
-  EXPECT_EQ(SettingsConfigYaml({}), "{}\n");
-  const std::string yaml =
-      SettingsConfigYaml({{"loops.verify.min_group", "4"}, {"loops.enabled", "false"}});
+  EXPECT_EQ(MapperSettingsYaml({}), "{}\n");
+  const std::vector<std::pair<std::string, std::string>> settings = {
+      {"loops.verify.min_group", "4"}, {"loops.enabled", "false"}};
+  const std::string yaml = MapperSettingsYaml(settings);
   const YAML::Node n = YAML::Load(yaml);
   EXPECT_EQ(n["loops"]["verify"]["min_group"].as<int>(), 4);
   EXPECT_EQ(n["loops"]["enabled"].as<bool>(), false);
+  // Applied directly, the settings give what the cell's file gives.
+  const slam::MapperConfig direct = ApplyMapperSettings(settings, "settings");
+  const slam::MapperConfig from_file = LoadMapperConfigFromString(yaml, "cell.yaml");
+  EXPECT_EQ(direct.loops.verify.min_group, 4);
+  EXPECT_FALSE(direct.loops.enabled);
+  EXPECT_EQ(MapperConfigToYaml(direct), MapperConfigToYaml(from_file));
+}
+
+// A setting is checked where it is applied: a value out of range or an unknown key is an
+// InputError naming the dotted key.
+TEST(SweepSpec, AppliedSettingsAreCheckedByTheReader) {
+  try {
+    ApplyMapperSettings({{"pruning.radius_m", "-1"}}, "setting");
+    FAIL() << "a negative radius was applied";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pruning.radius_m"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ApplyMapperSettings({{"pruning.no_such_key", "1"}}, "setting"), InputError);
 }
 
 // Every SPEC shipped in sweeps/ must load (its scenarios, logs and setting keys exist and

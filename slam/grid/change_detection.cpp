@@ -78,17 +78,19 @@ Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, doub
   return s;
 }
 
-enum class Verdict { kNone, kAgree, kSeenThrough };
+enum class Verdict { kNone, kAgree, kHidden, kSeenThrough };
 
-/// How `scan` sees a point: a return along its beam within margin of it (agree), or all
-/// three beams k-1, k, k+1 (only k when `alone`) returns beyond d + margin and no return of
-/// the scan within guard
-/// of the point (seen through). The last condition keeps the edge of an object, which a
-/// small error of the poses moves off the object's outline, from reading as a change.
-Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard, bool alone) {
+/// How `scan` sees a point: a return along its beam within margin of it (agree), its beam's
+/// return short of it by more than `hidden` (hidden), or all three beams k-1, k, k+1 (only k
+/// when `alone`) returns beyond d + margin and no return of the scan within guard of the
+/// point (seen through). The last condition keeps the edge of an object, which a small error
+/// of the poses moves off the object's outline, from reading as a change.
+Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard, double hidden,
+              bool alone) {
   const auto i = static_cast<std::size_t>(p.beam);
   const double d = p.distance_m;
   if (scan.IsReturn(i) && std::abs(scan.ranges_m[i] - d) <= margin) return Verdict::kAgree;
+  if (scan.IsReturn(i) && scan.ranges_m[i] < d - hidden) return Verdict::kHidden;
   for (std::size_t j = alone ? i : i - 1; j <= (alone ? i : i + 1); ++j) {
     if (!scan.IsReturn(j) || scan.ranges_m[j] <= d + margin) return Verdict::kNone;
   }
@@ -128,9 +130,11 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     const Eigen::Vector2d p = end_point(i);
     const Seen s = SeenFrom(to, T_to_world, p.x(), p.y());
     if (s.beam < 0) continue;
-    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m, alone);
+    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m,
+                            std::max(config.margin_m, config.hidden_m), alone);
     ++c->judged;
     if (v == Verdict::kAgree) ++c->agree;
+    if (v == Verdict::kHidden) ++c->hidden;
     if (v != Verdict::kSeenThrough) continue;
     // The surface at the point, from its neighbours: a beam of `to` that meets it at a
     // grazing angle passes it by a range error of (pose error) / sin(angle), no change.
@@ -288,7 +292,10 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
         true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
           added.push_back({new_beam, CutBefore(older, old_beam, distance_m, config)});
         });
-  c.compared = c.judged > 0 && c.agree >= config.min_agreement * c.judged;
+  // A point hidden behind a nearer return of the other scan says nothing of the poses: the
+  // other scan saw something else there (a wall from another room, an object since moved).
+  const int visible = c.judged - c.hidden;
+  c.compared = visible > 0 && c.agree >= config.min_agreement * visible;
   if (!c.compared) return c;
   SortUnique(&removed);
   KeepRuns(min_run, &removed);

@@ -22,6 +22,9 @@
 // crossed it between them. And two scans are compared only when they agree where they
 // overlap: when fewer than min_agreement of the returns they both see lie within `margin_m`
 // of each other, their poses disagree (drift before a loop closure) and nothing is marked.
+// A return hidden from the other scan, whose beam there ends more than hidden_m nearer, is
+// not seen by both: the robot come into a room past a desk's new place sees little of what
+// it saw from the far side, and that is no disagreement of the poses.
 #pragma once
 
 #include <cstdint>
@@ -54,15 +57,22 @@ struct ChangeDetectionConfig {
   /// Outdated beams count only in runs of at least this many (a run may skip one beam): a
   /// change covers neighbouring beams, noise and pose error single ones.
   int min_run_beams = 4;
-  /// The share of the returns within each other's field of view that must agree (within
-  /// margin_m) for the two scans to be compared at all.
+  /// The share of the returns within each other's field of view, and not hidden there behind
+  /// a nearer return, that must agree (within margin_m) for the two scans to be compared at
+  /// all.
   double min_agreement = 0.6;
+  /// A return that lies more than this behind the other scan's return along its beam is
+  /// hidden from it: something nearer stands in front, where a pose error moves a surface
+  /// by less. Hidden returns do not count toward min_agreement (at most margin_m: every
+  /// return behind the other's is hidden).
+  double hidden_m = 1.0;
 };
 
 /// What comparing an older scan with a newer one found.
 struct ScanComparison {
   int judged = 0;         ///< returns of either scan within the other's field of view
   int agree = 0;          ///< of them, those the other sees within margin_m
+  int hidden = 0;         ///< of them, those the other's beam ends short of by more than hidden_m
   int disagree = 0;       ///< returns of either scan that the other sees through
   bool compared = false;  ///< the scans overlap and agree enough (min_agreement) to judge
   /// The older scan's outdated beams, ascending, each with how far it still shows free

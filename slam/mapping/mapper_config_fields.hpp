@@ -232,6 +232,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       d.Number("margin_m", r.detection.margin_m, kNonNegative);
       d.Number("edge_guard_m", r.detection.edge_guard_m, kNonNegative);
       d.Number("min_agreement", r.detection.min_agreement, kUnit);
+      d.Number("hidden_m", r.detection.hidden_m, kNonNegative);
       d.Number("min_incidence_rad", r.detection.min_incidence_rad, kNonNegative);
       d.Number("min_incidence_added_rad", r.detection.min_incidence_added_rad, kNonNegative);
       d.Number("added_depth_m", r.detection.added_depth_m, kNonNegative);

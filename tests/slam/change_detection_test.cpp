@@ -212,5 +212,31 @@ TEST(ChangeDetection, AThinPostSeenFromElsewhereIsNoChange) {
   EXPECT_TRUE(c.outdated.empty());
 }
 
+// A desk gone from the room's far side, seen from where a cabinet put down since hides much
+// of what the older scan saw: the hidden returns are not seen by both scans, so they neither
+// agree nor disagree, and the scans are compared on the rest (the desk's face is seen
+// through). Counted among the judged, they kept the scans from being compared at all.
+TEST(ChangeDetection, ReturnsHiddenBehindANearerObjectDoNotStopTheComparison) {
+  World before, after;
+  AddRectangle(0.0, 0.0, 10.0, 6.0, &before);
+  after = before;
+  AddRectangle(7.0, 1.0, 7.7, 2.4, &before);  // the desk, its face at x = 7
+  AddRectangle(3.0, 3.1, 3.3, 6.0, &after);   // the cabinet, 0.5 m from the newer pose
+  AddRectangle(3.0, 0.0, 3.3, 0.6, &after);
+  const LaserScan older = SimulateScan(before, kOld), newer = SimulateScan(after, kNew);
+  const ScanComparison c = CompareScans(older, kOld, newer, kNew, {});
+  EXPECT_GT(c.hidden, 0);
+  EXPECT_LT(c.agree, 0.6 * c.judged) << c.agree << " of " << c.judged;  // the old rule's test
+  ASSERT_TRUE(c.compared) << c.agree << " of " << c.judged - c.hidden;
+  int removed = 0;  // returns seen through (the cabinet's cuts resume past it)
+  for (const BeamCut& cut : c.outdated) {
+    if (cut.Resumes()) continue;
+    ++removed;
+    const double a = kOld.theta + older.Bearing(cut.beam), r = older.ranges_m[cut.beam];
+    EXPECT_NEAR(kOld.x + r * std::cos(a), 7.0, 0.01) << "beam " << cut.beam;  // the desk's face
+  }
+  EXPECT_GE(removed, 4);
+}
+
 }  // namespace
 }  // namespace lifelong::slam

@@ -175,7 +175,8 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
   }
   const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &truth, &grid, summary);
   if (truth.world) {
-    summary->change = ComputeChangeRecall(*truth.world, truth.end_s, stream, grid, T_truth_est);
+    summary->change = ComputeChangeRecall(*truth.world, truth.end_s, stream, grid, T_truth_est,
+                                          SIZE_MAX, truth.raster.get());
   }
   std::vector<Pose2> true_nodes;
   for (const TimelineRow& row : timeline_) true_nodes.push_back(true_at.at(row.t_s));

@@ -44,53 +44,66 @@ double LastChange(const Object& o, double end_s) {
   return last;
 }
 
+/// The object's present and past outlines at end_s, and what stands then besides its
+/// present.
+struct Outlines {
+  std::vector<Segment> present, past, others;
+};
+
+Outlines OutlinesOf(const Object& o, double end_s, const std::vector<Segment>& now) {
+  Outlines out;
+  if (o.door) {
+    (o.door->IsClosed(end_s) ? out.present : out.past).push_back(o.door->segment);
+  } else {
+    out.present = BoxOutlineAt(*o.box, end_s);
+    out.past = PastBoxOutlines(*o.box, end_s);
+  }
+  for (const Segment& s : now) {
+    if (std::find_if(out.present.begin(), out.present.end(), [&](const Segment& q) {
+          return q.x0 == s.x0 && q.y0 == s.y0 && q.x1 == s.x1 && q.y1 == s.y1;
+        }) == out.present.end()) {
+      out.others.push_back(s);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double end_s,
                                                 const std::vector<Observation>& stream,
                                                 const OccupancyGrid& map, const Pose2& T_truth_est,
-                                                std::size_t scans) {
+                                                std::size_t scans, const TruthRaster* raster) {
   std::vector<Object> objects;
   for (const sim::Door& d : world.doors) objects.push_back({"door " + d.name, &d, nullptr});
   for (const sim::Box& b : world.boxes) objects.push_back({"box " + b.name, nullptr, &b});
   const std::vector<Segment> now = WallsAt(world, end_s);
   ChangeRecall out;
+  std::vector<Sightings> sightings;  // every changed object's, for stale_seen
   int shown_recent = 0;
   for (const Object& o : objects) {
     if (!Changed(o, end_s)) continue;
     ObjectPresent p;
     // Its present and its past, each against the rest of what stands at the end.
-    std::vector<Segment> present, past;
-    if (o.door) {
-      (o.door->IsClosed(end_s) ? present : past).push_back(o.door->segment);
-    } else {
-      present = BoxOutlineAt(*o.box, end_s);
-      past = PastBoxOutlines(*o.box, end_s);
-    }
-    std::vector<Segment> others;
-    for (const Segment& s : now) {
-      if (std::find_if(present.begin(), present.end(), [&](const Segment& q) {
-            return q.x0 == s.x0 && q.y0 == s.y0 && q.x1 == s.x1 && q.y1 == s.y1;
-          }) == present.end()) {
-        others.push_back(s);
-      }
-    }
+    const Outlines lines = OutlinesOf(o, end_s, now);
     // Judged on what the robot saw after the change: the present cells a return hit, the
     // past cells a beam crossed.
-    const Sightings seen =
-        CollectSightings(stream, scans, LastChange(o, end_s), present, past, map.resolution_m);
+    const Sightings& seen = sightings.emplace_back(CollectSightings(
+        stream, scans, LastChange(o, end_s), lines.present, lines.past, map.resolution_m));
     if (seen.last_s) p.since_seen_s = std::max(0.0, end_s - *seen.last_s);
     const auto hit = [&](double x, double y) { return seen.hit.Near(x, y); };
     const auto freed = [&](double x, double y) { return seen.freed.Near(x, y); };
     const std::optional<double> shown_now =
-        present.empty() ? std::nullopt : ShownShare(map, present, others, T_truth_est, {}, hit);
+        lines.present.empty() ? std::nullopt
+                              : ShownShare(map, lines.present, lines.others, T_truth_est, {}, hit);
     const std::optional<double> shown_past =
-        past.empty() ? std::nullopt : ShownShare(map, past, now, T_truth_est, {}, freed);
+        lines.past.empty() ? std::nullopt
+                           : ShownShare(map, lines.past, now, T_truth_est, {}, freed);
     if (seen.last_s) {
       p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
     }
-    p.present = present;
-    p.past = past;
+    p.present = lines.present;
+    p.past = lines.past;
     if (p.since_seen_s && *p.since_seen_s <= kRecentS) {
       ++out.recent;
       shown_recent += *p.shows_present ? 1 : 0;
@@ -99,6 +112,12 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
   }
   if (out.objects.empty()) return std::nullopt;
   if (out.recent > 0) out.recall = static_cast<double>(shown_recent) / out.recent;
+  if (raster && raster->lattice().res == map.resolution_m) {
+    out.stale_seen = StaleShare(map, *raster, T_truth_est, {}, [&](double x, double y) {
+      return std::any_of(sightings.begin(), sightings.end(),
+                         [&](const Sightings& s) { return s.freed.Near(x, y); });
+    });
+  }
   return out;
 }
 

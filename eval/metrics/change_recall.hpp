@@ -26,6 +26,8 @@
 
 namespace lifelong::eval {
 
+class TruthRaster;
+
 struct ObjectPresent {
   /// The map shows its state at the end; none when the robot did not see it since its last
   /// change (then no map could).
@@ -40,13 +42,20 @@ struct ChangeRecall {
   std::map<std::string, ObjectPresent> objects;  ///< "door NAME" / "box NAME", changed only
   std::optional<double> recall;                  ///< over those seen in the last 600 s
   int recent = 0;                                ///< how many those are
+  /// The share of the map's occupied cells that show a surface the robot saw gone: stale
+  /// cells (StaleShare) on a cell of a door's or box's earlier outline that a beam crossed
+  /// after the object's last change. What stands in a room the robot has not looked into
+  /// since is not counted: no map could know it is gone. Given a raster only.
+  std::optional<double> stale_seen;
 };
 
 /// Nothing when no door or box changed during [0, end_s]. The robot has seen the first
 /// `scans` observations of `stream` (all of them by default).
+/// With `raster` (the run's truth at end_s, at the map's resolution) it also gives stale_seen.
 std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double end_s,
                                                 const std::vector<Observation>& stream,
                                                 const OccupancyGrid& map, const Pose2& T_truth_est,
-                                                std::size_t scans = SIZE_MAX);
+                                                std::size_t scans = SIZE_MAX,
+                                                const TruthRaster* raster = nullptr);
 
 }  // namespace lifelong::eval

@@ -111,16 +111,18 @@ BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& wal
 }
 
 double StaleShare(const OccupancyGrid& map, const TruthRaster& truth, const Pose2& T_truth_est,
-                  const BlurConfig& config) {
+                  const BlurConfig& config,
+                  const std::function<bool(double x, double y)>& counted) {
   CheckResolution(map, truth);
-  const std::vector<LatticeCell> occ =
-      CellsOf(truth.lattice(), OccupiedCentres(map, T_truth_est, config.occupied_threshold));
+  const std::vector<std::pair<double, double>> occ =
+      OccupiedCentres(map, T_truth_est, config.occupied_threshold);
   if (occ.empty() || truth.gone().empty()) return 0.0;
   std::size_t stale = 0;
-  for (const LatticeCell& c : occ) {
+  for (const auto& [x, y] : occ) {
+    const LatticeCell c = truth.lattice().CellOf(x, y);
     const bool near_gone = truth.gone().DistanceCells(c) <= config.recall_tolerance_cells;
     const bool near_now = truth.walls_now().DistanceCells(c) <= config.recall_tolerance_cells;
-    stale += (near_gone && !near_now) ? 1 : 0;
+    stale += (near_gone && !near_now && (!counted || counted(x, y))) ? 1 : 0;
   }
   return static_cast<double>(stale) / static_cast<double>(occ.size());
 }

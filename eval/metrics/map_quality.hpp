@@ -56,8 +56,11 @@ BlurResult ComputeBlur(const OccupancyGrid& map, const std::vector<Segment>& wal
 /// (issue #35 stale_cells): within tolerance_cells of a gone surface (truth.gone(),
 /// GoneSurfaces) and farther than that from every surface standing at the end
 /// (truth.walls_now(), WallsAt). 0 when the map has no occupied cell or nothing is gone.
+/// With `counted`, a stale cell counts only when counted(x, y) takes its centre (truth
+/// frame): stale_seen_cells counts those on surfaces the robot saw gone.
 double StaleShare(const OccupancyGrid& map, const TruthRaster& truth, const Pose2& T_truth_est,
-                  const BlurConfig& config = {});
+                  const BlurConfig& config = {},
+                  const std::function<bool(double x, double y)>& counted = {});
 
 /// The same, rasterizing `gone` and `now` for this call alone.
 double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,

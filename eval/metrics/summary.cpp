@@ -90,6 +90,7 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
   if (m.change) {
     Put(j, "change_recall", m.change->recall);
     j["change_recall_seen"] = m.change->recent;
+    Put(j, "stale_seen_cells", m.change->stale_seen);
     json objects = json::object();
     for (const auto& [name, o] : m.change->objects) {
       json e = json::object();

@@ -262,6 +262,9 @@ const std::vector<TableRow>& SummaryTableRows() {
       {kMap, "/stale_cells", "stale cells", "%", 100, true,
        "occupied cells showing a door or box that is gone by the run's end (within 1.5 "
        "cells of it and of nothing standing then)"},
+      {kMap, "/stale_seen_cells", "stale cells seen gone", "%", 100, true,
+       "stale cells on a place the robot saw empty after the door or box last changed (a "
+       "beam crossed it): those a map could have cleared"},
       {kMap, "/map_entropy_bits", "map entropy", "bits", 1, true,
        "sum of the binary entropy H(p) over the known cells (seed eq. 5.8)"},
       {kMap, "/occupied_share", "occupied share", "%", 100, false, "known cells with p >= 0.65"},

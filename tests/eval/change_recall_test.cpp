@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "eval/figures/change_tiles.hpp"
 #include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/truth_raster.hpp"
 #include "eval/metrics/world_state.hpp"
 
 namespace lifelong::eval {
@@ -76,6 +78,31 @@ TEST(ChangeRecall, AnOpenDoorShownClosedIsNotThePresent) {
   ASSERT_TRUE(unseen.has_value());
   EXPECT_FALSE(unseen->recall.has_value());
   EXPECT_FALSE(unseen->objects.at("door d").since_seen_s.has_value());
+}
+
+// stale_seen_cells counts a stale cell only where the robot saw the place empty after the
+// change: the door shown closed, seen open through the doorway, is stale and seen; never
+// looked at again, it is stale and not seen.
+TEST(ChangeRecall, StaleCellsSeenGoneAreThoseABeamCrossed) {
+  const sim::World w = DoorWorld();
+  const std::vector<Segment> with_door{{0, 0, 4, 0}, {5, 0, 9, 0}, {4, 0, 5, 0}};
+  const OccupancyGrid map = RasterizeWalls(with_door, 0.05);
+  const TruthRaster raster(TruthOf(w, 20.0), {}, 0.05);
+  const double stale = StaleShare(map, raster, Pose2());
+  ASSERT_GT(stale, 0.0);
+  Observation narrow = LookingDown(15.0, 4.5, 2.0, -0.05, 0.017);  // +-3 degrees: +-0.1 m
+  narrow.scan.ranges_m.assign(7, 30.0f);
+  const auto seen = ComputeChangeRecall(w, 20.0, {narrow}, map, Pose2(), SIZE_MAX, &raster);
+  ASSERT_TRUE(seen.has_value() && seen->stale_seen.has_value());
+  EXPECT_GT(*seen->stale_seen, 0.0);
+  EXPECT_LT(*seen->stale_seen, 0.5 * stale);  // the door's middle only
+  const auto wide =
+      ComputeChangeRecall(w, 20.0, {LookThrough(15.0)}, map, Pose2(), SIZE_MAX, &raster);
+  EXPECT_DOUBLE_EQ(*wide->stale_seen, stale);  // +-10 degrees: the whole door
+  const auto unseen = ComputeChangeRecall(w, 20.0, {}, map, Pose2(), SIZE_MAX, &raster);
+  ASSERT_TRUE(unseen.has_value() && unseen->stale_seen.has_value());
+  EXPECT_DOUBLE_EQ(*unseen->stale_seen, 0.0);
+  EXPECT_FALSE(ComputeChangeRecall(w, 20.0, {}, map, Pose2())->stale_seen.has_value());
 }
 
 // A sighting before the door's last change saw a state the world has left: a door seen

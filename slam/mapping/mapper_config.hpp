@@ -10,7 +10,7 @@
 #include "slam/grid/grid_map.hpp"
 #include "slam/loops/loop_config.hpp"
 #include "slam/mapping/mode.hpp"
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 #include "slam/matching/incremental_config.hpp"
 #include "slam/sparsify/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"

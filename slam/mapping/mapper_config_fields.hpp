@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "slam/mapping/mapper_config.hpp"
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam::config_fields {

@@ -19,7 +19,7 @@
 #include "slam/mapping/map_keeper.hpp"
 #include "slam/mapping/mapper.hpp"
 #include "slam/mapping/pruner.hpp"
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 #include "slam/mapping/scan_store.hpp"
 #include "slam/mapping/scoped_ms.hpp"
 #include "slam/matching/node_data.hpp"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -17,7 +17,7 @@
 #include "slam/graph/pose_graph.hpp"
 #include "slam/mapping/mapper_config.hpp"
 #include "slam/mapping/mapper_records.hpp"
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -1,5 +1,5 @@
-// Removal policies (slam/mapping/removal_policy.hpp): which node goes, by name.
-#include "slam/mapping/removal_policy.hpp"
+// Removal policies (slam/removal/removal_policy.hpp): which node goes, by name.
+#include "slam/removal/removal_policy.hpp"
 
 #include <algorithm>
 #include <memory>

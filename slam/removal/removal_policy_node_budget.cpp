@@ -2,7 +2,7 @@
 // node_budget nodes, the candidate whose scan adds least to the map (lowest information
 // gain, seed §5.1) goes, whatever its gain; within the budget nothing goes. Without a budget
 // (node_budget = 0) it never removes.
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "slam/grid/beam_cut.hpp"
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -1,4 +1,4 @@
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 
 #include <algorithm>
 

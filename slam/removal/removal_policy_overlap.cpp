@@ -16,7 +16,7 @@
 #include <map>
 #include <vector>
 
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -1,7 +1,7 @@
 // Removal policy "information-gain": the seed's rule (§5.1). A scan whose gain is at or
 // below the threshold adds (almost) nothing to the map, so its node goes, lowest first; with
 // a node budget, the lowest also goes while the graph is over it.
-#include "slam/mapping/removal_policy.hpp"
+#include "slam/removal/removal_policy.hpp"
 
 namespace lifelong::slam {
 namespace {

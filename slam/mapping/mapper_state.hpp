@@ -19,12 +19,12 @@
 #include "slam/mapping/map_keeper.hpp"
 #include "slam/mapping/mapper.hpp"
 #include "slam/mapping/pruner.hpp"
-#include "slam/removal/removal_policy.hpp"
 #include "slam/mapping/scan_store.hpp"
 #include "slam/mapping/scoped_ms.hpp"
 #include "slam/matching/node_data.hpp"
 #include "slam/matching/scan_matcher.hpp"
 #include "slam/matching/sequential_matcher.hpp"
+#include "slam/removal/removal_policy.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

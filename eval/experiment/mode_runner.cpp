@@ -19,6 +19,7 @@
 #include "eval/metrics/map_quality.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
 #include "eval/metrics/truth_metrics.hpp"
+#include "eval/metrics/truth_raster.hpp"
 #include "eval/metrics/world_state.hpp"
 #include "io/atomic_file.hpp"
 #include "io/graph_file.hpp"
@@ -232,7 +233,9 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
       true_poses.push_back(*stream[k].T_world_robot_true);
     }
     const OccupancyGrid grid = ToOccupancyGrid(mapper_->map());
-    const GroundTruth then = TruthOf(*truth->world, t);
+    GroundTruth then = TruthOf(*truth->world, t);
+    // One raster of the world as it stood then, for the map's figures and its stale cells.
+    then.raster = std::make_shared<const TruthRaster>(then, true_poses, grid.resolution_m);
     ModeSummary s;
     const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &then, &grid, &s);
     PresentAt p;
@@ -241,10 +244,11 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
     // Before anything changed the present is every wall there is.
     p.current_blur = s.current_blur ? s.current_blur : s.blur;
     p.stale_cells = s.current_blur ? s.stale_cells : 0.0;
-    if (const auto change =
-            ComputeChangeRecall(*truth->world, t, stream, grid, T_truth_est, i + 1)) {
+    if (const auto change = ComputeChangeRecall(*truth->world, t, stream, grid, T_truth_est, i + 1,
+                                                then.raster.get())) {
       p.change_recall = change->recall;
       p.change_recall_seen = change->recent;
+      p.stale_seen_cells = change->stale_seen;
     }
     present_at_.push_back(p);
   }

@@ -81,6 +81,7 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
         Put(e, "current_recall", p.current_blur->recall);
       }
       Put(e, "stale_cells", p.stale_cells);
+      Put(e, "stale_seen_cells", p.stale_seen_cells);
       Put(e, "change_recall", p.change_recall);
       Put(e, "change_recall_seen", p.change_recall_seen);
       list.push_back(e);

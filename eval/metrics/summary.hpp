@@ -80,6 +80,7 @@ struct PresentAt {
   std::optional<double> ate_rmse_m;
   std::optional<BlurSummary> current_blur;
   std::optional<double> stale_cells;
+  std::optional<double> stale_seen_cells;
   std::optional<double> change_recall;
   std::optional<std::int64_t> change_recall_seen;
 };

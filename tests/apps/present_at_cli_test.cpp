@@ -40,6 +40,9 @@ TEST(PresentAtCli, ScoresTheMapOfThePresentAtTheGivenTimes) {
   }
   // Doors flip before 400 s: the change recall then counts the objects seen by then.
   EXPECT_TRUE(list[1].contains("change_recall_seen")) << list[1];
+  // Its stale cells seen gone are some of its stale cells.
+  ASSERT_TRUE(list[1].contains("stale_seen_cells")) << list[1];
+  EXPECT_LE(list[1]["stale_seen_cells"].get<double>(), list[1]["stale_cells"].get<double>());
 
   const Result bad = Lifelong("run " + kSource + "/scenarios/corridor_3.yaml --present-at -5 -o " +
                               lifelong::test::FreshPath("present_at_", "bad").string());

@@ -112,7 +112,7 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
   }
   if (out.objects.empty()) return std::nullopt;
   if (out.recent > 0) out.recall = static_cast<double>(shown_recent) / out.recent;
-  if (raster && raster->lattice().res == map.resolution_m) {
+  if (raster && raster->Fits(map)) {
     out.stale_seen = StaleShare(map, *raster, T_truth_est, {}, [&](double x, double y) {
       return std::any_of(sightings.begin(), sightings.end(),
                          [&](const Sightings& s) { return s.freed.Near(x, y); });

@@ -37,7 +37,7 @@ std::vector<LatticeCell> CellsOf(const Lattice& l,
 }
 
 void CheckResolution(const OccupancyGrid& map, const TruthRaster& truth) {
-  if (std::abs(map.resolution_m - truth.lattice().res) > 1e-9 * truth.lattice().res) {
+  if (!truth.Fits(map)) {
     throw std::invalid_argument(
         "map quality: the map's resolution (" + std::to_string(map.resolution_m) +
         " m) is not the truth raster's (" + std::to_string(truth.lattice().res) + " m)");

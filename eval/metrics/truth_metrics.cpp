@@ -37,7 +37,7 @@ Pose2 ScoreAgainstTruth(const std::vector<Pose2>& estimate, const std::vector<Po
   const Pose2 T_truth_est = AlignSE2(estimate, truth);
   if (!walls || !map) return T_truth_est;
   std::shared_ptr<const TruthRaster> raster = walls->raster;
-  if (!raster || raster->lattice().res != map->resolution_m) {
+  if (!raster || !raster->Fits(*map)) {
     raster = std::make_shared<const TruthRaster>(*walls, truth, map->resolution_m);
   }
   summary->blur = Summarize(ComputeBlur(*map, *raster, raster->walls(), T_truth_est));

@@ -127,14 +127,13 @@ TruthRaster::TruthRaster(const GroundTruth& truth, const std::vector<Pose2>& tru
     gone_ = SegmentField(lattice_, truth.gone);
   }
   if (true_trajectory.empty()) return;
-  cv::Mat img(lattice_.rows, lattice_.cols, CV_8UC1, cv::Scalar(255));
-  for (std::size_t i = 0; i < true_trajectory.size(); ++i) {
-    const Pose2& a = true_trajectory[i];
-    const Pose2& b = true_trajectory[i + 1 < true_trajectory.size() ? i + 1 : i];
-    const LatticeCell ca = lattice_.CellOf(a.x, a.y), cb = lattice_.CellOf(b.x, b.y);
-    cv::line(img, {ca.col, ca.row}, {cb.col, cb.row}, cv::Scalar(0), 1, cv::LINE_8);
+  const Pose2& first = true_trajectory.front();
+  std::vector<Segment> legs = {{first.x, first.y, first.x, first.y}};  // one pose: itself
+  for (std::size_t i = 1; i < true_trajectory.size(); ++i) {
+    const Pose2 &a = true_trajectory[i - 1], &b = true_trajectory[i];
+    legs.push_back({a.x, a.y, b.x, b.y});
   }
-  trajectory_distance_ = DistanceTransform(img);
+  trajectory_distance_ = DistanceTransform(DrawSegments(lattice_, legs));
 }
 
 OccupancyGrid TruthRaster::WallGrid() const {

@@ -6,8 +6,8 @@
 // (eval/metrics/map_quality.hpp), and truth/map.pgm is its walls.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
-#include <memory>
 #include <vector>
 
 #include "eval/metrics/ground_truth.hpp"
@@ -87,6 +87,11 @@ class TruthRaster {
               double resolution_m);
 
   const Lattice& lattice() const { return lattice_; }
+  /// Whether `map` is at the raster's resolution (a map at another is scored on a raster of
+  /// its own).
+  bool Fits(const OccupancyGrid& map) const {
+    return std::abs(map.resolution_m - lattice_.res) <= 1e-9 * lattice_.res;
+  }
   /// Every surface that stood during the run (GroundTruth::walls).
   const SegmentField& walls() const { return walls_; }
   /// The surfaces standing at the end and those gone by then; both empty when the world did

@@ -63,8 +63,8 @@ struct ChangeDetectionConfig {
   double min_agreement = 0.6;
   /// A return that lies more than this behind the other scan's return along its beam is
   /// hidden from it: something nearer stands in front, where a pose error moves a surface
-  /// by less. Hidden returns do not count toward min_agreement (at most margin_m: every
-  /// return behind the other's is hidden).
+  /// by less. Hidden returns do not count toward min_agreement. A value under margin_m acts
+  /// as margin_m.
   double hidden_m = 1.0;
 };
 

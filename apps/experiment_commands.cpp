@@ -237,6 +237,13 @@ int Replay(const ReplayArgs& a) {
   lifelong::eval::LogInfo info;
   info.scans = static_cast<std::int64_t>(data.observations.size());
   info.backward_stamps = data.backward_scan_stamps;
+  info.odometry_lost = data.lost_odometry_scans;
+  if (data.lost_odometry_scans > 0) {
+    std::cerr << "note: " << data.lost_odometry_scans
+              << " scans have no odometry of their own (first: " << log << ":"
+              << data.first_lost_odometry_line
+              << "); the mapper searches their step over a full turn\n";
+  }
   if (data.backward_scan_stamps > 0) {
     std::cerr << "warning: " << data.backward_scan_stamps
               << " scans are stamped earlier than the scan before them (first: " << log << ":"

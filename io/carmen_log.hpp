@@ -57,6 +57,10 @@ struct CarmenLog {
   /// reference trajectory (the corrected estimate it was published with).
   std::vector<StampedPose> corrected_poses;
   int dropped_odometry = 0;  ///< ODOM lines dropped by the recovery (after FLASER)
+  /// Scans of a corrected log with no ODOM of their own before them (Observation::
+  /// odometry_lost), and the file line of the first; 0: none.
+  int lost_odometry_scans = 0;
+  int first_lost_odometry_line = 0;
 };
 
 /// Reads a CARMEN log; throws lifelong::InputError(path, line, field, ...) on a missing

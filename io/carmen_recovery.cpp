@@ -48,6 +48,13 @@ void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, Carm
       const Pose2& odom_before = log->odometry[ev[i - 1].index].T_odom_robot;
       Observation& o = log->observations[ev[i].index];
       o.T_odom_robot = raw_prev * Between(corrected_prev, odom_before);
+      // The ODOM before is the previous scan's repeat: no odometry was logged since it, and
+      // the odometry after this scan is chained to this scan's corrected pose, so the step is
+      // lost (seattle-corrected, one scan: GMapping turned 81 degrees there).
+      if (i >= 2 && ev[i - 2].is_flaser) {
+        o.odometry_lost = true;
+        if (log->lost_odometry_scans++ == 0) log->first_lost_odometry_line = ev[i].line;
+      }
       log->corrected_poses.push_back({o.stamp_s, ev[i].corrected});
       corrected_prev = ev[i].corrected;
       raw_prev = o.T_odom_robot;

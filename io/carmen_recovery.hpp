@@ -24,8 +24,9 @@ struct Event {
 bool LooksCorrected(const std::vector<Event>& ev, const CarmenLog& log, int* scans, int* broken);
 
 /// Rebuilds raw odometry: raw(t) = raw_{k-1} * Between(corrected_{k-1}, ODOM(t)); fills
-/// log->corrected_poses. Throws InputError naming `path` and the line of a scan with no ODOM
-/// before it.
+/// log->corrected_poses. A scan whose ODOM before it is the previous scan's repeat has lost its
+/// step: raw_k = raw_{k-1}, marked Observation::odometry_lost. Throws InputError naming `path` and
+/// the line of a scan with no ODOM before it.
 void RecoverOdometry(const std::vector<Event>& ev, const std::string& path, CarmenLog* log);
 
 }  // namespace lifelong::io

@@ -21,6 +21,10 @@ struct Observation {
   Pose2 T_odom_robot;
   LaserScan scan;
   std::optional<Pose2> T_world_robot_true;
+  /// The stream holds no odometry over the step from the previous observation to this one (a
+  /// log that lost it): T_odom_robot repeats the previous observation's, and the mapper
+  /// searches for the step instead of trusting it.
+  bool odometry_lost = false;
 };
 
 }  // namespace lifelong

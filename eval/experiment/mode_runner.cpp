@@ -97,6 +97,7 @@ void ModeRunner::Record(const slam::StepStats& s) {
     if (s.incremental_match_ok) ++sequential_.matched;
     if (s.incremental_match_degenerate) ++sequential_.degenerate;
     if (s.incremental_match_weak) ++sequential_.weak;
+    if (s.odometry_lost) ++sequential_.lost;
   }
   if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
 }

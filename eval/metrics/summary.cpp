@@ -103,6 +103,14 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
   }
 }
 
+json SequentialJson(const SequentialSummary& s) {
+  return {{"count", s.count},
+          {"matched", s.matched},
+          {"degenerate", s.degenerate},
+          {"weak", s.weak},
+          {"lost", s.lost}};
+}
+
 }  // namespace
 
 json ModeSummaryJson(const ModeSummary& m) {
@@ -135,12 +143,7 @@ json ModeSummaryJson(const ModeSummary& m) {
                    {"rot_rmse_deg", m.rpe_1m->rot_rmse_deg}};
   }
   Put(j, "reference_matched", m.reference_matched);
-  if (m.sequential) {
-    j["sequential"] = {{"count", m.sequential->count},
-                       {"matched", m.sequential->matched},
-                       {"degenerate", m.sequential->degenerate},
-                       {"weak", m.sequential->weak}};
-  }
+  if (m.sequential) j["sequential"] = SequentialJson(*m.sequential);
   Put(j, "loop_precision", m.loop_precision);
   Put(j, "loop_recall", m.loop_recall);
   Put(j, "loop_precision_last_hour", m.loop_precision_last_hour);
@@ -264,7 +267,9 @@ std::string SummaryJsonText(const RunSummary& s) {
   Put(j, "seed", s.seed);
   Put(j, "log_duration_s", s.log_duration_s);
   if (s.log) {
-    json log = {{"scans", s.log->scans}, {"backward_stamps", s.log->backward_stamps}};
+    json log = {{"scans", s.log->scans},
+                {"backward_stamps", s.log->backward_stamps},
+                {"odometry_lost", s.log->odometry_lost}};
     Put(log, "relations_offset_s", s.log->relations_offset_s);
     Put(log, "relations_offset_detected", s.log->relations_offset_detected);
     Put(log, "relations_in_file", s.log->relations_in_file);

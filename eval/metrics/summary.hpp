@@ -63,6 +63,8 @@ struct SequentialSummary {
   std::int64_t degenerate = 0;
   /// not matched: weak and not distinct from a rival, so they kept their odometry
   std::int64_t weak = 0;
+  /// whose odometry the stream lost (searched over a full turn; counted in matched if found)
+  std::int64_t lost = 0;
 };
 struct KldSummary {
   std::int64_t count = 0;
@@ -132,6 +134,7 @@ struct ModeSummary {
 struct LogInfo {
   std::int64_t scans = 0;
   std::int64_t backward_stamps = 0;          ///< scans stamped earlier than the scan before them
+  std::int64_t odometry_lost = 0;            ///< scans with no odometry of their own (Observation)
   std::optional<double> relations_offset_s;  ///< s, relation time = log time + this
   std::optional<bool> relations_offset_detected;  ///< false: given with --relations-offset
   std::optional<std::int64_t> relations_in_file;  ///< relations read from the file

@@ -190,6 +190,8 @@ const std::vector<TableRow>& SummaryTableRows() {
        "of the matched, those whose position along a corridor-like direction came from odometry"},
       {kAccuracy, "/sequential/weak", "weak matches refused", "", 1, false,
        "not matched: scored under incremental.weak_score with a rival too close; odometry kept"},
+      {kAccuracy, "/sequential/lost", "steps whose odometry the log lost", "", 1, false,
+       "searched over a full turn and incremental.lost_window_m (matched ones count above)"},
       {kAccuracy, "/loop_precision", "loop-closure precision", "%", 100, false,
        "share of accepted loop closures within 0.3 m and 5 deg of the true relative pose (a log: "
        "of its reference's)"},

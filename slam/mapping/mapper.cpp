@@ -41,7 +41,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   StepStats stats;
   stats.scan_index = static_cast<int>(s.scans.size());
   stats.stamp_s = obs.stamp_s;
-  if (s.have_last) {
+  if (s.have_last && !obs.odometry_lost) {  // a lost step is searched for at once
     const Pose2 delta = Between(s.nodes.at(s.last_node).T_odom_robot, obs.T_odom_robot);
     if (Norm(delta) < s.config.keyframes.min_translation_m &&
         std::abs(delta.theta) < s.config.keyframes.min_rotation_rad) {

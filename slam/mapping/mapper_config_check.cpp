@@ -117,6 +117,11 @@ std::optional<ConfigProblem> CheckFootprints(const MapperConfig& c) {
                             "incremental.matcher.angular_window_rad")) {
     return p;
   }
+  if (auto p = CheckMatcher("incremental.matcher", inc, c.incremental.lost_window_m,
+                            "incremental.lost_window_m", 3.14159265358979323846,
+                            "a full turn (a lost step)")) {
+    return p;
+  }
   if (auto p = CheckMatcher("loops.matcher", lc.matcher, lc.max_window_m, "loops.max_window_m",
                             lc.max_window_rad, "loops.max_window_rad")) {
     return p;

@@ -113,6 +113,7 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
   v.Number("weak_score", c.weak_score, kUnit);
   v.Number("weak_max_ambiguity", c.weak_max_ambiguity, kUnit);
+  v.Number("lost_window_m", c.lost_window_m, Range{0.0, 50.0, true, "in (0, 50] m"});
 }
 
 template <class V>

@@ -29,6 +29,8 @@ struct StepStats {
   bool incremental_match_degenerate = false;
   /// ...or refused, weak and not distinct (incremental weak_score, weak_max_ambiguity)
   bool incremental_match_weak = false;
+  /// The step's odometry was lost (Observation::odometry_lost): searched over a full turn
+  bool odometry_lost = false;
   bool loop_closed = false;
   bool optimized = false;
   double optimize_ms = 0.0;  ///< part of time_ms spent in the back-end and the map update

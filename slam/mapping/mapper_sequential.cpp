@@ -26,7 +26,7 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
     const Pose2 delta = Between(nodes.at(last_node).T_odom_robot, obs.T_odom_robot);
     data.travelled_m = nodes.at(last_node).travelled_m + Norm(delta);
     Pose2 X_new;
-    graph.AddEdge(SequentialEdge(id, delta, data.points, &X_new, stats));
+    graph.AddEdge(SequentialEdge(id, delta, obs.odometry_lost, data.points, &X_new, stats));
     values[id] = X_new;
   }
   data.T_world_map = values.at(id);
@@ -40,11 +40,13 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   have_last = true;
 }
 
-PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta,
+PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta, bool odometry_lost,
                                        const std::vector<Eigen::Vector2d>& points, Pose2* X_new,
                                        StepStats* stats) {
   const Pose2& X_last = values.at(last_node);
-  const SequentialMatch m = sequential.Match(nodes, values, recent, X_last, delta, points);
+  const SequentialMatch m =
+      sequential.Match(nodes, values, recent, X_last, delta, points, odometry_lost);
+  stats->odometry_lost = m.lost;
   stats->incremental_match_ok = m.matched;
   stats->incremental_match_degenerate = m.degenerate;
   stats->incremental_match_weak = m.weak;

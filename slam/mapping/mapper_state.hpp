@@ -63,9 +63,11 @@ struct Mapper::State {
   void AddSequentialNode(const Observation& obs, StepStats* stats);
   /// The odometry edge last_node -> id: `points` matched against the local map around the
   /// odometry guess X_last * delta (the odometry alone when the match fails; the odometry along
-  /// a degenerate direction). *X_new: the new node's pose.
-  PoseEdge SequentialEdge(NodeId id, const Pose2& delta, const std::vector<Eigen::Vector2d>& points,
-                          Pose2* X_new, StepStats* stats);
+  /// a degenerate direction; a lost step is searched over a full turn). *X_new: the new
+  /// node's pose.
+  PoseEdge SequentialEdge(NodeId id, const Pose2& delta, bool odometry_lost,
+                          const std::vector<Eigen::Vector2d>& points, Pose2* X_new,
+                          StepStats* stats);
   /// Loop closing for the new node `current`: the local search, then the global one when
   /// the local one closed nothing; the closures they accept go into the graph.
   void CloseLoops(NodeId current, StepStats* stats);

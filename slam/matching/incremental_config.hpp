@@ -48,6 +48,10 @@ struct IncrementalConfig {
   /// degrees at a step (docs/results.md "Sequential matching on real odometry"). 0: off.
   double weak_score = 0.5;
   double weak_max_ambiguity = 0.7;
+  /// A step whose odometry the stream lost (Observation::odometry_lost) is searched over a
+  /// full turn and this half-width in x and y around the last pose; when that search fails,
+  /// its edge says only that the robot stayed within this much and turned somehow.
+  double lost_window_m = 1.0;
 };
 
 /// The weak-match rule above: true when `match` (ok) is to be refused.

@@ -15,20 +15,35 @@ Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& del
   return Eigen::Vector3d(1.0 / (sxy * sxy), 1.0 / (sxy * sxy), 1.0 / (sth * sth)).asDiagonal();
 }
 
+Eigen::Matrix3d LostStepInformation(const IncrementalConfig& c) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double w2 = c.lost_window_m * c.lost_window_m;
+  return Eigen::Vector3d(1.0 / w2, 1.0 / w2, 1.0 / (kPi * kPi)).asDiagonal();
+}
+
 SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& values,
                                          const std::vector<NodeId>& recent, const Pose2& X_last,
                                          const Pose2& delta,
-                                         const std::vector<Eigen::Vector2d>& points) {
+                                         const std::vector<Eigen::Vector2d>& points,
+                                         bool odometry_lost) {
   const Pose2 guess = X_last * delta;
   std::vector<Eigen::Vector2d> reference = LocalMap(nodes, values, recent);
   SequentialMatch out;
   out.X_new = guess;
-  const Eigen::Matrix3d odometry = OdometryInformation(config_, delta);  // the same in any frame
+  out.lost = odometry_lost;
+  // The odometry's information is the same in any frame; a lost step has almost none.
+  const Eigen::Matrix3d odometry =
+      odometry_lost ? LostStepInformation(config_) : OdometryInformation(config_, delta);
   out.information = odometry;
-  CropToSearch(points, guess, config_.matcher, &reference);
+  MatcherConfig mc = config_.matcher;
+  if (odometry_lost) {
+    mc.linear_window_m = config_.lost_window_m;
+    mc.angular_window_rad = 3.14159265358979323846;
+  }
+  CropToSearch(points, guess, mc, &reference);
   if (reference.size() < 10 || points.size() < 10) return out;
-  grid_.Build(reference, config_.matcher);
-  const MatchResult match = ::lifelong::slam::Match(grid_, points, guess, config_.matcher);
+  grid_.Build(reference, mc);
+  const MatchResult match = ::lifelong::slam::Match(grid_, points, guess, mc);
   if (!match.ok) return out;
   if (WeakAndAmbiguous(match, config_)) {
     out.weak = true;

@@ -21,6 +21,8 @@ namespace lifelong::slam {
 
 /// Information of the odometry fallback edge over `delta`, in the edge's error frame.
 Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& delta);
+/// Information of a lost step's fallback edge: within lost_window_m, any heading.
+Eigen::Matrix3d LostStepInformation(const IncrementalConfig& c);
 
 struct SequentialMatch {
   Pose2 X_new;                  ///< the new node's pose (the guess when not matched)
@@ -28,6 +30,7 @@ struct SequentialMatch {
   bool matched = false;         ///< the match was good
   bool degenerate = false;      ///< ...but ambiguous along a direction the odometry gave
   bool weak = false;            ///< refused: weak and not distinct (WeakAndAmbiguous)
+  bool lost = false;            ///< the step's odometry was lost: searched over a full turn
 };
 
 class SequentialMatcher {
@@ -35,10 +38,11 @@ class SequentialMatcher {
   explicit SequentialMatcher(const IncrementalConfig& config) : config_(config) {}
 
   /// `points` (the new scan's, robot frame) matched against the last local_map_nodes nodes
-  /// of `recent` around X_last * delta (delta: the odometry since the last node).
+  /// of `recent` around X_last * delta (delta: the odometry since the last node). When the
+  /// odometry of the step was lost, over a full turn and lost_window_m around it.
   SequentialMatch Match(const NodeStore& nodes, const Values& values,
                         const std::vector<NodeId>& recent, const Pose2& X_last, const Pose2& delta,
-                        const std::vector<Eigen::Vector2d>& points);
+                        const std::vector<Eigen::Vector2d>& points, bool odometry_lost = false);
 
  private:
   /// The reference in the world frame: the nodes' return points, or their surfaces

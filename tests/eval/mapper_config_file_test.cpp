@@ -116,6 +116,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.max_ambiguity, ib.max_ambiguity);
   EXPECT_EQ(ia.weak_score, ib.weak_score);
   EXPECT_EQ(ia.weak_max_ambiguity, ib.weak_max_ambiguity);
+  EXPECT_EQ(ia.lost_window_m, ib.lost_window_m);
   ExpectSameLoops(a.loops, b.loops);
   EXPECT_EQ(a.pruning.mode.name, b.pruning.mode.name);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
@@ -186,6 +187,7 @@ MapperConfig AllChanged() {
   c.incremental.max_ambiguity = 0.8;
   c.incremental.weak_score = 0.45;
   c.incremental.weak_max_ambiguity = 0.65;
+  c.incremental.lost_window_m = 1.5;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;

@@ -149,6 +149,29 @@ TEST(CarmenRead, AFewOffStampsStillRecoverButABrokenPatternIsRefusedWithItsCount
   }
 }
 
+// seattle-corrected, scan 27: no ODOM between the previous scan's repeat and the scan, and
+// the ODOMs after it are chained to its corrected pose (here a turn in place by pi/2). The
+// step is lost, not a standstill: the scan keeps the previous raw pose, marked lost, and the
+// odometry after it is chained on from there.
+TEST(CarmenRead, AScanWithNoOdometryOfItsOwnHasLostItsStep) {
+  const std::string text =
+      "ODOM 0 0 0 0 0 0 1 h 1\nFLASER 1 1 0 0 0 0 0 0 1 h 1\nODOM 0 0 0 0 0 0 0 h 0\nNEFF 5\n"
+      "FLASER 1 1 0 0 1.5707963267948966 0 0 0 2 h 2\n"
+      "ODOM 0 0 1.5707963267948966 0 0 0 0 h 0\nNEFF 5\n"
+      "ODOM 0 1 1.5707963267948966 0 0 0 3 h 3\n"
+      "FLASER 1 1 0 1 1.5707963267948966 0 0 0 3 h 3\n";
+  const CarmenLog log = ReadCarmenLog(WriteText("lost_step.clf", text));
+  ASSERT_TRUE(log.odometry_recovered);
+  ASSERT_EQ(log.observations.size(), 3u);
+  EXPECT_FALSE(log.observations[0].odometry_lost);
+  EXPECT_TRUE(log.observations[1].odometry_lost);
+  EXPECT_FALSE(log.observations[2].odometry_lost);
+  EXPECT_EQ(log.lost_odometry_scans, 1);
+  EXPECT_EQ(log.first_lost_odometry_line, 5);
+  ExpectPose(log.observations[1].T_odom_robot, 0.0, 0.0, 0.0);
+  ExpectPose(log.observations[2].T_odom_robot, 1.0, 0.0, 0.0);  // 1 m ahead of the lost pose
+}
+
 TEST(CarmenRead, ForcedRecoveryWithoutPatternThrows) {
   CarmenReadOptions on;
   on.recovery = OdometryRecovery::kOn;

@@ -17,6 +17,7 @@
 #include "eval/figures/run_maps.hpp"
 #include "eval/metrics/change_recall.hpp"
 #include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/scan_cells.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
 #include "eval/metrics/truth_metrics.hpp"
 #include "eval/metrics/truth_raster.hpp"
@@ -176,6 +177,11 @@ Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const Gro
     true_at[o.stamp_s] = *o.T_world_robot_true;
   }
   const Pose2 T_truth_est = ScoreAgainstTruth(estimate, true_poses, &truth, &grid, summary);
+  if (estimate.size() == stream.size()) {
+    std::vector<std::size_t> every(stream.size());
+    for (std::size_t i = 0; i < every.size(); ++i) every[i] = i;
+    CountScanCells(stream, every, estimate, true_poses, summary);
+  }
   if (truth.world) {
     summary->change = ComputeChangeRecall(*truth.world, truth.end_s, stream, grid, T_truth_est,
                                           SIZE_MAX, truth.raster.get());
@@ -262,7 +268,18 @@ LoopVerificationSummary ModeRunner::SummarizeLoops() const {
                                  config_.mapper.loops.global.enabled, m.SuspectLoopEdges()};
 }
 
-void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajectory,
+void ModeRunner::CountScanCells(const std::vector<Observation>& stream,
+                                const std::vector<std::size_t>& scans,
+                                const std::vector<Pose2>& estimate,
+                                const std::vector<Pose2>& reference, ModeSummary* summary) const {
+  const slam::GridMapConfig& g = config_.mapper.grid;
+  summary->scan_cells = ScanCells(stream, scans, estimate, g.resolution_m, g.max_hit_range_m);
+  summary->scan_cells_reference =
+      ScanCells(stream, scans, reference, g.resolution_m, g.max_hit_range_m);
+}
+
+void ModeRunner::ScoreAgainstReference(const std::vector<Observation>& stream,
+                                       const std::vector<StampedPose>& trajectory,
                                        ModeSummary* summary) {
   const ReferencePairs pairs = config_.reference_per_scan
                                    ? PairScanByScan(trajectory, config_.reference)
@@ -272,15 +289,19 @@ void ModeRunner::ScoreAgainstReference(const std::vector<StampedPose>& trajector
   const AteResult ate = ComputeAte(pairs.estimate, pairs.reference);
   summary->ate_rmse_m = ate.rmse_m;
   summary->rpe_1m = Rpe1m(pairs.estimate, pairs.reference);
+  if (trajectory.size() == stream.size()) {
+    CountScanCells(stream, pairs.index, pairs.estimate, pairs.reference, summary);
+  }
   aligned_to_reference_.clear();
   for (const Pose2& p : pairs.estimate) aligned_to_reference_.push_back(ate.T_truth_est * p);
 }
 
-void ModeRunner::ScoreReference(const std::vector<StampedPose>& trajectory, bool truth,
+void ModeRunner::ScoreReference(const std::vector<Observation>& stream,
+                                const std::vector<StampedPose>& trajectory, bool truth,
                                 ModeSummary* summary) {
   std::optional<std::vector<Pose2>> nodes;
   if (!config_.reference.empty()) {
-    ScoreAgainstReference(trajectory, summary);
+    ScoreAgainstReference(stream, trajectory, summary);
     nodes = ReferenceAtObservations(trajectory);
   }
   if (truth) return;  // TruthMetrics scored the closures and wrote loops.csv
@@ -347,7 +368,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
       written_.push_back(changes_png_);
     }
   }
-  ScoreReference(trajectory, truth.has_value(), &summary);
+  ScoreReference(stream, trajectory, truth.has_value(), &summary);
   out("loops.csv");
   if (!relations.empty()) {
     const RelationsResult rr = ComputeRelationsError(trajectory, relations);

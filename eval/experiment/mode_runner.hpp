@@ -53,11 +53,17 @@ class ModeRunner {
   /// The loop closer's verification counts, and the accepted edges the kernel switched off.
   LoopVerificationSummary SummarizeLoops() const;
   /// ATE and RPE at 1 m against config.reference; keeps the aligned estimate for the figure.
-  void ScoreAgainstReference(const std::vector<StampedPose>& trajectory, ModeSummary* summary);
+  void ScoreAgainstReference(const std::vector<Observation>& stream,
+                             const std::vector<StampedPose>& trajectory, ModeSummary* summary);
+  /// scan_cells and scan_cells_reference of stream[scans[k]] at estimate[k] / reference[k].
+  void CountScanCells(const std::vector<Observation>& stream, const std::vector<std::size_t>& scans,
+                      const std::vector<Pose2>& estimate, const std::vector<Pose2>& reference,
+                      ModeSummary* summary) const;
 
   /// ATE and RPE against config.reference, and, without truth, the closures against it
   /// (loops.csv, unscored when there is no reference either).
-  void ScoreReference(const std::vector<StampedPose>& trajectory, bool truth, ModeSummary* summary);
+  void ScoreReference(const std::vector<Observation>& stream,
+                      const std::vector<StampedPose>& trajectory, bool truth, ModeSummary* summary);
   /// Loop precision and recall, loops.csv and the loop curve, from the pose of every
   /// observation (the truth, or the log's reference).
   void ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* summary);

@@ -168,6 +168,8 @@ json ModeSummaryJson(const ModeSummary& m) {
   if (!m.stage_ms.empty()) j["stage_ms"] = m.stage_ms;
   Put(j, "map_entropy_bits", m.map_entropy_bits);
   Put(j, "occupied_share", m.occupied_share);
+  Put(j, "scan_cells", m.scan_cells);
+  Put(j, "scan_cells_reference", m.scan_cells_reference);
   return j;
 }
 

@@ -128,6 +128,11 @@ struct ModeSummary {
   std::map<std::string, double> stage_ms;
   std::optional<double> map_entropy_bits;
   std::optional<double> occupied_share;
+  /// The run's scans drawn at this mode's poses and at the reference's (the truth, or a log's
+  /// reference), over the scans both have: the distinct grid cells their returns fall in
+  /// (eval/metrics/scan_cells.hpp). Fewer is sharper.
+  std::optional<std::int64_t> scan_cells;
+  std::optional<std::int64_t> scan_cells_reference;
 };
 
 /// What was read from a real log (replay only): summary.json's "log" object.

@@ -28,7 +28,8 @@ ReferencePairs PairWithReference(const std::vector<StampedPose>& estimate,
     return a.stamp_s < b.stamp_s;
   });
   ReferencePairs pairs;
-  for (const StampedPose& e : estimate) {
+  for (std::size_t k = 0; k < estimate.size(); ++k) {
+    const StampedPose& e = estimate[k];
     const double t = e.stamp_s;
     const auto after = std::lower_bound(
         ref.begin(), ref.end(), t, [](const StampedPose& p, double s) { return p.stamp_s < s; });
@@ -47,6 +48,7 @@ ReferencePairs PairWithReference(const std::vector<StampedPose>& estimate,
     }
     pairs.estimate.push_back(e.T_world_robot);
     pairs.reference.push_back(*at);
+    pairs.index.push_back(k);
   }
   return pairs;
 }
@@ -58,6 +60,7 @@ ReferencePairs PairScanByScan(const std::vector<StampedPose>& estimate,
   for (std::size_t i = 0; i < estimate.size(); ++i) {
     pairs.estimate.push_back(estimate[i].T_world_robot);
     pairs.reference.push_back(reference[i].T_world_robot);
+    pairs.index.push_back(i);
   }
   return pairs;
 }

@@ -23,6 +23,7 @@ namespace lifelong::eval {
 struct ReferencePairs {
   std::vector<Pose2> estimate;
   std::vector<Pose2> reference;
+  std::vector<std::size_t> index;  ///< of each pair's pose in the estimate
   std::size_t unmatched = 0;
 };
 ReferencePairs PairWithReference(const std::vector<StampedPose>& estimate,

@@ -270,6 +270,12 @@ const std::vector<TableRow>& SummaryTableRows() {
       {kMap, "/map_entropy_bits", "map entropy", "bits", 1, true,
        "sum of the binary entropy H(p) over the known cells (seed eq. 5.8)"},
       {kMap, "/occupied_share", "occupied share", "%", 100, false, "known cells with p >= 0.65"},
+      {kMap, "/scan_cells", "scan cells", "", 1, true,
+       "grid cells the scans' returns fall in at the mode's poses (fewer: sharper); the "
+       "scans the truth or reference has a pose for"},
+      {kMap, "/scan_cells_reference", "scan cells at the reference", "", 1, true,
+       "the same scans at the truth's or the reference's poses: a reference that is another "
+       "system's estimate can be less sharp than the mode"},
   };
   return rows;
 }

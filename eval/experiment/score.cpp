@@ -2,12 +2,14 @@
 
 #include <filesystem>
 
+#include "eval/metrics/scan_cells.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
 #include "eval/metrics/truth_metrics.hpp"
 #include "eval/metrics/world_state.hpp"
 #include "io/carmen_log.hpp"
 #include "io/tum.hpp"
 #include "sensor/input_error.hpp"
+#include "slam/grid/grid_map.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -62,8 +64,27 @@ ScoreTruth LoadScoreTruth(const std::string& path) {
   t.kind = "corrected log";
   t.trajectory = log.corrected_poses;
   t.per_scan = true;
+  t.scans = log.observations;
   return t;
 }
+
+namespace {
+
+// scan_cells of the system on a corrected log: its pose at each scan it covers, against the
+// log's own pose of that scan.
+void ScoreScanCells(const ScoreTruth& truth, const ScoredSystem& system, ModeSummary* out) {
+  if (truth.scans.empty() || truth.scans.size() != truth.trajectory.size()) return;
+  // Pairs (log pose, system pose) per scan; pairs.index is the scan's.
+  const ReferencePairs pairs = PairScanByScan(truth.trajectory, system.trajectory);
+  if (pairs.index.empty()) return;
+  const slam::GridMapConfig grid;
+  out->scan_cells =
+      ScanCells(truth.scans, pairs.index, pairs.reference, grid.resolution_m, grid.max_hit_range_m);
+  out->scan_cells_reference =
+      ScanCells(truth.scans, pairs.index, pairs.estimate, grid.resolution_m, grid.max_hit_range_m);
+}
+
+}  // namespace
 
 SystemScore ScoreSystem(const ScoreTruth& truth, const ScoredSystem& system) {
   const ReferencePairs pairs = truth.per_scan
@@ -81,6 +102,7 @@ SystemScore ScoreSystem(const ScoreTruth& truth, const ScoredSystem& system) {
   const GroundTruth* walls = truth.walls ? &*truth.walls : nullptr;
   const OccupancyGrid* map = system.map ? &*system.map : nullptr;
   const Pose2 T = ScoreAgainstTruth(pairs.estimate, pairs.reference, walls, map, &out.summary);
+  ScoreScanCells(truth, system, &out.summary);
   for (const Pose2& p : pairs.estimate) out.aligned.push_back(T * p);
   out.truth = pairs.reference;
   return out;

@@ -23,6 +23,8 @@ struct ScoreTruth {
   std::vector<StampedPose> trajectory;  ///< true poses, or the log's reference poses
   bool per_scan = false;                ///< pair scan by scan (a corrected log's own poses)
   std::optional<GroundTruth> walls;     ///< the true walls (simulated truth only)
+  /// A corrected log's scans (scan_cells: the system's map of them against the reference's).
+  std::vector<Observation> scans;
 };
 
 /// Throws InputError naming the path when it is none of the four.
@@ -40,8 +42,10 @@ struct SystemScore {
   std::vector<Pose2> truth;    ///< their true poses
 };
 
-/// The system's figures against the truth. Throws InputError naming the system when none of
-/// its poses pairs with the truth.
+/// The system's figures against the truth; on a corrected log also scan_cells at the default
+/// grid (its scans at the system's poses, interpolated at their stamps or taken scan by scan
+/// when it has one pose a scan, against the same scans at the log's poses). Throws InputError
+/// naming the system when none of its poses pairs with the truth.
 SystemScore ScoreSystem(const ScoreTruth& truth, const ScoredSystem& system);
 
 }  // namespace lifelong::eval

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -136,6 +137,51 @@ TEST(ScoreCli, ACorrectedLogIsTheReference) {
   EXPECT_NE(r.output.find("(corrected log)"), std::string::npos) << r.output;
   const auto j = nlohmann::json::parse(Read(out / "summary.json"));
   EXPECT_NEAR(j["modes"]["own"]["ate_rmse_m"].get<double>(), 0.0, 1e-6);
+}
+
+// A corrected log of a robot driving along a room's walls (41 beams, 10 m max range), in
+// GMapping's pattern: each scan's raw ODOM before it, its corrected pose repeated after it.
+fs::path RoomCorrectedLog() {
+  std::string text;
+  for (int k = 0; k < 6; ++k) {
+    const double x = 0.6 * k, t = 1.0 + k;
+    std::ostringstream scan;
+    scan << "FLASER 41";
+    for (int i = 0; i < 41; ++i) {
+      const double a = -M_PI / 2 + M_PI * i / 40.0;  // walls at y = +-2 and x = 6
+      const double to_side = std::abs(std::sin(a)) > 1e-9 ? 2.0 / std::abs(std::sin(a)) : 1e9;
+      const double to_end = std::cos(a) > 1e-9 ? (6.0 - x) / std::cos(a) : 1e9;
+      scan << " " << (i == 20 ? 10.0 : std::min({to_side, to_end, 9.0}));
+    }
+    std::ostringstream pose;
+    pose << x << " 0 0";
+    text += "ODOM " + pose.str() + " 0 0 0 " + std::to_string(t) + " h " + std::to_string(t) + "\n";
+    text += scan.str() + " " + pose.str() + " " + pose.str() + " " + std::to_string(t) + " h " +
+            std::to_string(t) + "\n";
+    text += "ODOM " + pose.str() + " 0 0 0 0 h 0\nNEFF 5\n";
+  }
+  const fs::path log = Fresh("room_corrected.clf");
+  std::ofstream(log) << text;
+  return log;
+}
+
+// scan_cells on a corrected log: scoring a replay's own trajectory gives the replay's figures.
+TEST(ScoreCli, ScanCellsOnACorrectedLogMatchTheReplay) {
+  const fs::path log = RoomCorrectedLog();
+  const fs::path run = Fresh("room_replay");
+  Result r = Lifelong("replay " + log.string() + " --modes standard -o " + run.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path out = Fresh("room_score");
+  r = Lifelong("score --truth " + log.string() + " --trajectory " +
+               (run / "standard" / "trajectory.tum").string() + " --name standard -o " +
+               out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto a = nlohmann::json::parse(Read(run / "summary.json"))["modes"]["standard"];
+  const auto b = nlohmann::json::parse(Read(out / "summary.json"))["modes"]["standard"];
+  ASSERT_TRUE(a.contains("scan_cells")) << a.dump();
+  EXPECT_GT(a["scan_cells_reference"].get<int>(), 100);
+  EXPECT_EQ(b["scan_cells"], a["scan_cells"]);
+  EXPECT_EQ(b["scan_cells_reference"], a["scan_cells_reference"]);
 }
 
 TEST(ScoreCli, BadInputIsRefusedNamingIt) {

@@ -20,7 +20,9 @@ import sys
 
 def read_timeline(path):
     with open(path, newline="") as f:
-        return [{k: float(v) for k, v in row.items() if v != ""} for row in csv.DictReader(f)]
+        # Every numeric column; `sequential` is a word.
+        return [{k: float(v) for k, v in row.items() if v != "" and k != "sequential"}
+                for row in csv.DictReader(f)]
 
 
 def mean(xs):

@@ -31,6 +31,13 @@
 namespace lifelong::eval {
 namespace {
 
+// timeline.csv's `sequential` (TimelineRow).
+const char* SequentialOutcome(const slam::StepStats& s) {
+  if (s.observation_index == 0) return "first";
+  if (s.incremental_match_ok) return s.incremental_match_degenerate ? "degenerate" : "matched";
+  return s.incremental_match_weak ? "weak" : "odometry";
+}
+
 namespace fs = std::filesystem;
 
 // A run whose map outgrows kMaxRasterCells is stopped at the observation that did, not at
@@ -92,6 +99,8 @@ void ModeRunner::Record(const slam::StepStats& s) {
   row.optimize_ms = s.optimize_ms;
   row.nodes_removed = s.nodes_removed_total;
   row.stages = s.stages;
+  row.sequential = SequentialOutcome(s);
+  row.odometry_lost = s.odometry_lost;
   timeline_.push_back(row);
   if (s.observation_index > 0) {  // the first observation has nothing to match against
     ++sequential_.count;

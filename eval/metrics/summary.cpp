@@ -309,15 +309,17 @@ void WriteTimelineCsv(const std::string& path, const std::vector<TimelineRow>& r
   // The contract's columns, then this project's additions (documented in docs/output-contract.md).
   std::string text =
       "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures,optimize_ms,"
-      "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms\n";
-  char line[384];
+      "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms,"
+      "sequential,odometry_lost\n";
+  char line[416];
   for (const TimelineRow& r : rows) {
-    std::snprintf(line, sizeof(line),
-                  "%d,%.6f,%.6g,%d,%d,%.9g,%.6g,%zu,%d,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                  r.obs, r.t_s, r.time_ms, r.nodes, r.edges, r.gamma, r.rss_mb, r.graph_bytes,
-                  r.loop_closures, r.optimize_ms, r.nodes_removed, r.stages.match_ms,
-                  r.stages.loop_ms, r.stages.backend_ms, r.stages.map_update_ms, r.stages.gain_ms,
-                  r.stages.marginalize_ms);
+    std::snprintf(
+        line, sizeof(line),
+        "%d,%.6f,%.6g,%d,%d,%.9g,%.6g,%zu,%d,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,%d\n", r.obs,
+        r.t_s, r.time_ms, r.nodes, r.edges, r.gamma, r.rss_mb, r.graph_bytes, r.loop_closures,
+        r.optimize_ms, r.nodes_removed, r.stages.match_ms, r.stages.loop_ms, r.stages.backend_ms,
+        r.stages.map_update_ms, r.stages.gain_ms, r.stages.marginalize_ms, r.sequential,
+        r.odometry_lost ? 1 : 0);
     text += line;
   }
   io::WriteFileAtomically(path, text);

@@ -33,6 +33,11 @@ struct TimelineRow {
   double optimize_ms = 0.0;     ///< ms of time_ms spent optimizing and updating the map
   int nodes_removed = 0;        ///< nodes removed so far (cumulative)
   StageTimes stages;            ///< time_ms by stage (slam::StepStats::stages)
+  /// How the observation's sequential edge came about: "first" (nothing to match),
+  /// "matched", "degenerate" (matched; the odometry along one direction), "weak" (refused:
+  /// weak and not distinct) or "odometry" (the match failed)
+  const char* sequential = "first";
+  bool odometry_lost = false;  ///< the step's odometry was lost (searched over a full turn)
 };
 
 }  // namespace lifelong::eval

@@ -56,6 +56,34 @@ const fs::path& CorridorLog() {
   return log;
 }
 
+// A timeline's rows: per-stage times non-negative and within the observation's time, and
+// the word for how the sequential edge came about.
+void ExpectTimelineRows(const fs::path& path) {
+  std::ifstream csv(path);
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<double> v;
+    std::istringstream fields(line);
+    std::string f;
+    while (v.size() < 17 && std::getline(fields, f, ',')) v.push_back(std::stod(f));
+    ASSERT_EQ(v.size(), 17u) << line;
+    std::getline(fields, f, ',');
+    EXPECT_TRUE(f == "first" || f == "matched" || f == "degenerate" || f == "weak" ||
+                f == "odometry")
+        << line;
+    double stages = 0.0;
+    for (std::size_t k = 11; k < 17; ++k) {
+      EXPECT_GE(v[k], -1e-6) << line;
+      stages += v[k];
+    }
+    EXPECT_LE(stages, v[2] + 1e-3) << line;
+    ++rows;
+  }
+  EXPECT_GT(rows, 100);
+}
+
 TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
   const fs::path dir = Fresh("rerun");
   Result r = Lifelong("run " + kScenario + " -o " + dir.string() +
@@ -76,27 +104,7 @@ TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
     EXPECT_NEAR(precision, first["modes"]["standard"]["loop_precision"].get<double>(), 1e-6);
     EXPECT_TRUE(fs::exists(dir / "standard" / "loops.csv"));
   }
-  // Per-stage times: non-negative and within the observation's time.
-  {
-    std::ifstream csv(dir / "pruned" / "timeline.csv");
-    std::string line;
-    std::getline(csv, line);
-    int rows = 0;
-    while (std::getline(csv, line)) {
-      std::vector<double> v;
-      std::istringstream fields(line);
-      for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
-      ASSERT_EQ(v.size(), 17u) << line;
-      double stages = 0.0;
-      for (std::size_t k = 11; k < 17; ++k) {
-        EXPECT_GE(v[k], -1e-6) << line;
-        stages += v[k];
-      }
-      EXPECT_LE(stages, v[2] + 1e-3) << line;
-      ++rows;
-    }
-    EXPECT_GT(rows, 100);
-  }
+  ExpectTimelineRows(dir / "pruned" / "timeline.csv");
   // The table: modes in --modes order, the baseline first, units in the headers.
   const auto standard_row = r.output.find("\nstandard (base)");
   const auto pruned_row = r.output.find("\npruned ");

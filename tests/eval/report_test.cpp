@@ -197,9 +197,10 @@ TEST(TimelineCsvTest, HeaderAndRows) {
   std::getline(in, line);
   EXPECT_EQ(line,
             "obs,t_s,time_ms,nodes,edges,gamma,rss_mb,graph_bytes,loop_closures,optimize_ms,"
-            "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms");
+            "nodes_removed,match_ms,loop_ms,backend_ms,map_update_ms,gain_ms,marginalize_ms,"
+            "sequential,odometry_lost");
   std::getline(in, line);
-  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0,0,0,0,0,0,0,0,0");
+  EXPECT_EQ(line, "0,0.000000,1,10,20,0.25,100,1000,0,0,0,0,0,0,0,0,0,first,0");
   int more = 0;
   while (std::getline(in, line)) ++more;
   EXPECT_EQ(more, 2);

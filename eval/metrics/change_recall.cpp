@@ -101,6 +101,8 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
                            : ShownShare(map, lines.past, now, T_truth_est, {}, freed);
     if (seen.last_s) {
       p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
+      p.present_shown = shown_now;
+      p.past_shown = shown_past;
     }
     p.present = lines.present;
     p.past = lines.past;

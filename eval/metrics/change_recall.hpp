@@ -35,6 +35,9 @@ struct ObjectPresent {
   /// End minus the last scan that saw it as it stands at the end; none: never since its last
   /// change.
   std::optional<double> since_seen_s;
+  /// Of the present cells seen, the share the map shows occupied; of the past cells seen, the
+  /// share it still shows (why an object fails: its new face missing, or its old one kept).
+  std::optional<double> present_shown, past_shown;
   std::vector<Segment> present, past;  ///< its outline at the end, and its earlier ones
 };
 

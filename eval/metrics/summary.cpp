@@ -97,6 +97,8 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
       json e = json::object();
       Put(e, "shows_present", o.shows_present);
       Put(e, "since_seen_s", o.since_seen_s);
+      Put(e, "present_shown", o.present_shown);
+      Put(e, "past_shown", o.past_shown);
       objects[name] = e;
     }
     j["changes"] = objects;

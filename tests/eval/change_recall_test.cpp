@@ -182,8 +182,12 @@ TEST(ChangeRecall, AMovedBoxIsJudgedOnTheFacesSeen) {
   stale.insert(stale.end(), before.begin(), before.end());
   const auto old = ComputeChangeRecall(w, 20.0, {scan}, RasterizeWalls(stale, 0.05), Pose2());
   EXPECT_EQ(old->objects.at("box b").shows_present, false);
+  // Why: its new face is there, and so is its old place.
+  EXPECT_GE(*old->objects.at("box b").present_shown, 0.5);
+  EXPECT_GE(*old->objects.at("box b").past_shown, 0.5);
   const auto empty = ComputeChangeRecall(w, 20.0, {scan}, RasterizeWalls({}, 0.05), Pose2());
   EXPECT_EQ(empty->objects.at("box b").shows_present, false);
+  EXPECT_DOUBLE_EQ(*empty->objects.at("box b").present_shown, 0.0);  // its new face missing
 
   const auto early = ComputeChangeRecall(w, 20.0, {LookDownAt(before, 4.0)},
                                          RasterizeWalls(seen_faces, 0.05), Pose2());

@@ -93,16 +93,16 @@ std::optional<ChangeRecall> ComputeChangeRecall(const sim::World& world, double 
     if (seen.last_s) p.since_seen_s = std::max(0.0, end_s - *seen.last_s);
     const auto hit = [&](double x, double y) { return seen.hit.Near(x, y); };
     const auto freed = [&](double x, double y) { return seen.freed.Near(x, y); };
-    const std::optional<double> shown_now =
-        lines.present.empty() ? std::nullopt
-                              : ShownShare(map, lines.present, lines.others, T_truth_est, {}, hit);
-    const std::optional<double> shown_past =
-        lines.past.empty() ? std::nullopt
-                           : ShownShare(map, lines.past, now, T_truth_est, {}, freed);
+    const ShownCells now_cells = CountShown(map, lines.present, lines.others, T_truth_est, {}, hit);
+    const ShownCells past_cells = CountShown(map, lines.past, now, T_truth_est, {}, freed);
+    const std::optional<double> shown_now = now_cells.Share();
+    const std::optional<double> shown_past = past_cells.Share();
     if (seen.last_s) {
       p.shows_present = shown_now.value_or(1.0) >= 0.5 && shown_past.value_or(0.0) < 0.5;
       p.present_shown = shown_now;
       p.past_shown = shown_past;
+      p.present_seen_cells = static_cast<std::int64_t>(now_cells.counted);
+      p.past_seen_cells = static_cast<std::int64_t>(past_cells.counted);
     }
     p.present = lines.present;
     p.past = lines.past;

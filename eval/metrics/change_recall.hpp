@@ -38,6 +38,7 @@ struct ObjectPresent {
   /// Of the present cells seen, the share the map shows occupied; of the past cells seen, the
   /// share it still shows (why an object fails: its new face missing, or its old one kept).
   std::optional<double> present_shown, past_shown;
+  std::int64_t present_seen_cells = 0, past_seen_cells = 0;  ///< the cells those shares count
   std::vector<Segment> present, past;  ///< its outline at the end, and its earlier ones
 };
 

@@ -138,30 +138,29 @@ double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
   return StaleShare(map, TruthRaster(truth, {}, map.resolution_m), T_truth_est, config);
 }
 
-std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Segment>& segments,
-                                 const std::vector<Segment>& exclude, const Pose2& T_truth_est,
-                                 const BlurConfig& config,
-                                 const std::function<bool(double x, double y)>& counted) {
-  if (segments.empty()) return std::nullopt;
+ShownCells CountShown(const OccupancyGrid& map, const std::vector<Segment>& segments,
+                      const std::vector<Segment>& exclude, const Pose2& T_truth_est,
+                      const BlurConfig& config,
+                      const std::function<bool(double x, double y)>& counted) {
+  ShownCells out;
+  if (segments.empty()) return out;
   const double res = map.resolution_m;
   const Lattice l = LatticeCovering(segments, {}, res, (config.recall_tolerance_cells + 2.0) * res);
   const std::vector<float> occ_dist =
       DistanceToCells(l, CellsOf(l, OccupiedCentres(map, T_truth_est, config.occupied_threshold)));
   const SegmentField cells(l, segments);
   const SegmentField excluded(l, exclude);
-  std::size_t cells_counted = 0, shown = 0;
   for (int row = 0; row < l.rows; ++row) {
     for (int col = 0; col < l.cols; ++col) {
       const LatticeCell c{col, row};
       if (!cells.Holds(c)) continue;
       if (excluded.DistanceCells(c) <= config.recall_tolerance_cells) continue;
       if (counted && !counted(l.CentreX(col), l.CentreY(row))) continue;
-      ++cells_counted;
-      shown += (!occ_dist.empty() && occ_dist[l.Index(c)] <= config.recall_tolerance_cells);
+      ++out.counted;
+      out.shown += (!occ_dist.empty() && occ_dist[l.Index(c)] <= config.recall_tolerance_cells);
     }
   }
-  if (cells_counted == 0) return std::nullopt;
-  return static_cast<double>(shown) / static_cast<double>(cells_counted);
+  return out;
 }
 
 EntropyResult ComputeMapEntropy(const OccupancyGrid& map, float occupied_threshold) {

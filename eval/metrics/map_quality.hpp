@@ -67,14 +67,22 @@ double StaleShare(const OccupancyGrid& map, const std::vector<Segment>& gone,
                   const std::vector<Segment>& now, const Pose2& T_truth_est,
                   const BlurConfig& config = {});
 
-/// The share of the cells of `segments` (rasterized in the truth frame), leaving out those
-/// within tolerance_cells of an `exclude` segment and, when `counted` is given, those whose
-/// centre it refuses, that have an occupied map cell within tolerance_cells; nothing when no
-/// cell is left.
-std::optional<double> ShownShare(const OccupancyGrid& map, const std::vector<Segment>& segments,
-                                 const std::vector<Segment>& exclude, const Pose2& T_truth_est,
-                                 const BlurConfig& config = {},
-                                 const std::function<bool(double x, double y)>& counted = {});
+/// The cells of `segments` (rasterized in the truth frame), leaving out those within
+/// tolerance_cells of an `exclude` segment and, when `counted` is given, those whose centre it
+/// refuses; and of those, how many have an occupied map cell within tolerance_cells.
+struct ShownCells {
+  std::size_t counted = 0;
+  std::size_t shown = 0;
+  /// shown / counted; nothing when no cell is counted.
+  std::optional<double> Share() const {
+    if (counted == 0) return std::nullopt;
+    return static_cast<double>(shown) / static_cast<double>(counted);
+  }
+};
+ShownCells CountShown(const OccupancyGrid& map, const std::vector<Segment>& segments,
+                      const std::vector<Segment>& exclude, const Pose2& T_truth_est,
+                      const BlurConfig& config = {},
+                      const std::function<bool(double x, double y)>& counted = {});
 
 struct EntropyResult {
   double entropy_bits = 0.0;       ///< sum over known cells of H(p) (seed eq. 5.8), bits

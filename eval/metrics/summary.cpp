@@ -99,6 +99,10 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
       Put(e, "since_seen_s", o.since_seen_s);
       Put(e, "present_shown", o.present_shown);
       Put(e, "past_shown", o.past_shown);
+      if (o.shows_present) {
+        e["present_seen_cells"] = o.present_seen_cells;
+        e["past_seen_cells"] = o.past_seen_cells;
+      }
       objects[name] = e;
     }
     j["changes"] = objects;

@@ -10,6 +10,7 @@
 
 #include "slam/mapping/mapper_config.hpp"
 #include "slam/mapping/mapper_config_fields.hpp"
+#include "slam/matching/incremental_config.hpp"
 #include "slam/matching/scan_matcher.hpp"
 
 namespace lifelong::slam {
@@ -118,7 +119,7 @@ std::optional<ConfigProblem> CheckFootprints(const MapperConfig& c) {
     return p;
   }
   if (auto p = CheckMatcher("incremental.matcher", inc, c.incremental.lost_window_m,
-                            "incremental.lost_window_m", 3.14159265358979323846,
+                            "incremental.lost_window_m", kLostStepWindowRad,
                             "a full turn (a lost step)")) {
     return p;
   }

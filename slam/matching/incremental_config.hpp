@@ -20,6 +20,9 @@ inline MatcherConfig IncrementalMatcherDefaults() {
   return m;
 }
 
+/// A step whose odometry was lost is searched over a full turn (half-width pi).
+inline constexpr double kLostStepWindowRad = 3.14159265358979323846;
+
 struct IncrementalConfig {
   /// Recent nodes whose scans form the local map: 20 nodes cover about 10 m of path (8, before
   /// 2026-12-04, covered 4 m, too little to hold a heading through a room on real odometry).

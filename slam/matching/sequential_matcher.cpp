@@ -16,9 +16,9 @@ Eigen::Matrix3d OdometryInformation(const IncrementalConfig& c, const Pose2& del
 }
 
 Eigen::Matrix3d LostStepInformation(const IncrementalConfig& c) {
-  constexpr double kPi = 3.14159265358979323846;
   const double w2 = c.lost_window_m * c.lost_window_m;
-  return Eigen::Vector3d(1.0 / w2, 1.0 / w2, 1.0 / (kPi * kPi)).asDiagonal();
+  const double t2 = kLostStepWindowRad * kLostStepWindowRad;
+  return Eigen::Vector3d(1.0 / w2, 1.0 / w2, 1.0 / t2).asDiagonal();
 }
 
 SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& values,
@@ -38,7 +38,7 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
   MatcherConfig mc = config_.matcher;
   if (odometry_lost) {
     mc.linear_window_m = config_.lost_window_m;
-    mc.angular_window_rad = 3.14159265358979323846;
+    mc.angular_window_rad = kLostStepWindowRad;
   }
   CropToSearch(points, guess, mc, &reference);
   if (reference.size() < 10 || points.size() < 10) return out;

@@ -2,7 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
-#include <unordered_set>
+
+#include "eval/metrics/sightings.hpp"
 
 namespace lifelong::eval {
 
@@ -11,7 +12,7 @@ std::int64_t ScanCells(const std::vector<Observation>& stream,
                        double resolution_m, double max_range_m) {
   if (scans.size() != poses.size()) throw std::invalid_argument("ScanCells: sizes differ");
   if (!(resolution_m > 0.0)) throw std::invalid_argument("ScanCells: resolution <= 0");
-  std::unordered_set<std::uint64_t> cells;
+  CellSet cells(resolution_m);
   for (std::size_t k = 0; k < scans.size(); ++k) {
     const LaserScan& scan = stream.at(scans[k]).scan;
     const Pose2 laser = poses[k] * scan.T_robot_laser;
@@ -20,15 +21,10 @@ std::int64_t ScanCells(const std::vector<Observation>& stream,
       if (!scan.IsReturn(i) || scan.ranges_m[i] > max_range_m) continue;
       const double r = scan.ranges_m[i], a = scan.Bearing(i);
       const double lx = r * std::cos(a), ly = r * std::sin(a);
-      const auto ix =
-          static_cast<std::int64_t>(std::floor((laser.x + c * lx - s * ly) / resolution_m));
-      const auto iy =
-          static_cast<std::int64_t>(std::floor((laser.y + s * lx + c * ly) / resolution_m));
-      cells.insert((static_cast<std::uint64_t>(ix) << 32) ^
-                   (static_cast<std::uint64_t>(iy) & 0xffffffffu));
+      cells.Add(laser.x + c * lx - s * ly, laser.y + s * lx + c * ly);
     }
   }
-  return static_cast<std::int64_t>(cells.size());
+  return static_cast<std::int64_t>(cells.Size());
 }
 
 }  // namespace lifelong::eval

@@ -23,6 +23,8 @@ class CellSet {
   void Add(double x, double y) { cells_.insert(Key(x, y)); }
   /// A point was added within one cell of (x, y).
   bool Near(double x, double y) const;
+  /// The cells holding a point.
+  std::size_t Size() const { return cells_.size(); }
 
  private:
   std::int64_t Key(double x, double y) const;

@@ -64,7 +64,9 @@ double BearingSlack(const LaserScan& scan, double distance_m, double sin_a) {
   return distance_m * 0.5 * std::abs(scan.angle_increment_rad) * cos_a / sin_a;
 }
 
-Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, double wy) {
+/// `alone`: the beam at the point's bearing judges it by itself, so the scan's first and last
+/// beams may; otherwise the beams on both sides must exist too (three beams judge a point).
+Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, double wy, bool alone) {
   double x = 0.0, y = 0.0;
   T_laser_world.Apply(wx, wy, &x, &y);
   Seen s;
@@ -73,8 +75,8 @@ Seen SeenFrom(const LaserScan& scan, const Frame& T_laser_world, double wx, doub
   s.distance_m = std::hypot(x, y);
   if (s.distance_m < 1e-3 || scan.angle_increment_rad <= 0.0) return s;
   const long k = std::lround(PastFirstBeam(scan, x, y) / scan.angle_increment_rad);
-  // The beams on both sides must exist too (three beams judge a point).
-  if (k >= 1 && k + 1 < static_cast<long>(scan.ranges_m.size())) s.beam = k;
+  const long edge = alone ? 0 : 1;
+  if (k >= edge && k + edge < static_cast<long>(scan.ranges_m.size())) s.beam = k;
   return s;
 }
 
@@ -109,11 +111,13 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard,
 }
 
 /// Judges every return of `from` as `to` sees it; f(from_beam, to_beam, distance from
-/// to's laser) for those seen through. Counts agreement into *c.
+/// to's laser) for those seen through. Counts agreement into *c. With `unseen`, the returns
+/// of `from` that lie outside `to`'s field of view (ascending).
 template <typename F>
 void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to,
            const Pose2& T_world_to, const ChangeDetectionConfig& config, double min_incidence_rad,
-           bool alone, ScanComparison* c, F&& seen_through) {
+           bool alone, ScanComparison* c, F&& seen_through,
+           std::vector<std::uint32_t>* unseen = nullptr) {
   const Frame T_to_world(T_world_to.Inverse());
   const Frame T_from(T_world_from);
   const std::size_t n = from.ranges_m.size();
@@ -128,8 +132,11 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
   for (std::size_t i = 0; i < n; ++i) {
     if (!from.IsReturn(i)) continue;
     const Eigen::Vector2d p = end_point(i);
-    const Seen s = SeenFrom(to, T_to_world, p.x(), p.y());
-    if (s.beam < 0) continue;
+    const Seen s = SeenFrom(to, T_to_world, p.x(), p.y(), alone);
+    if (s.beam < 0) {
+      if (unseen && s.distance_m >= 1e-3) unseen->push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
     const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m,
                             std::max(config.margin_m, config.hidden_m), alone);
     ++c->judged;
@@ -195,6 +202,46 @@ void KeepRuns(std::size_t min_run, std::vector<T>* v) {
   *v = std::move(kept);
 }
 
+/// Whether returns j and j + 1 of `scan` lie on one surface: both returns, at most max_gap_m
+/// apart.
+bool OneSurface(const LaserScan& scan, std::uint32_t j, double max_gap_m) {
+  if (j + 1 >= scan.ranges_m.size() || !scan.IsReturn(j) || !scan.IsReturn(j + 1)) return false;
+  const double a = scan.ranges_m[j], b = scan.ranges_m[j + 1];
+  const double gap2 = a * a + b * b - 2.0 * a * b * std::cos(scan.angle_increment_rad);
+  return gap2 <= max_gap_m * max_gap_m;
+}
+
+/// KeepRuns for the newer scan's added returns (ascending), where a run that reaches the
+/// edge of the older scan's field of view is cut short by it, not by the world: it counts
+/// the returns on the same surface (OneSurface) beyond that edge, which the older scan could
+/// not judge (`unseen`, ascending), toward min_run. A box seen by the older scan's outermost
+/// beams shows few of its returns inside that scan's view.
+void KeepRunsToTheEdge(std::size_t min_run, const LaserScan& newer,
+                       const std::vector<std::uint32_t>& unseen, double max_gap_m,
+                       std::vector<std::uint32_t>* v) {
+  // How many returns past `from` (step -1 or +1) are unseen and on its surface.
+  const auto beyond = [&](std::uint32_t from, long step) {
+    std::size_t n = 0;
+    for (long j = static_cast<long>(from) + step;
+         j >= 0 && j < static_cast<long>(newer.ranges_m.size()); j += step) {
+      const auto b = static_cast<std::uint32_t>(j);
+      if (!std::binary_search(unseen.begin(), unseen.end(), b)) break;
+      if (!OneSurface(newer, static_cast<std::uint32_t>(std::min(j, j - step)), max_gap_m)) break;
+      ++n;
+    }
+    return n;
+  };
+  std::vector<std::uint32_t> kept;
+  std::size_t start = 0;
+  for (std::size_t i = 1; i <= v->size(); ++i) {
+    if (i < v->size() && (*v)[i] - (*v)[i - 1] <= 2) continue;
+    const std::size_t n = i - start + beyond((*v)[start], -1) + beyond((*v)[i - 1], +1);
+    if (n >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
+    start = i;
+  }
+  *v = std::move(kept);
+}
+
 /// The older beam cut where it passed a surface now standing at distance_m along it: free up
 /// to margin_m short of the surface, then traced again past the object's unseen depth behind
 /// it to its return (kept: the room behind a door now closed was free when the beam crossed
@@ -245,7 +292,10 @@ void CutAcrossSurfaces(const LaserScan& older, const Pose2& T_world_old_laser,
     const Eigen::Vector2d p = in_old(j), q = in_old(j + 1);
     const Eigen::Vector2d pq = q - p;
     if (pq.norm() > 4.0 * config.margin_m || pq.norm() < 1e-9 || inc <= 0.0) continue;
-    const double a0 = PastFirstBeam(older, p.x(), p.y());
+    // p's bearing past the first beam, negative when it lies just before it (the surface
+    // may cross into the field of view there): within half a turn of the view's middle.
+    double a0 = PastFirstBeam(older, p.x(), p.y());
+    if (a0 > 0.5 * static_cast<double>(n - 1) * inc + 0.5 * kTwoPi) a0 -= kTwoPi;
     double span = std::atan2(q.y(), q.x()) - std::atan2(p.y(), p.x());
     span -= kTwoPi * std::round(span / kTwoPi);
     const double lo = std::min(a0, a0 + span), hi = std::max(a0, a0 + span);
@@ -288,10 +338,14 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   // neighbours or not: a beam that grazes a doorway from afar passes many of the door's
   // returns, alone among its neighbours.
   std::vector<std::pair<std::uint32_t, BeamCut>> added;  // (newer beam, older beam cut)
-  Judge(newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
-        true, &c, [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
-          added.push_back({new_beam, CutBefore(older, old_beam, distance_m, config)});
-        });
+  std::vector<std::uint32_t> unseen;  // newer returns outside the older scan's view
+  Judge(
+      newer, T_world_new_laser, older, T_world_old_laser, config, config.min_incidence_added_rad,
+      true, &c,
+      [&](std::uint32_t new_beam, std::uint32_t old_beam, double distance_m) {
+        added.push_back({new_beam, CutBefore(older, old_beam, distance_m, config)});
+      },
+      &unseen);
   // A point hidden behind a nearer return of the other scan says nothing of the poses: the
   // other scan saw something else there (a wall from another room, an object since moved).
   const int visible = c.judged - c.hidden;
@@ -304,7 +358,7 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   std::vector<std::uint32_t> added_news;
   for (const auto& a : added) added_news.push_back(a.first);
   SortUnique(&added_news);
-  KeepRuns(min_run, &added_news);
+  KeepRunsToTheEdge(min_run, newer, unseen, 4.0 * config.margin_m, &added_news);
   c.outdated = removed;
   for (const auto& [new_beam, cut] : added) {
     if (std::binary_search(added_news.begin(), added_news.end(), new_beam))

@@ -15,8 +15,11 @@
 // moved along the beam by a small pose error, is no change. An added object counts only
 // when the newer returns form that run; then each older beam through one of them is
 // outdated on its own (min_incidence_added_rad; passing the point by margin_m plus half a
-// beam's bearing error), for a beam that grazes a doorway from afar passes many of the
-// door's returns while its neighbours hit the wall; and so is each older beam that crosses
+// beam's bearing error; the older scan's first and last beams too), for a beam that grazes
+// a doorway from afar passes many of the door's returns while its neighbours hit the wall. A
+// run that reaches the edge of the older scan's field of view counts the newer returns on
+// the same surface beyond that edge, which the older scan could not judge: a box seen by
+// the older scan's outermost beams shows few of its returns inside that view; and so is each older beam that crosses
 // the newer surface between a return of the run and its neighbouring return, for a door
 // seen from afar has its returns a beam's width apart, while up close many older beams
 // crossed it between them. And two scans are compared only when they agree where they

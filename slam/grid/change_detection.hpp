@@ -19,9 +19,9 @@
 // a doorway from afar passes many of the door's returns while its neighbours hit the wall. A
 // run that reaches the edge of the older scan's field of view counts the newer returns on
 // the same surface beyond that edge, which the older scan could not judge: a box seen by
-// the older scan's outermost beams shows few of its returns inside that view; and so is each older beam that crosses
-// the newer surface between a return of the run and its neighbouring return, for a door
-// seen from afar has its returns a beam's width apart, while up close many older beams
+// the older scan's outermost beams shows few of its returns inside that view; and so is each older
+// beam that crosses the newer surface between a return of the run and its neighbouring return, for
+// a door seen from afar has its returns a beam's width apart, while up close many older beams
 // crossed it between them. And two scans are compared only when they agree where they
 // overlap: when fewer than min_agreement of the returns they both see lie within `margin_m`
 // of each other, their poses disagree (drift before a loop closure) and nothing is marked.

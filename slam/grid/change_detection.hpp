@@ -16,15 +16,16 @@
 // when the newer returns form that run; then each older beam through one of them is
 // outdated on its own (min_incidence_added_rad; passing the point by margin_m plus half a
 // beam's bearing error; the older scan's first and last beams too), for a beam that grazes
-// a doorway from afar passes many of the door's returns while its neighbours hit the wall. A
-// run that reaches the edge of the older scan's field of view counts the newer returns on
-// the same surface beyond that edge, which the older scan could not judge: a box seen by
-// the older scan's outermost beams shows few of its returns inside that view; and so is each older
-// beam that crosses the newer surface between a return of the run and its neighbouring return, for
-// a door seen from afar has its returns a beam's width apart, while up close many older beams
-// crossed it between them. And two scans are compared only when they agree where they
-// overlap: when fewer than min_agreement of the returns they both see lie within `margin_m`
-// of each other, their poses disagree (drift before a loop closure) and nothing is marked.
+// a doorway from afar passes many of the door's returns while its neighbours hit the wall;
+// and so is each older beam that crosses the newer surface between a return of the run and
+// its neighbouring return, for a door seen from afar has its returns a beam's width apart,
+// while up close many older beams crossed it between them. A run that reaches the edge of
+// the older scan's field of view counts the newer returns on the same surface beyond that
+// edge, which the older scan could not judge: a box seen by the older scan's outermost beams
+// shows few of its returns inside that view. And two scans are compared only when they
+// agree where they overlap: when fewer than min_agreement of the returns they both see lie
+// within `margin_m` of each other, their poses disagree (drift before a loop closure) and
+// nothing is marked.
 // A return hidden from the other scan, whose beam there ends more than hidden_m nearer, is
 // not seen by both: the robot come into a room past a desk's new place sees little of what
 // it saw from the far side, and that is no disagreement of the poses.

@@ -32,26 +32,37 @@ std::string Today() {
   return buf;
 }
 
-/// The charts of an experiment, relative to the book's directory: the sweep report's (each
-/// mode's mean and interval per figure), then the first finished cell's time per observation
-/// and nodes over the run, which read like the seed's Fig. 6.1 to 6.4.
+/// The sweep report's charts of an experiment (each mode's mean and interval per figure),
+/// relative to the book's directory.
 std::vector<std::string> Charts(const std::string& out, const std::string& dir) {
-  std::vector<std::string> charts, cells;
+  std::vector<std::string> charts;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(fs::path(out) / dir, ec)) {
     if (e.path().extension() == ".png") charts.push_back(dir + "/" + e.path().filename().string());
   }
   std::sort(charts.begin(), charts.end());
+  return charts;
+}
+
+/// The experiment's figures (BookFigure), each from the first finished cell (by name) that
+/// has it, relative to the book's directory; a figure no cell has is left out.
+std::vector<eval::BookFigure> CellFigures(const std::string& out, const std::string& dir,
+                                          const std::vector<eval::BookFigure>& figures) {
+  std::vector<std::string> cells;
+  std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(fs::path(out) / dir / "cells", ec)) {
     if (fs::exists(e.path() / "sweep_cell.json")) cells.push_back(e.path().filename().string());
   }
   std::sort(cells.begin(), cells.end());
-  for (const char* name : {"time_per_obs.png", "nodes.png"}) {
-    if (!cells.empty() && fs::exists(fs::path(out) / dir / "cells" / cells.front() / name)) {
-      charts.push_back(dir + "/cells/" + cells.front() + "/" + name);
+  std::vector<eval::BookFigure> found;
+  for (const eval::BookFigure& f : figures) {
+    for (const std::string& cell : cells) {
+      if (!fs::exists(fs::path(out) / dir / "cells" / cell / f.file)) continue;
+      found.push_back({dir + "/cells/" + cell + "/" + f.file, f.seed});
+      break;
     }
   }
-  return charts;
+  return found;
 }
 
 eval::SweepOutcome RunExperiment(const ReproduceArgs& a, const eval::SweepOptions& o) {
@@ -101,6 +112,7 @@ int Reproduce(const ReproduceArgs& a) {
     failed += static_cast<int>(r.failed.size());
     er.tables = std::move(r.tables);
     er.charts = Charts(a.out, er.dir);
+    er.figures = CellFigures(a.out, er.dir, e.figures);
     for (const eval::BookClaim& c : e.claims) {
       for (eval::ClaimResult& cr : eval::JudgeClaim(c, er.tables)) {
         std::cout << "  " << c.claim << " [" << eval::SourceName(cr.source)

@@ -58,6 +58,31 @@ BookClaim Claim(const std::string& file, const YAML::Node& n, const std::string&
   return c;
 }
 
+/// The experiment's `figures`: each a PNG relative to a cell's directory, inside it.
+std::vector<BookFigure> Figures(const std::string& file, sim::Fields& f) {
+  if (!f.Has("figures")) {
+    return {{"time_per_obs.png", "runtime per scan over the run (Fig. 6.1-6.4)"},
+            {"nodes.png", "nodes over the run (Fig. 6.1, 6.2)"}};
+  }
+  const YAML::Node list = f.Required("figures");
+  if (!list.IsSequence()) f.FailAt("figures", "expected a list of {file, seed}");
+  std::vector<BookFigure> out;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    sim::Fields g(file, list[k], f.Name("figures") + "[" + std::to_string(k) + "]");
+    BookFigure b{g.String("file"), g.String("seed")};
+    g.Finish();
+    const fs::path p(b.file);
+    const bool inside = p.is_relative() && std::none_of(p.begin(), p.end(), [](const fs::path& c) {
+                          return c == "..";
+                        });
+    if (!inside || p.extension() != ".png") {
+      g.FailAt("file", "expected a .png inside a cell's directory, not '" + b.file + "'");
+    }
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
 }  // namespace
 
 Book LoadBook(const std::string& path) {
@@ -81,6 +106,7 @@ Book LoadBook(const std::string& path) {
     if (!std::regex_match(e.id, id_pattern)) f.FailAt("id", "expected [a-z0-9_-]+");
     if (!ids.insert(e.id).second) f.FailAt("id", "given twice");
     e.title = f.String("title");
+    e.figures = Figures(path, f);
     const bool optional = f.Bool("logs_optional", false);
     if (f.Has("get")) e.get = f.String("get");
     const MissingLogs missing = optional ? MissingLogs::kRecord : MissingLogs::kRefuse;

@@ -18,6 +18,8 @@
 //           expect: lower                         # lower | higher | report (no verdict)
 //           seed: "constant node count"           # the seed's value or statement
 //           where: "Fig. 6.1"                     # the seed's figure or table
+//       figures:                                  # a cell's figures shown as the seed's
+//         - {file: nodes.png, seed: "Fig. 6.1"}   # (default: time_per_obs.png, nodes.png)
 //       logs_optional: true    # its SPECs name public logs the project does not ship: a
 //                              # missing one leaves the experiment "not run", saying where
 //                              # it was looked for and where to get it (`get`)
@@ -45,8 +47,16 @@ struct BookClaim {
   int line = 0;
 };
 
+/// A figure of one of the experiment's cells that stands beside one of the seed's: a file
+/// relative to a cell's directory ("nodes.png", "pruned/map.png") and the seed's figure it
+/// reads like.
+struct BookFigure {
+  std::string file, seed;
+};
+
 struct BookExperiment {
   std::string id, title;
+  std::vector<BookFigure> figures;
   std::string quick_spec, full_spec;  ///< absolute; empty: not in that profile
   std::vector<BookClaim> claims;
   /// logs_optional: the logs each profile's SPEC names that are not here (absolute).
@@ -85,6 +95,9 @@ struct ExperimentResult {
   SweepTables tables;
   std::vector<ClaimResult> claims;
   std::vector<std::string> charts;  ///< the sweep report's charts, relative to the book's dir
+  /// The experiment's figures (BookFigure) of its first cell that has each, `file` relative
+  /// to the book's dir.
+  std::vector<BookFigure> figures;
 };
 
 struct BookOutcome {

@@ -111,6 +111,10 @@ std::string BookMarkdown(const BookOutcome& o) {
          << r.verdict << " |\n";
     }
     for (const std::string& chart : e.charts) md << "\n![" << chart << "](" << chart << ")\n";
+    for (const BookFigure& f : e.figures) {
+      md << "\n![" << f.seed << "](" << f.file << ")\n\n*As the seed's " << f.seed << "* (`"
+         << f.file << "`)\n";
+    }
   }
   return md.str();
 }
@@ -122,7 +126,8 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
        "reproduced</title>\n<style>body{font-family:sans-serif;max-width:1200px;margin:auto}"
        "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 6px}"
        ".holds{background:#d8f5d8}.not{background:#f8d8d8}.inc{background:#f3f3d0}"
-       "img{max-width:560px;margin:4px}</style></head><body>\n"
+       "img{max-width:560px;margin:4px}figure{display:inline-block;margin:4px}"
+       "figcaption{font-size:90%;color:#444}</style></head><body>\n"
     << "<h1>The seed's chapter 6, reproduced</h1>\n<p><code>lifelong reproduce --profile "
     << HtmlEscape(o.profile) << "</code> at " << HtmlEscape(o.commit) << ", " << HtmlEscape(o.day)
     << ". Each claim is judged on the per-seed differences between two modes of the same "
@@ -163,6 +168,11 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
     h << "</table>\n";
     for (const std::string& chart : e.charts) {
       h << "<img src=\"" << HtmlEscape(chart) << "\" alt=\"" << HtmlEscape(chart) << "\">\n";
+    }
+    for (const BookFigure& f : e.figures) {
+      h << "<figure><img src=\"" << HtmlEscape(f.file) << "\" alt=\"" << HtmlEscape(f.seed)
+        << "\"><figcaption>As the seed's " << HtmlEscape(f.seed) << " (" << HtmlEscape(f.file)
+        << ")</figcaption></figure>\n";
     }
   }
   h << "</body></html>\n";

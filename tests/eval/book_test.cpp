@@ -73,6 +73,28 @@ TEST(Book, BadInputNamesFileLineAndField) {
   ExpectError(Experiment("").replace(Experiment("").find("id: corridor"), 12, "id: Corridor!"), 2,
               "experiments[0].id", "[a-z0-9_-]+");
   ExpectError("experiments: []\n", 1, "experiments", "non-empty");
+  ExpectError(Experiment("", "    figures: [{file: ../../etc/x.png, seed: Fig. 6.1}]\n"), 5,
+              "experiments[0].figures[0].file", "inside a cell's directory");
+  ExpectError(Experiment("", "    figures: [{file: summary.json, seed: Fig. 6.1}]\n"), 5,
+              "experiments[0].figures[0].file", "expected a .png");
+  ExpectError(Experiment("", "    figures: [{file: nodes.png}]\n"), 5,
+              "experiments[0].figures[0].seed", "");
+}
+
+// An experiment's figures: the seed's figure each stands for, as written; without any, the
+// time per observation and nodes, which read like the seed's Fig. 6.1-6.4.
+TEST(Book, AnExperimentNamesTheSeedsFigureEachOfItsFiguresStandsFor) {
+  const Book given = LoadBook(Write(
+      "book.yaml", Experiment("",
+                              "    figures:\n"
+                              "      - {file: pruned/map.png, seed: \"Fig. 6.7 (pruned)\"}\n")));
+  ASSERT_EQ(given.experiments[0].figures.size(), 1u);
+  EXPECT_EQ(given.experiments[0].figures[0].file, "pruned/map.png");
+  EXPECT_EQ(given.experiments[0].figures[0].seed, "Fig. 6.7 (pruned)");
+  const Book plain = LoadBook(Write("book.yaml", Experiment("")));
+  ASSERT_EQ(plain.experiments[0].figures.size(), 2u);
+  EXPECT_EQ(plain.experiments[0].figures[0].file, "time_per_obs.png");
+  EXPECT_EQ(plain.experiments[0].figures[1].file, "nodes.png");
 }
 
 TEST(Book, TheShippedBookLoadsInBothProfiles) {
@@ -167,6 +189,12 @@ TEST(Book, TheMarkdownNamesTheProfileAndEachVerdict) {
   EXPECT_NE(md.find("holds at 95 %"), std::string::npos) << md;
   EXPECT_NE(md.find("constant (Fig. 6.1)"), std::string::npos) << md;
   EXPECT_NE(md.find("abc1234, 2026-12-03"), std::string::npos) << md;
+  EXPECT_EQ(md.find("As the seed's"), std::string::npos) << md;
+  r.figures = {{"corridor/cells/corridor_3-seed0/pruned/map.png", "Fig. 6.7 (pruned)"}};
+  EXPECT_NE(BookMarkdown(o).find("![Fig. 6.7 (pruned)](corridor/cells/corridor_3-seed0/pruned/"
+                                 "map.png)\n\n*As the seed's Fig. 6.7 (pruned)*"),
+            std::string::npos)
+      << BookMarkdown(o);
 }
 
 // An experiment on a public log the project does not ship: without the log it loads, says

@@ -140,6 +140,14 @@ TEST(ChangeDetection, ABeamGrazingAClosedDoorwayFromAfarIsOutdated) {
   }
 }
 
+// Each of the older beams `through` is among c's outdated beams.
+void ExpectCut(const ScanComparison& c, const std::vector<std::uint32_t>& through) {
+  std::vector<std::uint32_t> cut;
+  for (const BeamCut& b : c.outdated) cut.push_back(b.beam);
+  for (const std::uint32_t b : through)
+    EXPECT_TRUE(std::binary_search(cut.begin(), cut.end(), b)) << "beam " << b;
+}
+
 // The doorway seen open up close, where some thirty beams cross it, then the door closed
 // from down the corridor, where six returns fall on it: every older beam through the door
 // between them is outdated, not only the six nearest their bearings. Seen closed both
@@ -166,10 +174,7 @@ TEST(ChangeDetection, ADoorClosedSeenFromAfarOutdatesEveryBeamThatCrossedIt) {
   ASSERT_GE(through.size(), 20u);
   const ScanComparison c = CompareScans(older, close, newer, far, {});
   ASSERT_TRUE(c.compared);
-  std::vector<std::uint32_t> cut;
-  for (const BeamCut& b : c.outdated) cut.push_back(b.beam);
-  for (const std::uint32_t b : through)
-    EXPECT_TRUE(std::binary_search(cut.begin(), cut.end(), b)) << "beam " << b;
+  ExpectCut(c, through);
   for (const BeamCut& b : c.outdated) {
     const double a = close.theta + older.Bearing(b.beam);
     const double to_door = (3.0 - close.y) / std::sin(a);
@@ -207,10 +212,7 @@ TEST(ChangeDetection, ABoxAtTheEdgeOfTheOlderViewOutdatesTheBeamsThroughIt) {
   ASSERT_EQ(through.front(), 0u);
   const ScanComparison c = CompareScans(older, older_pose, newer, newer_pose, {});
   ASSERT_TRUE(c.compared);
-  std::vector<std::uint32_t> cut;
-  for (const BeamCut& b : c.outdated) cut.push_back(b.beam);
-  for (const std::uint32_t b : through)
-    EXPECT_TRUE(std::binary_search(cut.begin(), cut.end(), b)) << "beam " << b;
+  ExpectCut(c, through);
   for (const BeamCut& b : c.outdated) {
     const double to_face =
         (older_pose.x - 3.8) / std::abs(std::cos(older_pose.theta + older.Bearing(b.beam)));

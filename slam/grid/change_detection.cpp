@@ -189,17 +189,24 @@ std::uint32_t BeamOf(std::uint32_t b) { return b; }
 std::uint32_t BeamOf(const BeamCut& c) { return c.beam; }
 
 /// Keeps the beams (ascending) that lie in runs of at least min_run beams, a run allowing
-/// gaps of one beam: a change covers neighbouring beams, noise single ones.
-template <typename T>
-void KeepRuns(std::size_t min_run, std::vector<T>* v) {
+/// gaps of one beam: a change covers neighbouring beams, noise single ones. A run from beam
+/// `first` to beam `last` counts extra(first, last) more beams toward min_run.
+template <typename T, typename Extra>
+void KeepRuns(std::size_t min_run, std::vector<T>* v, Extra&& extra) {
   std::vector<T> kept;
   std::size_t start = 0;
   for (std::size_t i = 1; i <= v->size(); ++i) {
     if (i < v->size() && BeamOf((*v)[i]) - BeamOf((*v)[i - 1]) <= 2) continue;
-    if (i - start >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
+    const std::size_t n = i - start + extra(BeamOf((*v)[start]), BeamOf((*v)[i - 1]));
+    if (n >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
     start = i;
   }
   *v = std::move(kept);
+}
+
+template <typename T>
+void KeepRuns(std::size_t min_run, std::vector<T>* v) {
+  KeepRuns(min_run, v, [](std::uint32_t, std::uint32_t) { return std::size_t{0}; });
 }
 
 /// Whether returns j and j + 1 of `scan` lie on one surface: both returns, at most max_gap_m
@@ -231,15 +238,9 @@ void KeepRunsToTheEdge(std::size_t min_run, const LaserScan& newer,
     }
     return n;
   };
-  std::vector<std::uint32_t> kept;
-  std::size_t start = 0;
-  for (std::size_t i = 1; i <= v->size(); ++i) {
-    if (i < v->size() && (*v)[i] - (*v)[i - 1] <= 2) continue;
-    const std::size_t n = i - start + beyond((*v)[start], -1) + beyond((*v)[i - 1], +1);
-    if (n >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
-    start = i;
-  }
-  *v = std::move(kept);
+  KeepRuns(min_run, v, [&](std::uint32_t first, std::uint32_t last) {
+    return beyond(first, -1) + beyond(last, +1);
+  });
 }
 
 /// The older beam cut where it passed a surface now standing at distance_m along it: free up

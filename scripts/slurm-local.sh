@@ -4,8 +4,10 @@
 # DIR (default: runs/slurm-local); it prints the SLURM_CONF to export.
 #   scripts/slurm-local.sh start [DIR]   start the daemons and wait until the node is idle
 #   scripts/slurm-local.sh stop [DIR]    stop them
+# Exit 2: not installed or not root; 3: a daemon exited at start (this machine cannot run
+# one; its log is printed); 1: the node did not come up idle within 60 s.
 # The node offers this machine's CPUs and memory (slurmd -C). tests/apps/sweep_slurm_test.sh
-# starts its own, with the same settings, in a temporary directory.
+# starts its Slurm with this script, in a temporary directory.
 set -euo pipefail
 cmd=${1:-}
 dir=$(realpath -m "${2:-runs/slurm-local}")
@@ -16,6 +18,7 @@ stop() {
     p=$(cat "$dir/$f.pid")
     kill "$p" 2>/dev/null || true
     for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
+    kill -9 "$p" 2>/dev/null || true
     rm -f "$dir/$f.pid"
   done
 }
@@ -30,12 +33,21 @@ done
 [ "$(id -u)" -eq 0 ] || { echo "slurmd runs as root here (SlurmUser=root): run as root" >&2; exit 2; }
 mkdir -p "$dir/state" "$dir/spool"
 chmod 0755 "$dir"
-[ -f "$dir/munge.key" ] || { mungekey -c -k "$dir/munge.key"; chmod 0400 "$dir/munge.key"; }
-munged --socket="$dir/munge.sock" --key-file="$dir/munge.key" --pid-file="$dir/munged.pid" \
-  --log-file="$dir/munged.log" --seed-file="$dir/munge.seed"
+if [ ! -f "$dir/munge.key" ]; then
+  mungekey -c -k "$dir/munge.key" || { echo "mungekey failed" >&2; exit 3; }
+  chmod 0400 "$dir/munge.key"
+fi
+munged -f --socket="$dir/munge.sock" --key-file="$dir/munge.key" --pid-file="$dir/munged.pid" \
+  --log-file="$dir/munged.log" --seed-file="$dir/munge.seed" ||
+  { cat "$dir/munged.log" >&2; echo "munged does not start" >&2; exit 3; }
 hw=$(slurmd -C | head -n 1)
 cpus=$(sed -n 's/.* CPUs=\([0-9]*\).*/\1/p' <<<"$hw")
 mem=$(sed -n 's/.* RealMemory=\([0-9]*\).*/\1/p' <<<"$hw")
+if [ -z "$cpus" ] || [ -z "$mem" ]; then
+  echo "slurmd -C gives no CPUs/RealMemory: $hw" >&2
+  stop
+  exit 3
+fi
 read -r ctld_port node_port < <(python3 -c '
 import socket
 s = [socket.socket() for _ in range(2)]
@@ -69,9 +81,18 @@ PartitionName=local Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF=$conf
 setsid slurmctld -D -f "$conf" >"$dir/slurmctld.out.log" 2>&1 < /dev/null &
+pids=($!)
 setsid slurmd -D -N localhost -f "$conf" >"$dir/slurmd.out.log" 2>&1 < /dev/null &
+pids+=($!)
 state=""
 for _ in $(seq 120); do
+  for p in "${pids[@]}"; do
+    kill -0 "$p" 2>/dev/null && continue
+    for f in "$dir"/*.log; do echo "--- $f" >&2; tail -n 30 "$f" >&2; done
+    echo "a Slurm daemon exited at start" >&2
+    stop
+    exit 3
+  done
   state=$(sinfo -h -n localhost -o %T 2>/dev/null || true)
   [ "$state" = idle ] && break
   sleep 0.5

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `lifelong sweep --slurm` against a real Slurm (issue #14): starts its own munged, slurmctld
-# and slurmd (one node, this machine) from a generated slurm.conf in a temp dir, runs a tiny
+# and slurmd (one node, this machine) with scripts/slurm-local.sh in a temp dir, runs a tiny
 # sweep as a job array and checks that its aggregate.csv equals the local pool's (-j 2) in
 # every figure that does not measure the machine (times, memory). Always stops its daemons.
 # Exit 77 (skip) only where Slurm cannot run here: binaries missing, not root, or a daemon
@@ -16,83 +16,22 @@ done
 [ "$(id -u)" -eq 0 ] || skip "the test's slurmd needs root (SlurmUser=root)"
 
 t=$(mktemp -d /tmp/lifelong-slurm-test.XXXXXX)
-pids=()
+# The daemons: scripts/slurm-local.sh, which a user without a cluster runs too.
+slurm_local=$src/scripts/slurm-local.sh
 cleanup() {
-  for p in "${pids[@]}"; do kill "$p" 2>/dev/null; done
-  for p in "${pids[@]}"; do
-    for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
-    kill -9 "$p" 2>/dev/null
-  done
-  if [ -f "$t/munged.pid" ]; then  # it writes its seed file as it exits: wait for that
-    m=$(cat "$t/munged.pid")
-    kill "$m" 2>/dev/null
-    for _ in $(seq 50); do kill -0 "$m" 2>/dev/null || break; sleep 0.1; done
-  fi
+  "$slurm_local" stop "$t" >/dev/null
   rm -rf "$t"
 }
 trap cleanup EXIT
 fail() { echo "FAIL: $*"; for f in "$t"/*.log; do echo "--- $f"; tail -n 30 "$f"; done; exit 1; }
-mkdir -p "$t/state" "$t/spool"
-chmod 0755 "$t"
-
-# munge with its own key, socket and files.
-mungekey -c -k "$t/munge.key" || skip "mungekey failed"
-chmod 0400 "$t/munge.key"
-munged -f --socket="$t/munge.sock" --key-file="$t/munge.key" --pid-file="$t/munged.pid" \
-  --log-file="$t/munged.log" --seed-file="$t/munge.seed" ||
-  { cat "$t/munged.log"; skip "munged does not start"; }
-
-read -r ctld_port node_port < <(python3 -c '
-import socket
-s = [socket.socket() for _ in range(2)]
-for x in s: x.bind(("127.0.0.1", 0))
-print(*[x.getsockname()[1] for x in s])')
-hw=$(slurmd -C | head -n 1)
-cpus=$(sed -n 's/.* CPUs=\([0-9]*\).*/\1/p' <<<"$hw")
-mem=$(sed -n 's/.* RealMemory=\([0-9]*\).*/\1/p' <<<"$hw")
-if [ -z "$cpus" ] || [ -z "$mem" ]; then skip "slurmd -C gives no CPUs/RealMemory: $hw"; fi
-cat >"$t/slurm.conf" <<CONF
-ClusterName=lifelongtest
-SlurmctldHost=localhost
-SlurmctldPort=$ctld_port
-SlurmdPort=$node_port
-SlurmUser=root
-SlurmdUser=root
-AuthType=auth/munge
-CredType=cred/munge
-AuthInfo=socket=$t/munge.sock
-StateSaveLocation=$t/state
-SlurmdSpoolDir=$t/spool
-SlurmctldPidFile=$t/slurmctld.pid
-SlurmdPidFile=$t/slurmd.pid
-SlurmctldLogFile=$t/slurmctld.log
-SlurmdLogFile=$t/slurmd.log
-ProctrackType=proctrack/linuxproc
-TaskPlugin=task/none
-JobAcctGatherType=jobacct_gather/none
-SelectType=select/cons_tres
-SelectTypeParameters=CR_Core
-MpiDefault=none
-ReturnToService=2
-NodeName=localhost CPUs=$cpus RealMemory=$mem State=UNKNOWN
-PartitionName=test Nodes=localhost Default=YES MaxTime=INFINITE State=UP
-CONF
+"$slurm_local" start "$t" >"$t/start.out" 2>&1
+case $? in
+  0) ;;
+  3) cat "$t/start.out"; skip "Slurm cannot run here (scripts/slurm-local.sh start exit 3)" ;;
+  *) cat "$t/start.out"; fail "scripts/slurm-local.sh start failed" ;;
+esac
 export SLURM_CONF=$t/slurm.conf
-slurmctld -D -f "$SLURM_CONF" >"$t/slurmctld.out.log" 2>&1 &
-pids+=($!)
-slurmd -D -N localhost -f "$SLURM_CONF" >"$t/slurmd.out.log" 2>&1 &
-pids+=($!)
-state=""
-for _ in $(seq 120); do
-  for p in "${pids[@]}"; do
-    kill -0 "$p" 2>/dev/null || { for f in "$t"/*.log; do echo "--- $f"; tail -n 30 "$f"; done; skip "a Slurm daemon exited at start"; }
-  done
-  state=$(sinfo -h -n localhost -o %T 2>/dev/null)
-  [ "$state" = idle ] && break
-  sleep 0.5
-done
-[ "$state" = idle ] || fail "the node is not idle after 60 s (sinfo: '$state')"
-echo "slurm up: node localhost idle, $cpus CPUs"
+cat "$t/start.out"
 
 cat >"$t/spec.yaml" <<SPEC
 scenarios: [$src/scenarios/corridor_3.yaml]

@@ -1,8 +1,9 @@
 // The per-mode CSVs of the output directory beside timeline.csv: marginalizations.csv,
-// sparsifications.csv and loops.csv (docs/output-contract.md).
+// sparsifications.csv and loop_attempts.csv (docs/output-contract.md).
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "slam/mapping/mapper.hpp"
 
@@ -12,5 +13,15 @@ namespace lifelong::eval {
 void WriteMarginalizations(const std::string& path, const slam::Mapper& mapper);
 /// DIR/<mode>/sparsifications.csv: one row per edge-budget sparsification.
 void WriteSparsifications(const std::string& path, const slam::Mapper& mapper);
+
+/// One loop search and the observation it ran at.
+struct LoopAttemptRow {
+  int obs = 0;
+  slam::LoopAttempt attempt;
+};
+/// DIR/<mode>/loop_attempts.csv: one row per loop search that had candidates.
+void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow>& rows);
+/// The name of a refusal as in summary.json's loop_verification ("low_score", ...).
+const char* RefusalName(slam::MatchRefusal why);
 
 }  // namespace lifelong::eval

@@ -12,7 +12,6 @@
 #include "eval/common/resources.hpp"
 #include "eval/common/stopwatch.hpp"
 #include "eval/experiment/false_closures.hpp"
-#include "eval/experiment/mode_csv.hpp"
 #include "eval/figures/change_tiles.hpp"
 #include "eval/figures/run_maps.hpp"
 #include "eval/metrics/change_recall.hpp"
@@ -102,6 +101,7 @@ void ModeRunner::Record(const slam::StepStats& s) {
   row.sequential = SequentialOutcome(s);
   row.odometry_lost = s.odometry_lost;
   timeline_.push_back(row);
+  for (const slam::LoopAttempt& a : s.loop_attempts) loop_attempts_.push_back({row.obs, a});
   if (s.observation_index > 0) {  // the first observation has nothing to match against
     ++sequential_.count;
     if (s.incremental_match_ok) ++sequential_.matched;
@@ -385,6 +385,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
                                          rr.trans_std_m, rr.rot_mean_deg, rr.rot_std_deg};
   }
   WriteTimelineCsv(out("timeline.csv"), timeline_);
+  WriteLoopAttempts(out("loop_attempts.csv"), loop_attempts_);
   if (mode_.Prunes()) {
     WriteMarginalizations(out("marginalizations.csv"), m);
     WriteSparsifications(out("sparsifications.csv"), m);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "eval/experiment/experiment.hpp"
+#include "eval/experiment/mode_csv.hpp"
 #include "eval/metrics/metrics.hpp"
 #include "eval/metrics/summary.hpp"
 #include "slam/mapping/mapper.hpp"
@@ -82,6 +83,7 @@ class ModeRunner {
   const ExperimentConfig& config_;
   std::unique_ptr<slam::Mapper> mapper_;
   std::vector<TimelineRow> timeline_;
+  std::vector<LoopAttemptRow> loop_attempts_;   ///< every loop search, for loop_attempts.csv
   std::vector<std::size_t> observation_scans_;  ///< per timeline row: its scan's index
   std::vector<LoopCurvePoint> loop_curve_;
   std::vector<Pose2> aligned_to_reference_;

@@ -2,6 +2,7 @@
 // (slam/loops/loop_closer.hpp). The mapper reports them in StepStats.
 #pragma once
 
+#include <limits>
 #include <optional>
 
 #include "slam/loops/loop_verifier.hpp"
@@ -11,6 +12,13 @@ namespace lifelong::slam {
 struct LoopAttempt {
   enum class Search { kLocal, kGlobal };
   Search search = Search::kLocal;
+  NodeId current = -1;  ///< the node searched for
+  /// The node the best match was against: the likeliest candidate (local) or the most similar
+  /// place matched (global); -1 when no match ran.
+  NodeId old = -1;
+  /// The best match's score (the points' mean likelihood on the reference, scan_matcher.hpp),
+  /// whether it passed or not; NaN when no match ran (too few reference points).
+  double score = std::numeric_limits<double>::quiet_NaN();
   int candidates = 0;                   ///< nodes (local) or places (global) matched against
   double window_m = 0.0;                ///< the matcher's half-width...
   double window_rad = 0.0;              ///< ...and heading half-width

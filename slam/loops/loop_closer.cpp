@@ -152,6 +152,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   verifier_.NoteAttempt();
   LoopAttempt attempt;
   attempt.search = LoopAttempt::Search::kLocal;
+  attempt.current = current;
   const auto refuse = [&](MatchRefusal why) {
     verifier_.NoteRefused(why);
     attempt.refused = why;
@@ -164,6 +165,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   if (lc.submap_span > 0) KeepOneVisit(lc.submap_span, &candidates);
   const Submap submap = BuildSubmap(view.graph, candidates, near, lc);
   attempt.candidates = static_cast<int>(candidates.size());
+  attempt.old = Likeliest(candidates).id;
   MatcherConfig mc = lc.matcher;
   mc.linear_window_m = std::max(Clamp3Sigma(submap.var_x, lc.min_window_m, lc.max_window_m),
                                 Clamp3Sigma(submap.var_y, lc.min_window_m, lc.max_window_m));
@@ -173,7 +175,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   MatchRefusal why = MatchRefusal::kLowScore;
   const Pose2& X_cur = view.values.at(current);
   const std::optional<MatchResult> found =
-      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why);
+      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why, &attempt.score);
   if (!found) return refuse(why);
   const MatchResult& match = *found;
 
@@ -182,6 +184,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
     return refuse(MatchRefusal::kImplausible);
   }
   const NodeId old = NearestCandidate(view.values, candidates, match.T_ref_cur);
+  attempt.old = old;
   attempt.proposed = true;
   attempt.accepted = Propose(view, old, current, match, accepted);
   return attempt;
@@ -190,7 +193,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
 std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
                                                    const std::set<NodeId>& submap, NodeId current,
                                                    const Pose2& guess, const MatcherConfig& mc,
-                                                   MatchRefusal* why) {
+                                                   MatchRefusal* why, double* score) {
   const LoopClosingConfig& lc = config_;
   const std::vector<Eigen::Vector2d>& points = view.nodes.at(current).points;
   std::vector<Eigen::Vector2d> reference;
@@ -205,6 +208,7 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
   }
   grid_.Build(reference, mc);
   const MatchResult match = Match(grid_, points, guess, mc);
+  *score = match.score;
   if (!match.ok || match.score < lc.min_score) {
     *why = MatchRefusal::kLowScore;
   } else if (match.ambiguity > lc.max_ambiguity) {

@@ -76,11 +76,11 @@ class LoopCloser {
   std::vector<Eigen::Vector2d> Reference(const LoopClosingView& view, NodeId id);
   /// Matches the current node's points against the submap's references around `guess`: the
   /// match when it has enough points in reach, scores, is unambiguous and locally unique;
-  /// else nothing and *why.
+  /// else nothing and *why. *score: the match's score whenever one ran (else untouched).
   std::optional<MatchResult> MatchSubmap(const LoopClosingView& view,
                                          const std::set<NodeId>& submap, NodeId current,
                                          const Pose2& guess, const MatcherConfig& mc,
-                                         MatchRefusal* why);
+                                         MatchRefusal* why, double* score);
   /// The match's correction of the current pose lies inside the consistency gate
   /// (loops.consistency_chi2) of `covariance` plus the match's own.
   bool Plausible(const LoopClosingView& view, const MatchResult& match, NodeId current,
@@ -110,10 +110,12 @@ class LoopCloser {
   std::vector<PlaceCandidate> SimilarPlaces(const LoopClosingView& view, NodeId current,
                                             const PlaceDescriptor& place) const;
   /// Each candidate matched around the descriptor's heading; those that match and are
-  /// plausible where the covariance projection reaches them. *why: the last refusal.
+  /// plausible where the covariance projection reaches them. *why: the last refusal;
+  /// attempt->old and ->score: the best-scoring candidate's, refused or not.
   std::vector<PlaceCandidate> MatchCandidates(const LoopClosingView& view, NodeId current,
                                               const std::vector<PlaceCandidate>& candidates,
-                                              const MatcherConfig& mc, MatchRefusal* why);
+                                              const MatcherConfig& mc, MatchRefusal* why,
+                                              LoopAttempt* attempt);
   std::optional<LoopAttempt> MatchPlaces(const LoopClosingView& view, NodeId current,
                                          const PlaceDescriptor& place,
                                          std::vector<LoopHypothesis>* accepted);

@@ -10,6 +10,7 @@
 // ambiguity). Then it goes through the same group verification (slam/loops/loop_verifier.hpp).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -75,7 +76,7 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::SimilarPlaces(
 
 std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
     const LoopClosingView& view, NodeId current, const std::vector<PlaceCandidate>& candidates,
-    const MatcherConfig& mc, MatchRefusal* why) {
+    const MatcherConfig& mc, MatchRefusal* why, LoopAttempt* attempt) {
   const double k2 = config_.global.plausible_sigmas * config_.global.plausible_sigmas;
   std::vector<PlaceCandidate> matched;
   for (const PlaceCandidate& p : candidates) {
@@ -89,8 +90,13 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
       submap.insert(n);
     }
     MatchRefusal refused = MatchRefusal::kLowScore;
+    double score = std::numeric_limits<double>::quiet_NaN();
     const std::optional<MatchResult> match =
-        MatchSubmap(view, submap, current, guess, mc, &refused);
+        MatchSubmap(view, submap, current, guess, mc, &refused, &score);
+    if (score > attempt->score || (std::isnan(attempt->score) && !std::isnan(score))) {
+      attempt->score = score;
+      attempt->old = p.id;
+    }
     if (!match) {
       if (refused != MatchRefusal::kLowScore) *why = refused;
       continue;
@@ -119,6 +125,7 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   verifier_.NoteGlobalAttempt();
   LoopAttempt attempt;
   attempt.search = LoopAttempt::Search::kGlobal;
+  attempt.current = current;
   attempt.candidates = static_cast<int>(proposals.size());
   MatcherConfig mc = lc.matcher;
   mc.linear_window_m = attempt.window_m = g.linear_window_m;
@@ -131,7 +138,8 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   // Every proposal is matched: a place that another, distant place matches about as well
   // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
   MatchRefusal why = MatchRefusal::kLowScore;
-  const std::vector<PlaceCandidate> matched = MatchCandidates(view, current, proposals, mc, &why);
+  const std::vector<PlaceCandidate> matched =
+      MatchCandidates(view, current, proposals, mc, &why, &attempt);
   if (matched.empty()) return refuse(why);
   const auto best = std::max_element(matched.begin(), matched.end(),
                                      [](const PlaceCandidate& a, const PlaceCandidate& b) {
@@ -145,6 +153,8 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
     }
   }
   verifier_.NoteGlobalProposed();
+  attempt.old = best->id;
+  attempt.score = best->match.score;
   attempt.proposed = true;
   attempt.accepted = Propose(view, best->id, current, best->match, accepted);
   return attempt;

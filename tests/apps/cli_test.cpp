@@ -103,6 +103,7 @@ TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
     const auto first = nlohmann::json::parse(Read(dir / "summary.json"));
     EXPECT_NEAR(precision, first["modes"]["standard"]["loop_precision"].get<double>(), 1e-6);
     EXPECT_TRUE(fs::exists(dir / "standard" / "loops.csv"));
+    EXPECT_TRUE(fs::exists(dir / "standard" / "loop_attempts.csv"));
   }
   ExpectTimelineRows(dir / "pruned" / "timeline.csv");
   // The table: modes in --modes order, the baseline first, units in the headers.

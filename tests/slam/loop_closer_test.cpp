@@ -68,6 +68,11 @@ TEST(LoopCloser, ClosesTheReturnOntoTheStartAndCorrectsItsOffset) {
   const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
   ASSERT_TRUE(attempt.has_value());
   EXPECT_EQ(attempt->search, LoopAttempt::Search::kLocal);
+  EXPECT_EQ(attempt->current, 12);
+  EXPECT_GE(attempt->old, 0);
+  EXPECT_LT(attempt->old, 12);
+  EXPECT_GE(attempt->score, Immediate().min_score);
+  EXPECT_LE(attempt->score, 1.0);
   EXPECT_FALSE(attempt->refused.has_value());
   EXPECT_TRUE(attempt->proposed);
   EXPECT_GE(attempt->candidates, 1);
@@ -84,6 +89,25 @@ TEST(LoopCloser, ClosesTheReturnOntoTheStartAndCorrectsItsOffset) {
   EXPECT_NEAR(NormalizeAngle(h.T_old_current.theta - truth.theta), 0.0, 0.02);
   EXPECT_EQ(closer.stats().attempts, 1);
   EXPECT_EQ(closer.stats().proposed, 1);
+}
+
+TEST(LoopCloser, ARefusedAttemptKeepsItsScoreAndCandidate) {
+  // Above any score a match can reach: refused as low_score, and the attempt still says which
+  // node it was matched against and how well, for loop_attempts.csv.
+  const Chain chain(Pose2(0.1, 0.05, 0.0));
+  LoopClosingConfig lc = Immediate();
+  lc.min_score = 1.5;
+  LoopCloser closer(lc, IncrementalConfig{});
+  std::vector<LoopHypothesis> accepted;
+  const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
+  ASSERT_TRUE(attempt.has_value());
+  ASSERT_TRUE(attempt->refused.has_value());
+  EXPECT_EQ(*attempt->refused, MatchRefusal::kLowScore);
+  EXPECT_FALSE(attempt->proposed);
+  EXPECT_GE(attempt->old, 0);
+  EXPECT_GT(attempt->score, 0.5);  // the right place, refused only by the threshold
+  EXPECT_LT(attempt->score, 1.5);
+  EXPECT_TRUE(accepted.empty());
 }
 
 TEST(LoopCloser, NoCandidateNoAttempt) {

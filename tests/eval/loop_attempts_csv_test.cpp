@@ -1,0 +1,66 @@
+// loop_attempts.csv: one row per loop search, with the refusal named as in summary.json.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "eval/experiment/mode_csv.hpp"
+
+namespace lifelong::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
+  slam::LoopAttempt refused;
+  refused.current = 40;
+  refused.old = 3;
+  refused.score = 0.25;
+  refused.candidates = 2;
+  refused.window_m = 0.5;
+  refused.window_rad = 0.15;
+  refused.refused = slam::MatchRefusal::kLowScore;
+  slam::LoopAttempt proposed;
+  proposed.search = slam::LoopAttempt::Search::kGlobal;
+  proposed.current = 41;
+  proposed.old = 7;
+  proposed.score = 0.8125;
+  proposed.candidates = 3;
+  proposed.window_m = 4.0;
+  proposed.window_rad = 0.2;
+  proposed.proposed = true;
+  proposed.accepted = 2;
+  slam::LoopAttempt few;  // no match ran: no candidate matched, no score
+  few.current = 42;
+  few.candidates = 1;
+  few.refused = slam::MatchRefusal::kFewPoints;
+
+  const fs::path path = fs::temp_directory_path() / "lifelong_loop_attempts_test.csv";
+  WriteLoopAttempts(path.string(), {{40, refused}, {41, proposed}, {42, few}});
+  EXPECT_EQ(Read(path),
+            "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted\n"
+            "40,40,local,2,3,0.5000,0.15000,0.2500,low_score,0\n"
+            "41,41,global,3,7,4.0000,0.20000,0.8125,proposed,2\n"
+            "42,42,local,1,-1,0.0000,0.00000,,few_points,0\n");
+  fs::remove(path);
+}
+
+TEST(LoopAttemptsCsv, RefusalsAreNamedAsInTheSummary) {
+  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kFewPoints), "few_points");
+  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kLowScore), "low_score");
+  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kAmbiguous), "ambiguous");
+  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kNotUnique), "not_unique");
+  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kImplausible), "implausible");
+}
+
+}  // namespace
+}  // namespace lifelong::eval

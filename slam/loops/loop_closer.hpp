@@ -97,17 +97,21 @@ class LoopCloser {
   /// it accepted are appended to *accepted, and their number returned.
   int Propose(const LoopClosingView& view, NodeId old, NodeId current, const MatchResult& match,
               std::vector<LoopHypothesis>* accepted);
-  /// The place descriptor of `id` from its points and its recent neighbours', in its frame.
-  PlaceDescriptor Describe(const LoopClosingView& view, NodeId id) const;
+  /// The points of `id`'s place: its own and its recent neighbours', in its frame.
+  std::vector<Eigen::Vector2d> PlacePoints(const LoopClosingView& view, NodeId id) const;
   /// An earlier place the descriptor index proposes, and its match once verified.
   struct PlaceCandidate {
     NodeId id;
     PlaceComparison cmp;
+    double lateral_m = 0.0;  ///< the query described from this far to its left (y)
     MatchResult match;
   };
-  /// The loops.global.candidates places most similar to `place` among those the robot has
-  /// left (odometry path length), within the descriptor distance, most similar first.
+  /// The loops.global.candidates places most similar to `place` (described from `points`)
+  /// among those the robot has left (odometry path length), within the descriptor distance,
+  /// most similar first. The query is also described from origins shifted sideways
+  /// (loops.global.lateral_steps), since a polar descriptor changes with a lane's offset.
   std::vector<PlaceCandidate> SimilarPlaces(const LoopClosingView& view, NodeId current,
+                                            const std::vector<Eigen::Vector2d>& points,
                                             const PlaceDescriptor& place) const;
   /// Each candidate matched around the descriptor's heading; those that match and are
   /// plausible where the covariance projection reaches them. *why: the last refusal;
@@ -117,6 +121,7 @@ class LoopCloser {
                                               const MatcherConfig& mc, MatchRefusal* why,
                                               LoopAttempt* attempt);
   std::optional<LoopAttempt> MatchPlaces(const LoopClosingView& view, NodeId current,
+                                         const std::vector<Eigen::Vector2d>& points,
                                          const PlaceDescriptor& place,
                                          std::vector<LoopHypothesis>* accepted);
 

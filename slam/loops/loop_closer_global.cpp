@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -25,16 +26,17 @@ std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view,
                                                     std::vector<LoopHypothesis>* accepted) {
   const GlobalLoopConfig& g = config_.global;
   if (!g.enabled) return std::nullopt;
-  const PlaceDescriptor place = Describe(view, current);
+  const std::vector<Eigen::Vector2d> points = PlacePoints(view, current);
+  const PlaceDescriptor place = DescribePlace(points, g.descriptor);
   if (place.occupied < g.min_occupied) return std::nullopt;
   std::optional<LoopAttempt> attempt;
-  if (search) attempt = MatchPlaces(view, current, place, accepted);
+  if (search) attempt = MatchPlaces(view, current, points, place, accepted);
   // Indexed after its own search, so that it never finds itself.
   places_.Add(current, place);
   return attempt;
 }
 
-PlaceDescriptor LoopCloser::Describe(const LoopClosingView& view, NodeId id) const {
+std::vector<Eigen::Vector2d> LoopCloser::PlacePoints(const LoopClosingView& view, NodeId id) const {
   const GlobalLoopConfig& g = config_.global;
   const Pose2& X = view.values.at(id);
   const std::vector<NodeId>& recent = view.recent;
@@ -51,22 +53,44 @@ PlaceDescriptor LoopCloser::Describe(const LoopClosingView& view, NodeId id) con
       points.emplace_back(x, y);
     }
   }
-  return DescribePlace(points, g.descriptor);
+  return points;
 }
 
 std::vector<LoopCloser::PlaceCandidate> LoopCloser::SimilarPlaces(
-    const LoopClosingView& view, NodeId current, const PlaceDescriptor& place) const {
+    const LoopClosingView& view, NodeId current, const std::vector<Eigen::Vector2d>& points,
+    const PlaceDescriptor& place) const {
   const GlobalLoopConfig& g = config_.global;
   const NodeData& cur = view.nodes.at(current);
-  std::vector<PlaceCandidate> out;
-  for (NodeId id : places_.Nearest(place, static_cast<std::size_t>(g.index_neighbours))) {
-    const auto node = view.nodes.find(id);
-    if (node == view.nodes.end()) continue;
-    // Not a revisit: the robot has not left this place (odometry path length).
-    if (cur.travelled_m - node->second.travelled_m < config_.min_path_separation_m) continue;
-    const PlaceComparison cmp = ComparePlaces(place, places_.Get(id));
-    if (cmp.distance <= g.max_distance) out.push_back({id, cmp, {}});
+  std::map<NodeId, PlaceCandidate> best;  // per place, its most similar query
+  const auto compare = [&](const PlaceDescriptor& query, double lateral_m) {
+    if (query.occupied < g.min_occupied) return;
+    for (NodeId id : places_.Nearest(query, static_cast<std::size_t>(g.index_neighbours))) {
+      const auto node = view.nodes.find(id);
+      if (node == view.nodes.end()) continue;
+      // Not a revisit: the robot has not left this place (odometry path length).
+      if (cur.travelled_m - node->second.travelled_m < config_.min_path_separation_m) continue;
+      const PlaceComparison cmp = ComparePlaces(query, places_.Get(id));
+      if (cmp.distance > g.max_distance) continue;
+      const auto it = best.find(id);
+      if (it == best.end() || cmp.distance < it->second.cmp.distance) {
+        best[id] = {id, cmp, lateral_m, {}};
+      }
+    }
+  };
+  compare(place, 0.0);
+  // Scan Context's bins are polar: a street driven a lane or two to the side puts the near
+  // walls in other sectors and rings. The query described from origins beside the robot
+  // finds such a place again (Kim et al. 2021, Scan Context++, its lateral augmentation).
+  for (int k = 1; k <= g.lateral_steps; ++k) {
+    for (const double side : {-1.0, 1.0}) {
+      const double lateral_m = side * k * g.lateral_step_m;
+      std::vector<Eigen::Vector2d> shifted = points;
+      for (Eigen::Vector2d& p : shifted) p.y() -= lateral_m;
+      compare(DescribePlace(shifted, g.descriptor), lateral_m);
+    }
   }
+  std::vector<PlaceCandidate> out;
+  for (const auto& [id, c] : best) out.push_back(c);
   std::sort(out.begin(), out.end(), [](const PlaceCandidate& a, const PlaceCandidate& b) {
     return a.cmp.distance < b.cmp.distance;
   });
@@ -80,9 +104,10 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
   const double k2 = config_.global.plausible_sigmas * config_.global.plausible_sigmas;
   std::vector<PlaceCandidate> matched;
   for (const PlaceCandidate& p : candidates) {
-    // The current scan placed at the candidate, turned by the descriptors' heading, against
-    // the candidate and its graph neighbours.
-    const Pose2 guess = view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad);
+    // The current scan placed at the candidate, turned by the descriptors' heading (and moved
+    // back from the query's shifted origin), against the candidate and its graph neighbours.
+    const Pose2 guess =
+        view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad) * Pose2(0.0, -p.lateral_m, 0.0);
     std::set<NodeId> submap{p.id};
     int added = 0;
     for (NodeId n : view.graph.Neighbours(p.id)) {
@@ -110,17 +135,18 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
       *why = MatchRefusal::kImplausible;
       continue;
     }
-    matched.push_back({p.id, p.cmp, *match});
+    matched.push_back({p.id, p.cmp, p.lateral_m, *match});
   }
   return matched;
 }
 
 std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, NodeId current,
+                                                   const std::vector<Eigen::Vector2d>& points,
                                                    const PlaceDescriptor& place,
                                                    std::vector<LoopHypothesis>* accepted) {
   const LoopClosingConfig& lc = config_;
   const GlobalLoopConfig& g = lc.global;
-  const std::vector<PlaceCandidate> proposals = SimilarPlaces(view, current, place);
+  const std::vector<PlaceCandidate> proposals = SimilarPlaces(view, current, points, place);
   if (proposals.empty()) return std::nullopt;
   verifier_.NoteGlobalAttempt();
   LoopAttempt attempt;

@@ -27,6 +27,9 @@ struct GlobalLoopConfig {
   double max_distance = 0.35;  ///< descriptor distance in [0, 1]: farther is no candidate
   int min_occupied = 30;       ///< descriptor bins: sparser places are neither indexed nor searched
   int context_nodes = 10;      ///< recent nodes whose points, with the node's, make its place
+  /// A search also describes the query from origins this far to each side (m)...
+  double lateral_step_m = 1.0;
+  int lateral_steps = 2;            ///< ...this many on each side (0: from the robot only)
   double linear_window_m = 4.0;     ///< m, search half-width around the candidate's position
   double angular_window_rad = 0.2;  ///< rad, around the descriptor's heading
   /// A match within reach of the covariance projection must pass the local search's

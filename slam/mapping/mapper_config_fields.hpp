@@ -141,6 +141,8 @@ void VisitGlobal(V& v, slam::GlobalLoopConfig& g) {
   v.Number("max_distance", g.max_distance, kUnit);
   v.Int("min_occupied", g.min_occupied, 0);
   v.Int("context_nodes", g.context_nodes, 0, 1000);
+  v.Number("lateral_step_m", g.lateral_step_m, kPositive);
+  v.Int("lateral_steps", g.lateral_steps, 0, 20);
   v.Number("linear_window_m", g.linear_window_m, kWindowM);
   v.Number("angular_window_rad", g.angular_window_rad, kWindowRad);
   v.Number("plausible_sigmas", g.plausible_sigmas, kPositive);

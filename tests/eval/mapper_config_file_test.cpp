@@ -69,6 +69,8 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(ga.max_distance, gb.max_distance);
   EXPECT_EQ(ga.min_occupied, gb.min_occupied);
   EXPECT_EQ(ga.context_nodes, gb.context_nodes);
+  EXPECT_EQ(ga.lateral_step_m, gb.lateral_step_m);
+  EXPECT_EQ(ga.lateral_steps, gb.lateral_steps);
   EXPECT_EQ(ga.linear_window_m, gb.linear_window_m);
   EXPECT_EQ(ga.angular_window_rad, gb.angular_window_rad);
   EXPECT_EQ(ga.plausible_sigmas, gb.plausible_sigmas);
@@ -214,7 +216,7 @@ MapperConfig AllChanged() {
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
   l.verify = {false, 2, 9.0, 30.0, 20.0, 0.004, 0.002, 0.0005, 0.0001};
-  l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 3.0, 0.3, 2.5, {15, 72, 25.0}};
+  l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 0.5, 3, 3.0, 0.3, 2.5, {15, 72, 25.0}};
   l.suspect_chi2 = 12.0;
   l.inject_false_share = 0.05;
   l.inject_false_dx_m = 1.0;

@@ -62,6 +62,7 @@ struct Figure {
   std::vector<Panel> panels;                  ///< stacked top to bottom, sharing the x axis
   std::map<std::string, std::string> files;   ///< mode -> its data file
   std::map<std::string, std::string> titles;  ///< mode -> legend entry; absent: the mode
+  bool side_by_side = false;  ///< panels left to right (the seed's layout), else stacked
 };
 
 /// Writes a plot_data file atomically; a failure becomes the result's error (figures are
@@ -95,12 +96,20 @@ bool WriteScript(const Figure& f, const std::string& out_dir, const std::string&
                  const PlotConfig& c, PlotResult* result) {
   const std::string tmp = io::TempPathFor((fs::path(out_dir) / (f.name + ".png")).string());
   std::ostringstream gp;
-  const int height = f.panels.size() > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
+  const auto n = static_cast<int>(f.panels.size());
+  int width = c.width_px, height = n > 1 ? c.height_px * 3 / 2 : c.height_px;  // px
+  if (f.side_by_side) {
+    width = c.width_px * n * 2 / 3;
+    height = c.height_px * 4 / 5;
+  }
   // `reset` and `unset output`: each script stands alone, run by itself or after others.
-  gp << "reset\nset terminal " << terminal << " noenhanced size " << c.width_px << "," << height
+  gp << "reset\nset terminal " << terminal << " noenhanced size " << width << "," << height
      << "\nset output " << GpQuote(fs::path(tmp).filename().string()) << "\n"
      << "set xlabel " << GpQuote(f.xlabel) << "\nset grid\nset key top left\n";
-  if (f.panels.size() > 1) gp << "set multiplot layout " << f.panels.size() << ",1\n";
+  if (n > 1) {
+    gp << "set multiplot layout " << (f.side_by_side ? 1 : n) << "," << (f.side_by_side ? n : 1)
+       << "\n";
+  }
   for (const Panel& panel : f.panels) {
     gp << "set ylabel " << GpQuote(panel.ylabel) << "\n"
        << (panel.log_y ? "set logscale y\n" : "unset logscale y\n")
@@ -119,7 +128,7 @@ bool WriteScript(const Figure& f, const std::string& out_dir, const std::string&
     }
     gp << "\n";
   }
-  if (f.panels.size() > 1) gp << "unset multiplot\n";
+  if (n > 1) gp << "unset multiplot\n";
   gp << "unset output\n";
   return WritePlotFile(fs::path(out_dir) / "plot_data" / (f.name + ".gp"), gp.str(), result);
 }
@@ -257,6 +266,23 @@ bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
         LinesFigure("", "memory held by the graph [MiB]", 9, any_graph_bytes).panels[0]},
        {},
        {}},
+      // The seed's layouts: Figs. 6.1-6.4 (time per observation, nodes, edges) and Fig. 6.5
+      // (edges, gamma index), panels side by side.
+      {"performance",
+       "observation",
+       {LinesFigure("", "time per observation [ms] (moving average)", 3, config.log_time).panels[0],
+        LinesFigure("", "number of nodes", 4, false).panels[0],
+        LinesFigure("", "number of edges", 5, false).panels[0]},
+       {},
+       {},
+       true},
+      {"edges_gamma",
+       "observation",
+       {LinesFigure("", "edges", 5, false).panels[0],
+        LinesFigure("", "gamma index", 6, true).panels[0]},
+       {},
+       {},
+       true},
   };
   for (Figure& f : made) {
     f.files = files;

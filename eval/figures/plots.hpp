@@ -49,8 +49,10 @@ using ModeTimelines = std::map<std::string, std::vector<TimelineRow>>;
 
 /// Writes time_per_obs.png (raw as dots, moving average as lines), nodes.png, edges.png,
 /// gamma.png, cumulative_time.png (the sum of time_ms, s) and memory.png (two panels: the
-/// timeline's rss_mb and graph_bytes, both in MiB) into out_dir (which must exist). Each
-/// mode is drawn in its own colour (eval/figures/mode_colors.hpp).
+/// timeline's rss_mb and graph_bytes, both in MiB) into out_dir (which must exist); and two
+/// in the seed's layout, panels side by side: performance.png (time per observation, nodes,
+/// edges: Figs. 6.1-6.4) and edges_gamma.png (edges, gamma index: Fig. 6.5). Each mode is
+/// drawn in its own colour (eval/figures/mode_colors.hpp).
 PlotResult PlotTimelines(const ModeTimelines& timelines, const std::string& out_dir,
                          const PlotConfig& config = {});
 

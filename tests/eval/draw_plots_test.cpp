@@ -155,13 +155,19 @@ TEST(PlotsTest, WritesEveryFigureOrReportsMissingGnuplot) {
   const PlotResult r =
       PlotTimelines({{"standard", Timeline(50, 10)}, {"chow_liu", Timeline(50, 3)}}, dir.string());
   EXPECT_TRUE(r.ok) << r.error;
-  ASSERT_EQ(r.files.size(), 6u);
-  for (const char* name : {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png",
-                           "cumulative_time.png", "memory.png"}) {
+  ASSERT_EQ(r.files.size(), 8u);
+  for (const char* name :
+       {"time_per_obs.png", "nodes.png", "edges.png", "gamma.png", "cumulative_time.png",
+        "memory.png", "performance.png", "edges_gamma.png"}) {
     EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
     EXPECT_FALSE(fs::exists(io::TempPathFor((dir / name).string()))) << name;
   }
   EXPECT_GT(cv::imread((dir / "memory.png").string()).rows, 500);  // two panels
+  // The seed's layouts: three and two panels side by side, wider than tall.
+  const cv::Mat performance = cv::imread((dir / "performance.png").string());
+  EXPECT_GT(performance.cols, 2 * performance.rows);
+  const cv::Mat edges_gamma = cv::imread((dir / "edges_gamma.png").string());
+  EXPECT_GT(edges_gamma.cols, edges_gamma.rows);
   const PlotResult k = PlotRun({}, {{"chow_liu", {0.1, 0.3, 0.2}}}, {}, dir.string());
   EXPECT_TRUE(k.ok) << k.error;
   EXPECT_FALSE(cv::imread((dir / "kld.png").string()).empty());
@@ -181,7 +187,7 @@ TEST(PlotsTest, ARunsFiguresInOneProcessNoneWhenGnuplotAlwaysFails) {
       {"pruned", {{10.0, 1.0, 0.5, 1, 2}, {20.0, 1.0, 0.6, 2, 3}}}};
   const PlotResult r = PlotRun(timelines, kl, curves, dir.string());
   EXPECT_TRUE(r.ok) << r.error;
-  EXPECT_EQ(r.files.size(), 8u);
+  EXPECT_EQ(r.files.size(), 10u);
   for (const char* name : {"gamma.png", "kld.png", "loop_closing.png", "memory.png"})
     EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name;
   // The loop figure's script after the memory one's: no multiplot or log axis carried over.
@@ -208,7 +214,7 @@ TEST(PlotsTest, ARunsFiguresInOneProcessNoneWhenGnuplotAlwaysFails) {
   EXPECT_FALSE(failed.ok);
   EXPECT_NE(failed.error.find("gnuplot.log"), std::string::npos) << failed.error;
   EXPECT_TRUE(failed.files.empty());
-  EXPECT_EQ(failed.failed.size(), 7u);  // six timeline figures and kld.png
+  EXPECT_EQ(failed.failed.size(), 9u);  // eight timeline figures and kld.png
   for (const auto& entry : fs::directory_iterator(other))
     EXPECT_NE(entry.path().extension(), ".png") << entry.path();
 }

@@ -17,9 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kRunFigures[] = {"time_per_obs.png", "nodes.png",       "edges.png",
-                                   "gamma.png",        "memory.png",      "cumulative_time.png",
-                                   "kld.png",          "loop_closing.png"};
+const char* const kRunFigures[] = {
+    "time_per_obs.png",    "nodes.png",       "edges.png",       "gamma.png", "memory.png",
+    "cumulative_time.png", "performance.png", "edges_gamma.png", "kld.png",   "loop_closing.png"};
 
 std::vector<TimelineRow> Timeline(int n, int growth) {
   std::vector<TimelineRow> rows(static_cast<std::size_t>(n));
@@ -64,7 +64,7 @@ TEST(PlotIsolationTest, ARunWithoutClosuresGivesEveryFigure) {
     const PlotResult r = PlotRun(timelines, kl, curves, dir.string());
     EXPECT_TRUE(r.ok) << r.error;
     EXPECT_TRUE(r.failed.empty());
-    EXPECT_EQ(r.files.size(), 8u);
+    EXPECT_EQ(r.files.size(), 10u);
     for (const char* name : kRunFigures)
       EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name << ", revisits " << revisits;
     const std::string script = Read(dir / "plot_data" / "loop_closing.gp");
@@ -106,7 +106,7 @@ TEST(PlotIsolationTest, ABrokenFigureLosesOnlyItself) {
   EXPECT_NE(r.error.find("kld.png"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find(r.failed[0].log), std::string::npos) << r.error;
   EXPECT_NE(Read(r.failed[0].log).find("range"), std::string::npos) << Read(r.failed[0].log);
-  EXPECT_EQ(r.files.size(), 7u);
+  EXPECT_EQ(r.files.size(), 9u);
   for (const char* name : kRunFigures) {
     const bool lost = std::string(name) == "kld.png";
     EXPECT_EQ(cv::imread((dir / name).string()).empty(), lost) << name;
@@ -138,7 +138,7 @@ TEST(PlotIsolationTest, MessagesNameTheFinalDirectory) {
   const PlotResult r = PlotRun({{"standard", Timeline(50, 10)}}, {}, {}, staging.string(), config);
   ASSERT_EQ(r.failed.size(), 1u) << r.error;
   EXPECT_EQ(r.failed[0].figure, "nodes.png");
-  EXPECT_EQ(r.files.size(), 5u);
+  EXPECT_EQ(r.files.size(), 7u);
   EXPECT_EQ(r.error.find(staging.string()), std::string::npos) << r.error;
   fs::rename(staging, final_dir);
   EXPECT_NE(Read(r.failed[0].log).find("refused on purpose"), std::string::npos) << r.failed[0].log;

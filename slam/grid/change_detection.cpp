@@ -316,30 +316,6 @@ void CutAcrossSurfaces(const LaserScan& older, const Pose2& T_world_old_laser,
   }
 }
 
-/// The returns in runs of change that were judged: the older returns seen through and the
-/// newer returns an older beam passed, each counted once.
-int ChangedReturns(const std::vector<BeamCut>& removed,
-                   const std::vector<std::pair<std::uint32_t, BeamCut>>& added,
-                   const std::vector<std::uint32_t>& added_news) {
-  std::vector<std::uint32_t> judged_added;
-  for (const auto& a : added) {
-    if (std::binary_search(added_news.begin(), added_news.end(), a.first))
-      judged_added.push_back(a.first);
-  }
-  SortUnique(&judged_added);
-  return static_cast<int>(removed.size() + judged_added.size());
-}
-
-/// Whether two scans agree enough to be compared: min_agreement of the returns both see; or,
-/// when the returns in runs of change are at most max_changed_share of them,
-/// min_unchanged_agreement of the others (a moved desk that fills much of the overlap says nothing
-/// of the poses, while a pose error leaves even the unchanged parts in disagreement).
-bool Agree(int agree, int visible, int changed, const ChangeDetectionConfig& config) {
-  if (agree >= config.min_agreement * visible) return true;
-  return changed > 0 && changed <= config.max_changed_share * visible &&
-         agree >= config.min_unchanged_agreement * (visible - changed);
-}
-
 }  // namespace
 
 ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
@@ -371,6 +347,11 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
         added.push_back({new_beam, CutBefore(older, old_beam, distance_m, config)});
       },
       &unseen);
+  // A point hidden behind a nearer return of the other scan says nothing of the poses: the
+  // other scan saw something else there (a wall from another room, an object since moved).
+  const int visible = c.judged - c.hidden;
+  c.compared = visible > 0 && c.agree >= config.min_agreement * visible;
+  if (!c.compared) return c;
   SortUnique(&removed);
   KeepRuns(min_run, &removed);
   SortUnique(&removed_news);
@@ -379,12 +360,6 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   for (const auto& a : added) added_news.push_back(a.first);
   SortUnique(&added_news);
   KeepRunsToTheEdge(min_run, newer, unseen, 4.0 * config.margin_m, &added_news);
-  // A point hidden behind a nearer return of the other scan says nothing of the poses: the
-  // other scan saw something else there (a wall from another room, an object since moved).
-  const int visible = c.judged - c.hidden;
-  c.compared =
-      visible > 0 && Agree(c.agree, visible, ChangedReturns(removed, added, added_news), config);
-  if (!c.compared) return c;
   c.outdated = removed;
   for (const auto& [new_beam, cut] : added) {
     if (std::binary_search(added_news.begin(), added_news.end(), new_beam))

@@ -65,12 +65,6 @@ struct ChangeDetectionConfig {
   /// a nearer return, that must agree (within margin_m) for the two scans to be compared at
   /// all.
   double min_agreement = 0.6;
-  /// Two scans short of min_agreement are still compared when the returns in runs of change
-  /// (seen through, in min_run_beams runs) are at most this share of those both see and the
-  /// others agree by min_unchanged_agreement: a moved object that fills much of the overlap is
-  /// a change, while a pose error leaves the unchanged parts in disagreement too (0: never).
-  double max_changed_share = 0.0;
-  double min_unchanged_agreement = 0.85;
   /// A return that lies more than this behind the other scan's return along its beam is
   /// hidden from it: something nearer stands in front, where a pose error moves a surface
   /// by less. Hidden returns do not count toward min_agreement. A value under margin_m acts

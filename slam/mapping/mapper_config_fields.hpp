@@ -235,8 +235,6 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       d.Number("margin_m", r.detection.margin_m, kNonNegative);
       d.Number("edge_guard_m", r.detection.edge_guard_m, kNonNegative);
       d.Number("min_agreement", r.detection.min_agreement, kUnit);
-      d.Number("max_changed_share", r.detection.max_changed_share, kUnit);
-      d.Number("min_unchanged_agreement", r.detection.min_unchanged_agreement, kUnit);
       d.Number("hidden_m", r.detection.hidden_m, kNonNegative);
       d.Number("min_incidence_rad", r.detection.min_incidence_rad, kNonNegative);
       d.Number("min_incidence_added_rad", r.detection.min_incidence_added_rad, kNonNegative);

@@ -142,7 +142,6 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.dpg.detection.margin_m, b.pruning.dpg.detection.margin_m);
   EXPECT_EQ(a.pruning.dpg.detection.edge_guard_m, b.pruning.dpg.detection.edge_guard_m);
   EXPECT_EQ(a.pruning.dpg.detection.min_agreement, b.pruning.dpg.detection.min_agreement);
-  EXPECT_EQ(a.pruning.dpg.detection.max_changed_share, b.pruning.dpg.detection.max_changed_share);
   EXPECT_EQ(a.pruning.dpg.detection.min_incidence_rad, b.pruning.dpg.detection.min_incidence_rad);
   EXPECT_EQ(a.pruning.dpg.detection.min_incidence_added_rad,
             b.pruning.dpg.detection.min_incidence_added_rad);

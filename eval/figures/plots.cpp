@@ -218,11 +218,11 @@ Figure LinesFigure(const std::string& name, const std::string& ylabel, int col, 
           {}};
 }
 
-// The timeline figures (data files written into plot_data/); false with the error set
-// when a data file cannot be written.
-bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
-                     const PlotConfig& config, std::vector<Figure>* figures, PlotResult* r) {
-  std::map<std::string, std::string> files;  // mode -> data file
+// Each mode's timeline as plot_data/timeline_<mode>.dat into *files (mode -> data file);
+// false with the error set when one cannot be written.
+bool WriteTimelineData(const ModeTimelines& timelines, const std::string& out_dir,
+                       const PlotConfig& config, std::map<std::string, std::string>* files,
+                       PlotResult* r) {
   for (const auto& [mode, rows] : timelines) {
     std::vector<double> ms;
     for (const TimelineRow& row : rows) ms.push_back(row.time_ms);
@@ -239,8 +239,17 @@ bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
           << rows[i].rss_mb << ' ' << static_cast<double>(rows[i].graph_bytes) / kMiB << '\n';
     }
     if (!WritePlotFile(p, out.str(), r)) return false;
-    files[mode] = p.string();
+    (*files)[mode] = p.string();
   }
+  return true;
+}
+
+// The timeline figures (data files written into plot_data/); false with the error set
+// when a data file cannot be written.
+bool TimelineFigures(const ModeTimelines& timelines, const std::string& out_dir,
+                     const PlotConfig& config, std::vector<Figure>* figures, PlotResult* r) {
+  std::map<std::string, std::string> files;  // mode -> data file
+  if (!WriteTimelineData(timelines, out_dir, config, &files, r)) return false;
   bool any_graph_bytes = false;  // a log axis needs a positive value
   for (const auto& [mode, rows] : timelines)
     for (const TimelineRow& row : rows) any_graph_bytes = any_graph_bytes || row.graph_bytes > 0;

@@ -1,13 +1,15 @@
 // The global loop search (loops.global; loop_config.hpp GlobalLoopConfig): candidates come
 // from the place index, not from the projected uncertainty, so a revisit is found however far
-// the estimate has drifted. Each candidate is matched by the correlative matcher's branch and
-// bound in a window of loops.global.linear_window_m around the candidate node's position, at
-// the heading the descriptors agree on, against the candidate and its graph neighbours. A
-// match must pass the local search's tests (score, ambiguity, local uniqueness). The test
-// against the projected uncertainty is widened (plausible_sigmas) where the projection
-// reaches the candidate and left out where it does not, since the drift is what is being
-// corrected; and no other proposal far from the best may score nearly as well (cross-map
-// ambiguity). Then it goes through the same group verification (slam/loops/loop_verifier.hpp).
+// the estimate has drifted. The query is described from the robot and from origins beside
+// it (loops.global.lateral_steps), for a polar descriptor changes with a lane's offset. Each
+// candidate is matched by the correlative matcher's branch and bound in a window of
+// loops.global.linear_window_m around the candidate node's position, at the heading the
+// descriptors agree on, against the candidate and its graph neighbours. A match must pass
+// the local search's tests (score, ambiguity, local uniqueness). The test against the
+// projected uncertainty is widened (plausible_sigmas) where the projection reaches the
+// candidate and left out where it does not, since the drift is what is being corrected; and
+// no other proposal far from the best may score nearly as well (cross-map ambiguity). Then
+// it goes through the same group verification (slam/loops/loop_verifier.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>

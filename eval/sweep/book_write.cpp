@@ -126,7 +126,10 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
        "reproduced</title>\n<style>body{font-family:sans-serif;max-width:1200px;margin:auto}"
        "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 6px}"
        ".holds{background:#d8f5d8}.not{background:#f8d8d8}.inc{background:#f3f3d0}"
-       "img{max-width:560px;margin:4px}figure{display:inline-block;margin:4px}"
+       // The sweep's charts two to a row; a figure of the seed's at its own width, up to the
+       // page's (the seed's layouts are three panels wide).
+       "img{max-width:560px;margin:4px}figure{display:inline-block;margin:4px;max-width:100%}"
+       "figure img{max-width:100%}"
        "figcaption{font-size:90%;color:#444}</style></head><body>\n"
     << "<h1>The seed's chapter 6, reproduced</h1>\n<p><code>lifelong reproduce --profile "
     << HtmlEscape(o.profile) << "</code> at " << HtmlEscape(o.commit) << ", " << HtmlEscape(o.day)

@@ -30,29 +30,14 @@ void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
   io::WriteFileAtomically(path, text);
 }
 
-const char* RefusalName(slam::MatchRefusal why) {
-  switch (why) {
-    case slam::MatchRefusal::kFewPoints:
-      return "few_points";
-    case slam::MatchRefusal::kLowScore:
-      return "low_score";
-    case slam::MatchRefusal::kAmbiguous:
-      return "ambiguous";
-    case slam::MatchRefusal::kNotUnique:
-      return "not_unique";
-    case slam::MatchRefusal::kImplausible:
-      return "implausible";
-  }
-  return "unknown";
-}
-
 void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow>& rows) {
   std::string text = "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted\n";
   char line[192];
   for (const LoopAttemptRow& r : rows) {
     const slam::LoopAttempt& a = r.attempt;
     const char* search = a.search == slam::LoopAttempt::Search::kGlobal ? "global" : "local";
-    const char* outcome = a.refused ? RefusalName(*a.refused) : (a.proposed ? "proposed" : "none");
+    const char* outcome =
+        a.refused ? slam::MatchRefusalName(*a.refused) : (a.proposed ? "proposed" : "none");
     char score[32] = "";  // empty: no match ran
     if (!std::isnan(a.score)) std::snprintf(score, sizeof(score), "%.4f", a.score);
     std::snprintf(line, sizeof(line), "%d,%lld,%s,%d,%lld,%.4f,%.5f,%s,%s,%d\n", r.obs,

@@ -21,7 +21,5 @@ struct LoopAttemptRow {
 };
 /// DIR/<mode>/loop_attempts.csv: one row per loop search that had candidates.
 void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow>& rows);
-/// The name of a refusal as in summary.json's loop_verification ("low_score", ...).
-const char* RefusalName(slam::MatchRefusal why);
 
 }  // namespace lifelong::eval

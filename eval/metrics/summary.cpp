@@ -43,12 +43,20 @@ json TimeJson(const TimeStats& t) {
 
 json LoopVerificationJson(const LoopVerificationSummary& l) {
   const slam::LoopVerifierStats& v = l.counts;
-  json lv = {{"proposed", v.proposed},       {"accepted", v.accepted},
-             {"rejected", v.rejected},       {"expired", v.expired},
-             {"not_unique", v.not_unique},   {"switched_off", l.switched_off},
-             {"attempts", v.attempts},       {"few_points", v.few_points},
-             {"low_score", v.low_score},     {"ambiguous", v.ambiguous},
-             {"implausible", v.implausible}, {"beyond_window", v.beyond_window}};
+  using slam::MatchRefusal;
+  using slam::MatchRefusalName;
+  json lv = {{"proposed", v.proposed},
+             {"accepted", v.accepted},
+             {"rejected", v.rejected},
+             {"expired", v.expired},
+             {MatchRefusalName(MatchRefusal::kNotUnique), v.not_unique},
+             {"switched_off", l.switched_off},
+             {"attempts", v.attempts},
+             {MatchRefusalName(MatchRefusal::kFewPoints), v.few_points},
+             {MatchRefusalName(MatchRefusal::kLowScore), v.low_score},
+             {MatchRefusalName(MatchRefusal::kAmbiguous), v.ambiguous},
+             {MatchRefusalName(MatchRefusal::kImplausible), v.implausible},
+             {"beyond_window", v.beyond_window}};
   if (l.global) {
     lv["global_attempts"] = v.global_attempts;
     lv["global_proposed"] = v.global_proposed;

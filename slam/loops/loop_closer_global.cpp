@@ -120,7 +120,7 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
     double score = std::numeric_limits<double>::quiet_NaN();
     const std::optional<MatchResult> match =
         MatchSubmap(view, submap, current, guess, mc, &refused, &score);
-    if (score > attempt->score || (std::isnan(attempt->score) && !std::isnan(score))) {
+    if (!std::isnan(score) && (std::isnan(attempt->score) || score > attempt->score)) {
       attempt->score = score;
       attempt->old = p.id;
     }

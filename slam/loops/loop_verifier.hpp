@@ -92,6 +92,23 @@ struct LoopVerifierStats {
 /// Why the mapper refused a loop-closure match before it became a hypothesis.
 enum class MatchRefusal { kFewPoints, kLowScore, kAmbiguous, kNotUnique, kImplausible };
 
+/// A refusal's name, as summary.json's loop_verification and loop_attempts.csv give it.
+inline const char* MatchRefusalName(MatchRefusal why) {
+  switch (why) {
+    case MatchRefusal::kFewPoints:
+      return "few_points";
+    case MatchRefusal::kLowScore:
+      return "low_score";
+    case MatchRefusal::kAmbiguous:
+      return "ambiguous";
+    case MatchRefusal::kNotUnique:
+      return "not_unique";
+    case MatchRefusal::kImplausible:
+      return "implausible";
+  }
+  return "unknown";
+}
+
 class LoopVerifier {
  public:
   explicit LoopVerifier(const LoopVerifierConfig& config) : config_(config) {}

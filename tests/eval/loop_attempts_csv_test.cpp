@@ -55,11 +55,11 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
 }
 
 TEST(LoopAttemptsCsv, RefusalsAreNamedAsInTheSummary) {
-  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kFewPoints), "few_points");
-  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kLowScore), "low_score");
-  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kAmbiguous), "ambiguous");
-  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kNotUnique), "not_unique");
-  EXPECT_STREQ(RefusalName(slam::MatchRefusal::kImplausible), "implausible");
+  EXPECT_STREQ(slam::MatchRefusalName(slam::MatchRefusal::kFewPoints), "few_points");
+  EXPECT_STREQ(slam::MatchRefusalName(slam::MatchRefusal::kLowScore), "low_score");
+  EXPECT_STREQ(slam::MatchRefusalName(slam::MatchRefusal::kAmbiguous), "ambiguous");
+  EXPECT_STREQ(slam::MatchRefusalName(slam::MatchRefusal::kNotUnique), "not_unique");
+  EXPECT_STREQ(slam::MatchRefusalName(slam::MatchRefusal::kImplausible), "implausible");
 }
 
 }  // namespace

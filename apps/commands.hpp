@@ -53,7 +53,7 @@ struct ScoreArgs {
 };
 
 /// `reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]`
-/// (eval/sweep/book.hpp).
+/// (eval/book/book.hpp).
 struct ReproduceArgs {
   std::string book, profile = "quick", out;
   int jobs = 0;  ///< 0: the number of cores

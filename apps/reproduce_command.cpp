@@ -1,7 +1,7 @@
 // `lifelong reproduce [--profile quick|full] [--book FILE] -o DIR [-j N | --slurm ...]`:
 // each experiment of the BOOK runs as a sweep in DIR/<its SPEC's stem>/ (resumed like any
 // sweep: cells up to date are not run again), each claim is judged on its sweep's cells, and the
-// book is written to DIR/index.html and DIR/results.md (eval/sweep/book.hpp, docs/reproduce.md).
+// book is written to DIR/index.html and DIR/results.md (eval/book/book.hpp, docs/reproduce.md).
 #include "apps/reproduce_command.hpp"
 
 #include <algorithm>
@@ -12,9 +12,9 @@
 
 #include "apps/exit_codes.hpp"
 #include "apps/sweep_command.hpp"
+#include "eval/book/book.hpp"
 #include "eval/common/interrupt.hpp"
 #include "eval/report/build_info.hpp"
-#include "eval/sweep/book.hpp"
 #include "eval/sweep/sweep_run.hpp"
 #include "eval/sweep/sweep_slurm.hpp"
 

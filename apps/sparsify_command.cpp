@@ -14,7 +14,7 @@
 #include "io/output_path.hpp"
 #include "sensor/input_error.hpp"
 #include "slam/backend/optimizer.hpp"
-#include "slam/sparsify/global_kl.hpp"
+#include "slam/marginal/global_kl.hpp"
 #include "slam/sparsify/offline_sparsify.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 

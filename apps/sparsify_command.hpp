@@ -1,5 +1,5 @@
 // `lifelong sparsify`: the offline sparsification protocol on a g2o/TORO pose graph
-// (slam/sparsify/offline_sparsify.hpp, slam/sparsify/global_kl.hpp); slam + io only, like
+// (slam/sparsify/offline_sparsify.hpp, slam/marginal/global_kl.hpp); slam + io only, like
 // `optimize`.
 #pragma once
 

@@ -7,7 +7,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "eval/experiment/simulation.hpp"
 #include "eval/metrics/map_quality.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 #include "render/offscreen_renderer.hpp"
 #include "sim/scenario.hpp"
 

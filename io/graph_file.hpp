@@ -9,7 +9,7 @@
 //   LIFELONG_CLIQUE_SE2 m id_root id_1..id_{m-1} (x y th)*(m-1) upper-triangle(3(m-1))
 // which g2o's own loader skips with a warning and ReadGraphFile reads back. Its error is
 // e_j = t2v(Z_j^-1 X_root^-1 X_{id_j}) stacked over j, the root-shifted form of a generic
-// linear constraint (Carlevaris-Bianco et al. 2014), so GLC factors (slam/sparsify/glc.hpp) need no
+// linear constraint (Carlevaris-Bianco et al. 2014), so GLC factors (slam/marginal/glc.hpp) need no
 // other record: a low-rank GLC factor is written with its positive semidefinite information
 // (rank below 3(m-1)), and a ternary GLC conditional is a record with m = 3.
 #pragma once

@@ -10,9 +10,9 @@
 
 #include "eval/figures/run_maps.hpp"
 #include "eval/figures/video.hpp"
-#include "eval/metrics/ground_truth.hpp"
 #include "eval/metrics/summary.hpp"
 #include "eval/report/report_files.hpp"
+#include "eval/truth/ground_truth.hpp"
 #include "sensor/observation.hpp"
 #include "sim/world.hpp"
 #include "slam/grid/grid_map.hpp"

@@ -2,10 +2,10 @@
 
 #include <filesystem>
 
-#include "eval/metrics/scan_cells.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
 #include "eval/metrics/truth_metrics.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/scan_cells.hpp"
+#include "eval/truth/world_state.hpp"
 #include "io/carmen_log.hpp"
 #include "io/tum.hpp"
 #include "sensor/input_error.hpp"

@@ -1,6 +1,6 @@
 #include "eval/experiment/simulation.hpp"
 
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,7 @@
 #include "eval/common/raster_limit.hpp"
 #include "eval/figures/draw.hpp"
 #include "eval/metrics/map_quality.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 #include "io/carmen_log.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"

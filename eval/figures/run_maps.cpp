@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "eval/metrics/truth_raster.hpp"
+#include "eval/truth/truth_raster.hpp"
 #include "io/map_file.hpp"
 #include "io/tum.hpp"
 

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "eval/metrics/map_quality.hpp"
-#include "eval/metrics/sightings.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/sightings.hpp"
+#include "eval/truth/world_state.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "eval/metrics/truth_raster.hpp"
+#include "eval/truth/truth_raster.hpp"
 #include "sensor/pose2.hpp"
 #include "types/occupancy_grid.hpp"
 #include "types/segment.hpp"

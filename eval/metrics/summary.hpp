@@ -130,7 +130,7 @@ struct ModeSummary {
   std::optional<double> occupied_share;
   /// The run's scans drawn at this mode's poses and at the reference's (the truth, or a log's
   /// reference), over the scans both have: the distinct grid cells their returns fall in
-  /// (eval/metrics/scan_cells.hpp). Fewer is sharper.
+  /// (eval/truth/scan_cells.hpp). Fewer is sharper.
   std::optional<std::int64_t> scan_cells;
   std::optional<std::int64_t> scan_cells_reference;
 };

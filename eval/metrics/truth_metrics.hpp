@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "eval/metrics/ground_truth.hpp"
 #include "eval/metrics/summary.hpp"
+#include "eval/truth/ground_truth.hpp"
 #include "sensor/pose2.hpp"
 #include "types/occupancy_grid.hpp"
 

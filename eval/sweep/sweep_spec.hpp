@@ -48,7 +48,7 @@ struct SweepSpec {
 };
 
 /// What a log that does not exist is: an error (the default), or a note in missing_logs
-/// (a book's experiment on public logs the project does not ship, eval/sweep/book.hpp).
+/// (a book's experiment on public logs the project does not ship, eval/book/book.hpp).
 enum class MissingLogs { kRefuse, kRecord };
 
 /// Reads and checks `path` (see above). Throws lifelong::InputError.

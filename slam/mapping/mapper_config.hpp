@@ -10,9 +10,9 @@
 #include "slam/grid/grid_map.hpp"
 #include "slam/loops/loop_config.hpp"
 #include "slam/mapping/mode.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/matching/incremental_config.hpp"
 #include "slam/removal/removal_policy.hpp"
-#include "slam/sparsify/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -11,7 +11,7 @@
 
 #include "slam/backend/optimizer_problem.hpp"
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 namespace lifelong::slam {
 

@@ -18,7 +18,7 @@
 #include "slam/graph/se2.hpp"
 #include "slam/grid/beam_cut.hpp"
 #include "slam/mapping/mapper_state.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -10,8 +10,8 @@
 #include <Eigen/LU>
 
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/chow_liu.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/chow_liu.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/nfr.hpp"
 
 namespace lifelong::slam {

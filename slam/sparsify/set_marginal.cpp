@@ -8,7 +8,7 @@
 #include <Eigen/SparseCore>
 
 #include "slam/backend/clique_algebra.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "slam/backend/clique_algebra.hpp"
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/glc.hpp"
+#include "slam/marginal/glc.hpp"
 
 namespace lifelong::slam {
 namespace {

@@ -30,7 +30,7 @@
 #include <Eigen/Core>
 
 #include "slam/graph/pose_graph.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 namespace lifelong::slam {
 

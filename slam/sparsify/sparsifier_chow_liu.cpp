@@ -1,6 +1,6 @@
 // Sparsifier "chow-liu": Chow-Liu tree of relative-pose edges with exact pair conditionals
 // (kChowLiu). Wraps slam::Marginalize, so its factors are those of the mapper's matching mode.
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -1,7 +1,7 @@
 // Sparsifier "exact": one dense root-relative clique over N, the exact Schur complement (kExact).
 // Wraps slam::Marginalize, so its factors are those of the mapper's matching mode. A connected
 // set of removed nodes goes at once, through one sparse factorization (set_marginal.hpp).
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/set_marginal.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 

@@ -5,7 +5,7 @@
 // dense GLC factor replaces it.
 #include <cmath>
 
-#include "slam/sparsify/glc.hpp"
+#include "slam/marginal/glc.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -3,7 +3,7 @@
 // GLC removes intra-clique factors), so it also replaces earlier GLC factors within N. A
 // connected set of removed nodes goes at once (set_marginal.hpp), absorbing the factors among
 // its whole boundary.
-#include "slam/sparsify/glc.hpp"
+#include "slam/marginal/glc.hpp"
 #include "slam/sparsify/set_marginal.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 

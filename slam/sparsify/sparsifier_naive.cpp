@@ -1,7 +1,7 @@
 // Sparsifier "naive": star of composed edges through k (marginalization.hpp, kNaive); ignores
 // clique factors at k. Wraps slam::Marginalize, so its factors are those of the mapper's matching
 // mode.
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {

@@ -1,7 +1,7 @@
-// The results book of `lifelong reproduce` (eval/sweep/book.hpp): a BOOK's bad input names its
+// The results book of `lifelong reproduce` (eval/book/book.hpp): a BOOK's bad input names its
 // file, line and field; the shipped book loads in both profiles; a claim's verdict follows
 // the 95 % interval of the per-seed differences; the markdown says the profile.
-#include "eval/sweep/book.hpp"
+#include "eval/book/book.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,8 +12,8 @@
 
 #include "eval/figures/change_tiles.hpp"
 #include "eval/metrics/map_quality.hpp"
-#include "eval/metrics/truth_raster.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/truth_raster.hpp"
+#include "eval/truth/world_state.hpp"
 
 namespace lifelong::eval {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "eval/experiment/experiment.hpp"
 #include "eval/experiment/simulation.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 #include "sim/scenario.hpp"
 
 namespace lifelong::eval {

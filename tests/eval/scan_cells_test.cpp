@@ -1,6 +1,6 @@
-// scan_cells (eval/metrics/scan_cells.hpp): the same scans at poses that agree cover fewer
+// scan_cells (eval/truth/scan_cells.hpp): the same scans at poses that agree cover fewer
 // cells than at poses that do not.
-#include "eval/metrics/scan_cells.hpp"
+#include "eval/truth/scan_cells.hpp"
 
 #include <cmath>
 #include <stdexcept>

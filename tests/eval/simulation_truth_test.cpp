@@ -5,7 +5,7 @@
 #include <string>
 
 #include "eval/experiment/simulation.hpp"
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {

@@ -1,6 +1,6 @@
 // The truth raster a run makes once (issue #32) scores a map as the per-call rasterization
 // does, also where the map reaches beyond the raster, and refuses a map at another resolution.
-#include "eval/metrics/truth_raster.hpp"
+#include "eval/truth/truth_raster.hpp"
 
 #include <stdexcept>
 

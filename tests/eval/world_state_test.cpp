@@ -1,5 +1,5 @@
 // The world's state at a time, the surfaces gone by the end, and the stale share of a map.
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "slam/sparsify/chow_liu.hpp"
+#include "slam/marginal/chow_liu.hpp"
 
 #include <algorithm>
 #include <cmath>

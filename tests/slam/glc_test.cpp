@@ -1,4 +1,4 @@
-#include "slam/sparsify/glc.hpp"
+#include "slam/marginal/glc.hpp"
 
 #include <cmath>
 #include <random>
@@ -9,7 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 

@@ -1,4 +1,4 @@
-#include "slam/sparsify/global_kl.hpp"
+#include "slam/marginal/global_kl.hpp"
 
 #include <cmath>
 #include <filesystem>

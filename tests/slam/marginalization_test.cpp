@@ -1,4 +1,4 @@
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 #include <cmath>
 #include <random>
@@ -10,7 +10,7 @@
 #include <Eigen/LU>
 
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/chow_liu.hpp"
+#include "slam/marginal/chow_liu.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

@@ -12,7 +12,7 @@
 #include <Eigen/LU>
 
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/LU>
 
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "slam/sparsify/offline_sparsify.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 #include "tests/slam/marginalization_graphs.hpp"

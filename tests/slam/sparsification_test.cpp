@@ -1,10 +1,10 @@
 // Sparsification with Chow-Liu trees: the Markov-blanket policy of a removal and the edge
-// budget's sparsification without a removal (slam/sparsify/marginalization.hpp).
+// budget's sparsification without a removal (slam/marginal/marginalization.hpp).
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

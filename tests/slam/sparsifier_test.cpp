@@ -7,7 +7,7 @@
 #include <Eigen/Cholesky>
 
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 #include "tests/slam/marginalization_graphs.hpp"
 
 namespace lifelong::slam {

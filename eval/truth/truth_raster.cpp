@@ -1,4 +1,4 @@
-#include "eval/metrics/truth_raster.hpp"
+#include "eval/truth/truth_raster.hpp"
 
 #include <algorithm>
 #include <cmath>

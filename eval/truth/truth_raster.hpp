@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "eval/metrics/ground_truth.hpp"
+#include "eval/truth/ground_truth.hpp"
 #include "sensor/pose2.hpp"
 #include "types/occupancy_grid.hpp"
 #include "types/segment.hpp"

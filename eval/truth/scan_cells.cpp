@@ -1,9 +1,9 @@
-#include "eval/metrics/scan_cells.hpp"
+#include "eval/truth/scan_cells.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "eval/metrics/sightings.hpp"
+#include "eval/truth/sightings.hpp"
 
 namespace lifelong::eval {
 

@@ -38,7 +38,7 @@
 
 #include "slam/backend/factor_linearization.hpp"
 #include "slam/graph/pose_graph.hpp"
-#include "slam/sparsify/chow_liu.hpp"
+#include "slam/marginal/chow_liu.hpp"
 
 namespace lifelong::slam {
 

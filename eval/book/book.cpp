@@ -1,5 +1,5 @@
-// Reading a BOOK (eval/sweep/book.hpp).
-#include "eval/sweep/book.hpp"
+// Reading a BOOK (eval/book/book.hpp).
+#include "eval/book/book.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "eval/metrics/world_state.hpp"
+#include "eval/truth/world_state.hpp"
 
 #include <algorithm>
 #include <cstddef>

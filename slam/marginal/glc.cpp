@@ -1,4 +1,4 @@
-#include "slam/sparsify/glc.hpp"
+#include "slam/marginal/glc.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 
 #include "slam/backend/clique_algebra.hpp"
 #include "slam/backend/dense_lapack.hpp"
-#include "slam/sparsify/chow_liu.hpp"
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/chow_liu.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 namespace lifelong::slam {
 namespace {

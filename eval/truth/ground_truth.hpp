@@ -24,7 +24,7 @@ struct GroundTruth {
   std::shared_ptr<const sim::World> world;
   double end_s = 0.0;
   /// These surfaces and the run's true trajectory rasterized at the map resolution, made
-  /// once per run (eval/metrics/truth_raster.hpp) and read by every mode's scoring; none: a
+  /// once per run (eval/truth/truth_raster.hpp) and read by every mode's scoring; none: a
   /// scorer rasterizes for itself.
   std::shared_ptr<const TruthRaster> raster;
 };

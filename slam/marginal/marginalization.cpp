@@ -1,4 +1,4 @@
-#include "slam/sparsify/marginalization.hpp"
+#include "slam/marginal/marginalization.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 #include "slam/backend/clique_algebra.hpp"
 #include "slam/graph/se2.hpp"
-#include "slam/sparsify/chow_liu.hpp"
+#include "slam/marginal/chow_liu.hpp"
 
 namespace lifelong::slam {
 namespace {

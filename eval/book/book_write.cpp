@@ -1,12 +1,12 @@
 // The results book of `lifelong reproduce`: DIR/results.md and DIR/index.html
-// (eval/sweep/book.hpp). Every table names its profile; a quick book says it rests on fewer seeds
+// (eval/book/book.hpp). Every table names its profile; a quick book says it rests on fewer seeds
 // and shorter scenarios than the seed's experiments.
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
+#include "eval/book/book.hpp"
 #include "eval/common/html.hpp"
-#include "eval/sweep/book.hpp"
 #include "io/atomic_file.hpp"
 
 namespace lifelong::eval {

@@ -1,5 +1,5 @@
 // What the robot saw of a changing object after its last change (sightings.hpp).
-#include "eval/metrics/sightings.hpp"
+#include "eval/truth/sightings.hpp"
 
 #include <algorithm>
 #include <cmath>

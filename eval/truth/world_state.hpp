@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "eval/metrics/ground_truth.hpp"
+#include "eval/truth/ground_truth.hpp"
 #include "sim/world.hpp"
 #include "types/segment.hpp"
 

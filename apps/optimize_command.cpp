@@ -26,20 +26,21 @@ int OptimizeGraph(const OptimizeArgs& args) {
   }
   params.linear_initialization = !args.no_init;
   io::GraphFile file = io::ReadGraphFile(args.graph);
-  if (file.graph.NumNodes() == 0) throw InputError(args.graph, 0, "", "the graph has no vertices");
-  const auto summary = slam::Optimize(file.graph, &file.values, params);
+  const slam::PoseGraph graph = slam::PoseGraph::FromFactors(file.factors);
+  if (graph.NumNodes() == 0) throw InputError(args.graph, 0, "", "the graph has no vertices");
+  const auto summary = slam::Optimize(graph, &file.values, params);
   if (!std::isfinite(summary.initial_chi2) || !std::isfinite(summary.final_chi2)) {
     std::ostringstream what;
     what << "the graph's chi2 is not finite (initial " << summary.initial_chi2 << ", final "
          << summary.final_chi2 << "): its measurements or information overflow";
     throw InputError(args.graph, 0, "", what.str());
   }
-  std::cout << std::setprecision(10) << "vertices " << file.graph.NumNodes() << "\nedges "
-            << file.graph.edges().size() << "\ninitial_chi2 " << summary.initial_chi2
-            << "\nfinal_chi2 " << summary.final_chi2 << "\niterations " << summary.iterations
-            << "\nsolve_time_s " << summary.solve_time_s << "\nconverged "
-            << (summary.converged ? "yes" : "no") << " (" << summary.message << ")\n";
-  if (!args.out.empty()) io::WriteG2o(args.out, file.graph, file.values);
+  std::cout << std::setprecision(10) << "vertices " << graph.NumNodes() << "\nedges "
+            << graph.edges().size() << "\ninitial_chi2 " << summary.initial_chi2 << "\nfinal_chi2 "
+            << summary.final_chi2 << "\niterations " << summary.iterations << "\nsolve_time_s "
+            << summary.solve_time_s << "\nconverged " << (summary.converged ? "yes" : "no") << " ("
+            << summary.message << ")\n";
+  if (!args.out.empty()) io::WriteG2o(args.out, graph.Factors(), file.values);
   return 0;
 }
 

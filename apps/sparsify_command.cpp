@@ -160,17 +160,18 @@ int Sparsify(const SparsifyArgs& args) {
     throw InputError("sparsify", 0, "", "give --keep-share F or --remove FILE");
   }
   io::GraphFile file = io::ReadGraphFile(args.graph);
-  if (file.graph.NumNodes() == 0) throw InputError(args.graph, 0, "", "the graph has no vertices");
-  CheckConnected(file.graph, args.graph);
+  slam::PoseGraph graph = slam::PoseGraph::FromFactors(file.factors);
+  if (graph.NumNodes() == 0) throw InputError(args.graph, 0, "", "the graph has no vertices");
+  CheckConnected(graph, args.graph);
   const std::vector<NodeId> remove =
-      args.keep_share ? slam::RemovalForKeepShare(file.graph.NodeIds(), *args.keep_share)
-                      : ReadRemoveFile(args.remove, file.graph);
-  if (remove.size() == file.graph.NumNodes()) {
+      args.keep_share ? slam::RemovalForKeepShare(graph.NodeIds(), *args.keep_share)
+                      : ReadRemoveFile(args.remove, graph);
+  if (remove.size() == graph.NumNodes()) {
     throw InputError(args.remove, 0, "id", "every node would be removed");
   }
   slam::OptimizerParams params;  // plain least squares: no robust kernel
-  slam::Optimize(file.graph, &file.values, params);
-  const slam::PoseGraph& full = file.graph;
+  slam::Optimize(graph, &file.values, params);
+  const slam::PoseGraph& full = graph;
   const slam::Values& optimum = file.values;
   slam::PoseGraph sparse = full;
   const slam::OfflineSparsifyStats stats =
@@ -179,7 +180,7 @@ int Sparsify(const SparsifyArgs& args) {
   for (NodeId id : sparse.NodeIds()) sparse_values[id] = optimum.at(id);
   slam::Optimize(sparse, &sparse_values, params);
   const slam::GlobalKl kl = slam::GlobalKlDivergence(full, optimum, sparse, sparse_values);
-  if (!args.out.empty()) io::WriteG2o(args.out, sparse, sparse_values);
+  if (!args.out.empty()) io::WriteG2o(args.out, sparse.Factors(), sparse_values);
   PrintResult(args, means, sparsifier->Name(), sparse, stats, kl);
   return 0;
 }

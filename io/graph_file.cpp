@@ -56,7 +56,7 @@ class LineReader {
     }
     return v;
   }
-  slam::NodeId Id(const std::string& field) {
+  NodeId Id(const std::string& field) {
     const std::string token = Token(field);
     char* end = nullptr;
     errno = 0;
@@ -109,16 +109,17 @@ Pose2 ReadPose(LineReader* r, const std::string& prefix) {
 }
 
 struct PendingEdge {
-  slam::PoseEdge edge;
+  PoseEdge edge;
   int line;
 };
 struct PendingClique {
-  slam::CliqueFactor clique;
+  CliqueFactor clique;
   int line;
 };
 
 struct Parsed {
   GraphFile result;
+  std::set<NodeId> nodes;  ///< result.factors.nodes, for lookups
   std::vector<PendingEdge> edges;
   std::vector<PendingClique> cliques;
   bool has_format = false;
@@ -132,16 +133,16 @@ void SetFormat(Parsed* p, GraphFormat format, LineReader* r) {
 }
 
 void ReadVertex(Parsed* p, LineReader* r) {
-  const slam::NodeId id = r->Id("id");
+  const NodeId id = r->Id("id");
   const Pose2 pose = ReadPose(r, "");
   r->ExpectEnd();
-  if (p->result.graph.HasNode(id)) r->Fail("id", "duplicate vertex " + std::to_string(id));
-  p->result.graph.AddNode(id);
+  if (!p->nodes.insert(id).second) r->Fail("id", "duplicate vertex " + std::to_string(id));
+  p->result.factors.nodes.push_back(id);
   p->result.values[id] = pose;
 }
 
 void ReadEdge(Parsed* p, LineReader* r) {
-  slam::PoseEdge e;
+  PoseEdge e;
   e.from = r->Id("from");
   e.to = r->Id("to");
   e.T_from_to = ReadPose(r, "d");
@@ -154,7 +155,7 @@ void ReadEdge(Parsed* p, LineReader* r) {
 }
 
 void ReadClique(Parsed* p, LineReader* r) {
-  const slam::NodeId m = r->Id("size");
+  const NodeId m = r->Id("size");
   if (m < 2) r->Fail("size", "clique size must be at least 2");
   // Every token takes at least two characters of the line, so a size the record cannot hold
   // is refused before anything of its size is allocated.
@@ -164,12 +165,12 @@ void ReadClique(Parsed* p, LineReader* r) {
   if (2.0 * tokens > static_cast<double>(r->Length()) + 1.0) {
     r->Fail("size", "the record is too short for a clique of " + std::to_string(m) + " nodes");
   }
-  slam::CliqueFactor c;
-  for (slam::NodeId k = 0; k < m; ++k) c.nodes.push_back(r->Id("node"));
-  if (std::set<slam::NodeId>(c.nodes.begin(), c.nodes.end()).size() != c.nodes.size()) {
+  CliqueFactor c;
+  for (NodeId k = 0; k < m; ++k) c.nodes.push_back(r->Id("node"));
+  if (std::set<NodeId>(c.nodes.begin(), c.nodes.end()).size() != c.nodes.size()) {
     r->Fail("node", "clique names a node twice");
   }
-  for (slam::NodeId k = 1; k < m; ++k) c.T_root_node.push_back(ReadPose(r, "d"));
+  for (NodeId k = 1; k < m; ++k) c.T_root_node.push_back(ReadPose(r, "d"));
   const Eigen::Index d = 3 * (m - 1);
   c.information.resize(d, d);
   for (Eigen::Index i = 0; i < d; ++i) {
@@ -210,16 +211,16 @@ void ReadLine(Parsed* p, LineReader* r) {
 
 // Initial guess for an edges-only file: origin at the smallest id, compose i -> i+1
 // odometry, then spread over any edge touching a placed node until nothing changes.
-void ChainValues(GraphFile* g) {
-  slam::Values& v = g->values;
-  const std::vector<slam::NodeId> ids = g->graph.NodeIds();
+void ChainValues(GraphFile* g, const std::set<NodeId>& nodes) {
+  Values& v = g->values;
+  const std::vector<NodeId> ids(nodes.begin(), nodes.end());
   if (ids.empty()) return;
   v[ids.front()] = Pose2();
-  std::map<slam::NodeId, const slam::PoseEdge*> odometry;
-  for (const slam::PoseEdge& e : g->graph.edges()) {
+  std::map<NodeId, const PoseEdge*> odometry;
+  for (const PoseEdge& e : g->factors.edges) {
     if (e.to == e.from + 1) odometry.emplace(e.from, &e);
   }
-  for (slam::NodeId id : ids) {
+  for (NodeId id : ids) {
     auto it = odometry.find(id - 1);
     if (!v.count(id) && it != odometry.end() && v.count(id - 1)) {
       v[id] = v[id - 1] * it->second->T_from_to;
@@ -227,19 +228,19 @@ void ChainValues(GraphFile* g) {
   }
   // Breadth-first over the edges from every node placed so far, then from the lowest id of
   // each piece still unplaced (at the origin): linear in the edges, whatever their order.
-  std::map<slam::NodeId, std::vector<const slam::PoseEdge*>> incident;
-  for (const slam::PoseEdge& e : g->graph.edges()) {
+  std::map<NodeId, std::vector<const PoseEdge*>> incident;
+  for (const PoseEdge& e : g->factors.edges) {
     incident[e.from].push_back(&e);
     incident[e.to].push_back(&e);
   }
-  std::deque<slam::NodeId> queue;
+  std::deque<NodeId> queue;
   for (const auto& [id, unused] : v) queue.push_back(id);
   const auto spread = [&]() {
     while (!queue.empty()) {
-      const slam::NodeId u = queue.front();
+      const NodeId u = queue.front();
       queue.pop_front();
-      for (const slam::PoseEdge* e : incident[u]) {
-        const slam::NodeId w = e->from == u ? e->to : e->from;
+      for (const PoseEdge* e : incident[u]) {
+        const NodeId w = e->from == u ? e->to : e->from;
         if (v.count(w)) continue;
         v[w] = e->from == u ? v.at(u) * e->T_from_to : v.at(u) * e->T_from_to.Inverse();
         queue.push_back(w);
@@ -247,7 +248,7 @@ void ChainValues(GraphFile* g) {
     }
   };
   spread();
-  for (slam::NodeId id : ids) {
+  for (NodeId id : ids) {
     if (v.count(id)) continue;
     v[id] = Pose2();  // a piece not connected to the first node starts at the origin
     queue.push_back(id);
@@ -257,24 +258,25 @@ void ChainValues(GraphFile* g) {
 
 void AddFactors(Parsed* p, const std::string& name) {
   GraphFile& g = p->result;
-  const bool no_vertices = g.graph.NumNodes() == 0;
+  const bool no_vertices = p->nodes.empty();
   for (const PendingEdge& pe : p->edges) {
-    for (slam::NodeId id : {pe.edge.from, pe.edge.to}) {
-      if (g.graph.HasNode(id)) continue;
+    for (NodeId id : {pe.edge.from, pe.edge.to}) {
+      if (p->nodes.count(id)) continue;
       if (!no_vertices)
         throw InputError(name, pe.line, "id", "edge to unknown vertex " + std::to_string(id));
-      g.graph.AddNode(id);
+      p->nodes.insert(id);
+      g.factors.nodes.push_back(id);
     }
-    g.graph.AddEdge(pe.edge);
+    g.factors.edges.push_back(pe.edge);
   }
   for (const PendingClique& pc : p->cliques) {
-    for (slam::NodeId id : pc.clique.nodes) {
-      if (!g.graph.HasNode(id)) throw InputError(name, pc.line, "node", "clique on unknown vertex");
+    for (NodeId id : pc.clique.nodes) {
+      if (!p->nodes.count(id)) throw InputError(name, pc.line, "node", "clique on unknown vertex");
     }
-    g.graph.AddClique(pc.clique);
+    g.factors.cliques.push_back(pc.clique);
   }
-  if (no_vertices && g.graph.NumNodes() > 0) {
-    ChainValues(&g);
+  if (no_vertices && !p->nodes.empty()) {
+    ChainValues(&g, p->nodes);
     g.values_from_edges = true;
   }
 }
@@ -283,7 +285,7 @@ void WritePose(std::ostream& out, const Pose2& p) {
   out << ' ' << p.x << ' ' << p.y << ' ' << p.theta;
 }
 
-const Pose2& ValueOf(const slam::Values& values, slam::NodeId id) {
+const Pose2& ValueOf(const Values& values, NodeId id) {
   auto it = values.find(id);
   if (it == values.end())
     throw std::invalid_argument("WriteG2o: no value for node " + std::to_string(id));
@@ -309,23 +311,23 @@ GraphFile ReadGraphFile(const std::string& path) {
   return ParseGraph(in, path);
 }
 
-void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values) {
+void WriteG2o(std::ostream& out, const PoseFactors& graph, const Values& values) {
   out << std::setprecision(std::numeric_limits<double>::max_digits10);
-  for (slam::NodeId id : graph.NodeIds()) {
+  for (NodeId id : graph.nodes) {
     out << "VERTEX_SE2 " << id;
     WritePose(out, ValueOf(values, id));
     out << '\n';
   }
-  for (const slam::PoseEdge& e : graph.edges()) {
+  for (const PoseEdge& e : graph.edges) {
     const Eigen::Matrix3d& I = e.information;
     out << "EDGE_SE2 " << e.from << ' ' << e.to;
     WritePose(out, e.T_from_to);
     out << ' ' << I(0, 0) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 1) << ' ' << I(1, 2)
         << ' ' << I(2, 2) << '\n';
   }
-  for (const slam::CliqueFactor& c : graph.cliques()) {
+  for (const CliqueFactor& c : graph.cliques) {
     out << "LIFELONG_CLIQUE_SE2 " << c.nodes.size();
-    for (slam::NodeId id : c.nodes) out << ' ' << id;
+    for (NodeId id : c.nodes) out << ' ' << id;
     for (const Pose2& z : c.T_root_node) WritePose(out, z);
     for (Eigen::Index i = 0; i < c.information.rows(); ++i) {
       for (Eigen::Index j = i; j < c.information.cols(); ++j) out << ' ' << c.information(i, j);
@@ -334,22 +336,22 @@ void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Value
   }
 }
 
-void WriteG2o(const std::string& path, const slam::PoseGraph& graph, const slam::Values& values) {
+void WriteG2o(const std::string& path, const PoseFactors& graph, const Values& values) {
   std::ostringstream out;
   WriteG2o(out, graph, values);
   WriteFileAtomically(path, out.str());
 }
 
-void WriteToro(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values) {
-  if (!graph.cliques().empty())
+void WriteToro(std::ostream& out, const PoseFactors& graph, const Values& values) {
+  if (!graph.cliques.empty())
     throw std::invalid_argument("WriteToro: clique factors have no TORO form");
   out << std::setprecision(std::numeric_limits<double>::max_digits10);
-  for (slam::NodeId id : graph.NodeIds()) {
+  for (NodeId id : graph.nodes) {
     out << "VERTEX2 " << id;
     WritePose(out, ValueOf(values, id));
     out << '\n';
   }
-  for (const slam::PoseEdge& e : graph.edges()) {
+  for (const PoseEdge& e : graph.edges) {
     const Eigen::Matrix3d& I = e.information;
     out << "EDGE2 " << e.from << ' ' << e.to;
     WritePose(out, e.T_from_to);

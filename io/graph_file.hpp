@@ -5,7 +5,7 @@
 //         EDGE2 i j dx dy dth I11 I12 I22 I33 I13 I23      (note the information order)
 // Edge measurements are Z = T_i_j, the information upper triangles in (x, y, theta) order.
 // Also read: `FIX id` (g2o), comments (`#`), blank lines. Our dense marginal cliques
-// (slam::CliqueFactor) have no g2o type; they are written as an extension record
+// (CliqueFactor) have no g2o type; they are written as an extension record
 //   LIFELONG_CLIQUE_SE2 m id_root id_1..id_{m-1} (x y th)*(m-1) upper-triangle(3(m-1))
 // which g2o's own loader skips with a warning and ReadGraphFile reads back. Its error is
 // e_j = t2v(Z_j^-1 X_root^-1 X_{id_j}) stacked over j, the root-shifted form of a generic
@@ -18,20 +18,21 @@
 #include <string>
 #include <vector>
 
-#include "slam/graph/pose_graph.hpp"
+#include "types/pose_factors.hpp"
 
 namespace lifelong::io {
 
 enum class GraphFormat { kG2o, kToro };
 
+/// A graph file's content as plain data; slam::PoseGraph::FromFactors makes it a graph.
 struct GraphFile {
-  slam::PoseGraph graph;
-  slam::Values values;
+  PoseFactors factors;  ///< vertices in file order, then edges and cliques in file order
+  Values values;
   GraphFormat format = GraphFormat::kG2o;
   /// True when the file had edges but no vertices and `values` were built by chaining the
   /// odometry edges i -> i+1 (then any remaining edge) from the smallest id at the origin.
   bool values_from_edges = false;
-  std::vector<slam::NodeId> fixed;  ///< ids named by g2o FIX lines
+  std::vector<NodeId> fixed;  ///< ids named by g2o FIX lines
 };
 
 /// Reads a g2o or TORO file, the format told by its records. Edges j == i + 1 become
@@ -43,12 +44,13 @@ GraphFile ReadGraphFile(const std::string& path);
 /// Same, from a stream; `name` is used in error messages.
 GraphFile ParseGraph(std::istream& in, const std::string& name);
 
-/// Writes every node (values must hold each), edge and clique factor in g2o format.
+/// Writes every node (values must hold each) in the order of `graph.nodes`, then every edge
+/// and clique factor, in g2o format (slam::PoseGraph::Factors() lists the nodes ascending).
 /// The file is written atomically (io/atomic_file.hpp); throws lifelong::InputError when it
 /// cannot be written.
-void WriteG2o(const std::string& path, const slam::PoseGraph& graph, const slam::Values& values);
-void WriteG2o(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values);
+void WriteG2o(const std::string& path, const PoseFactors& graph, const Values& values);
+void WriteG2o(std::ostream& out, const PoseFactors& graph, const Values& values);
 /// TORO format; clique factors have no TORO form and throw std::invalid_argument.
-void WriteToro(std::ostream& out, const slam::PoseGraph& graph, const slam::Values& values);
+void WriteToro(std::ostream& out, const PoseFactors& graph, const Values& values);
 
 }  // namespace lifelong::io

@@ -357,7 +357,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
     return (dir / file).string();
   };
   io::WriteTum(out("trajectory.tum"), trajectory);
-  io::WriteG2o(out("graph.g2o"), m.graph(), m.values());
+  io::WriteG2o(out("graph.g2o"), m.graph().Factors(), m.values());
   const OccupancyGrid grid = ToOccupancyGrid(m.map());
   const io::MapFilePaths map_files = io::WritePgmMap(out("map.pgm"), grid);
   written_.push_back(name_ + "/" + fs::path(map_files.yaml).filename().string());

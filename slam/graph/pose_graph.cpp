@@ -6,6 +6,16 @@
 
 namespace lifelong::slam {
 
+PoseGraph PoseGraph::FromFactors(const PoseFactors& factors) {
+  PoseGraph graph;
+  for (NodeId id : factors.nodes) graph.AddNode(id);
+  for (const PoseEdge& edge : factors.edges) graph.AddEdge(edge);
+  for (const CliqueFactor& clique : factors.cliques) graph.AddClique(clique);
+  return graph;
+}
+
+PoseFactors PoseGraph::Factors() const { return {NodeIds(), edges_, cliques_}; }
+
 void PoseGraph::AddNode(NodeId id) {
   if (!adjacency_.emplace(id, std::set<NodeId>{}).second ||
       !link_count_.emplace(id, std::map<NodeId, int>{}).second) {

@@ -11,39 +11,25 @@
 #include <Eigen/Core>
 
 #include "sensor/pose2.hpp"
-#include "types/edge_kind.hpp"
+#include "types/pose_factors.hpp"
 
 namespace lifelong::slam {
 
-using NodeId = std::int64_t;
-
-/// The current estimate: one pose per node, T_world_node.
-using Values = std::map<NodeId, Pose2>;
-
-/// Relative-pose constraint Z = T_from_to with information Omega (3x3, order x, y, theta).
-/// Error (DESIGN.md):  e = t2v(Z^-1 * (X_from^-1 * X_to)).
-struct PoseEdge {
-  NodeId from = 0;
-  NodeId to = 0;
-  Pose2 T_from_to;
-  Eigen::Matrix3d information = Eigen::Matrix3d::Identity();
-  EdgeKind kind = EdgeKind::kOdometry;
-  bool robust = false;  ///< apply the optimizer's robust kernel (loop closures)
-};
-
-/// A dense factor over a clique, as left by exact marginalization (seed §5.3), in
-/// root-relative coordinates (Carlevaris-Bianco's generic linear constraint): for
-/// nodes = {r, n_1..n_k} it stacks e_j = t2v(Z_j^-1 * (X_r^-1 * X_{n_j})), j = 1..k,
-/// with one dense 3k x 3k information over the stacked error. Block j starts at row 3(j-1).
-struct CliqueFactor {
-  std::vector<NodeId> nodes;       ///< nodes[0] is the root r
-  std::vector<Pose2> T_root_node;  ///< Z_j for nodes[1..], size nodes.size() - 1
-  Eigen::MatrixXd information;     ///< 3k x 3k, symmetric positive (semi)definite
-};
+// The factor types are plain data shared with io (types/pose_factors.hpp).
+using lifelong::CliqueFactor;
+using lifelong::NodeId;
+using lifelong::PoseEdge;
+using lifelong::PoseFactors;
+using lifelong::Values;
 
 /// The graph's factors plus adjacency. Node ids are stable and never reused.
 class PoseGraph {
  public:
+  /// The graph of `factors`: its nodes, then its edges and cliques in their order. Throws
+  /// std::logic_error as AddNode, AddEdge and AddClique do.
+  static PoseGraph FromFactors(const PoseFactors& factors);
+  /// The nodes (ascending ids), edges and cliques, as FromFactors takes them.
+  PoseFactors Factors() const;
   void AddNode(NodeId id);
   bool HasNode(NodeId id) const { return adjacency_.count(id) != 0; }
   /// Adds an edge; both nodes must exist. Returns its index into edges().

@@ -116,13 +116,13 @@ TEST(WriteThroughTempFile, FailedRenameRemovesTheTemporary) {
 // The io writers: a graph, a trajectory, a map and a log cut short by the limit.
 TEST(AtomicWriters, FailedWritesKeepThePreviousFiles) {
   const fs::path dir = FreshDir("writers");
-  slam::PoseGraph graph;
-  slam::Values values;
+  PoseFactors graph;
+  Values values;
   std::vector<StampedPose> poses;
   for (int i = 0; i < 4000; ++i) {
-    graph.AddNode(i);
+    graph.nodes.push_back(i);
     values[i] = Pose2(0.5 * i, 0.0, 0.0);
-    if (i > 0) graph.AddEdge({i - 1, i, Pose2(0.5, 0.0, 0.0)});
+    if (i > 0) graph.edges.push_back({i - 1, i, Pose2(0.5, 0.0, 0.0)});
     poses.push_back({0.1 * i, values[i]});
   }
   OccupancyGrid grid;
@@ -152,7 +152,7 @@ TEST(AtomicWriters, FailedWritesKeepThePreviousFiles) {
   }
   EXPECT_EQ(files, 4u);                   // map.yaml is written after map.pgm, so it never was
   WriteG2o(g2o.string(), graph, values);  // without the limit each writes in full
-  EXPECT_EQ(ReadGraphFile(g2o.string()).graph.NumNodes(), 4000u);
+  EXPECT_EQ(ReadGraphFile(g2o.string()).factors.nodes.size(), 4000u);
 }
 
 }  // namespace

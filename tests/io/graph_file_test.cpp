@@ -40,19 +40,19 @@ TEST(GraphFile, ReadsG2oWithInformationOrder) {
   const GraphFile f = Parse(kG2o);
   EXPECT_EQ(f.format, GraphFormat::kG2o);
   EXPECT_FALSE(f.values_from_edges);
-  EXPECT_EQ(f.graph.NumNodes(), 3u);
-  ASSERT_EQ(f.graph.edges().size(), 2u);
+  EXPECT_EQ(f.factors.nodes.size(), 3u);
+  ASSERT_EQ(f.factors.edges.size(), 2u);
   EXPECT_DOUBLE_EQ(f.values.at(1).y, -2.0);
   EXPECT_DOUBLE_EQ(f.values.at(5).theta, -1.0);
-  const slam::PoseEdge& e = f.graph.edges()[0];
+  const PoseEdge& e = f.factors.edges[0];
   EXPECT_EQ(e.kind, EdgeKind::kOdometry);
   EXPECT_FALSE(e.robust);
   EXPECT_DOUBLE_EQ(e.T_from_to.theta, 0.25);
   Eigen::Matrix3d expected;  // I11 I12 I13 I22 I23 I33 = 10 1 2 20 3 30
   expected << 10, 1, 2, 1, 20, 3, 2, 3, 30;
   EXPECT_EQ(e.information, expected);
-  EXPECT_EQ(f.graph.edges()[1].kind, EdgeKind::kLoop);
-  EXPECT_TRUE(f.graph.edges()[1].robust);
+  EXPECT_EQ(f.factors.edges[1].kind, EdgeKind::kLoop);
+  EXPECT_TRUE(f.factors.edges[1].robust);
 }
 
 TEST(GraphFile, ReadsToroWithItsInformationOrder) {
@@ -62,45 +62,45 @@ TEST(GraphFile, ReadsToroWithItsInformationOrder) {
   EXPECT_EQ(f.format, GraphFormat::kToro);
   Eigen::Matrix3d expected;
   expected << 10, 1, 2, 1, 20, 3, 2, 3, 30;
-  EXPECT_EQ(f.graph.edges().at(0).information, expected);
+  EXPECT_EQ(f.factors.edges.at(0).information, expected);
 }
 
 TEST(GraphFile, G2oRoundTripIsExact) {
   GraphFile f = Parse(kG2o);
-  slam::CliqueFactor c;
+  CliqueFactor c;
   c.nodes = {5, 0, 1};
   c.T_root_node = {Pose2(0.1, 0.2, 0.3), Pose2(-1.0 / 3.0, 2.0, -3.0)};
   c.information = Eigen::MatrixXd::Identity(6, 6);
   c.information(0, 4) = c.information(4, 0) = 0.125;
-  f.graph.AddClique(c);
+  f.factors.cliques.push_back(c);
   std::ostringstream out;
-  WriteG2o(out, f.graph, f.values);
+  WriteG2o(out, f.factors, f.values);
   const GraphFile g = Parse(out.str());
   EXPECT_EQ(g.values.size(), f.values.size());
   for (const auto& [id, p] : f.values) {
     EXPECT_EQ(g.values.at(id).x, p.x);
     EXPECT_DOUBLE_EQ(g.values.at(id).theta, p.theta);
   }
-  ASSERT_EQ(g.graph.edges().size(), f.graph.edges().size());
-  for (std::size_t i = 0; i < f.graph.edges().size(); ++i) {
-    EXPECT_EQ(g.graph.edges()[i].information, f.graph.edges()[i].information);
-    EXPECT_EQ(g.graph.edges()[i].T_from_to.y, f.graph.edges()[i].T_from_to.y);
+  ASSERT_EQ(g.factors.edges.size(), f.factors.edges.size());
+  for (std::size_t i = 0; i < f.factors.edges.size(); ++i) {
+    EXPECT_EQ(g.factors.edges[i].information, f.factors.edges[i].information);
+    EXPECT_EQ(g.factors.edges[i].T_from_to.y, f.factors.edges[i].T_from_to.y);
   }
-  ASSERT_EQ(g.graph.cliques().size(), 1u);
-  EXPECT_EQ(g.graph.cliques()[0].nodes, c.nodes);
-  EXPECT_EQ(g.graph.cliques()[0].information, c.information);
-  EXPECT_EQ(g.graph.cliques()[0].T_root_node[1].x, -1.0 / 3.0);
+  ASSERT_EQ(g.factors.cliques.size(), 1u);
+  EXPECT_EQ(g.factors.cliques[0].nodes, c.nodes);
+  EXPECT_EQ(g.factors.cliques[0].information, c.information);
+  EXPECT_EQ(g.factors.cliques[0].T_root_node[1].x, -1.0 / 3.0);
 }
 
 // A clique of more than a thousand nodes is what set-by-set exact marginalization writes for
 // city10000 at keep share 0.25 (2367 nodes); the reader once capped the size at 1000 and
 // refused `lifelong sparsify`'s own output. Above 100 nodes (d > 300) the semidefiniteness
 // check goes to LAPACK.
-GraphFile ChainWithClique(slam::NodeId m, double corner) {
+GraphFile ChainWithClique(NodeId m, double corner) {
   GraphFile f;
-  slam::CliqueFactor c;
-  for (slam::NodeId id = 0; id < m; ++id) {
-    f.graph.AddNode(id);
+  CliqueFactor c;
+  for (NodeId id = 0; id < m; ++id) {
+    f.factors.nodes.push_back(id);
     f.values[id] = Pose2(0.5 * static_cast<double>(id), 0.0, 0.0);
     c.nodes.push_back(id);
     if (id > 0) c.T_root_node.push_back(Pose2(0.5 * static_cast<double>(id), 0.0, 0.0));
@@ -108,21 +108,21 @@ GraphFile ChainWithClique(slam::NodeId m, double corner) {
   const Eigen::Index d = 3 * (m - 1);
   c.information = Eigen::MatrixXd::Identity(d, d);
   c.information(0, d - 1) = c.information(d - 1, 0) = corner;  // indefinite when above 1
-  f.graph.AddClique(c);
+  f.factors.cliques.push_back(c);
   return f;
 }
 
 TEST(GraphFile, LargeCliqueRoundTrips) {
   const GraphFile f = ChainWithClique(1001, 0.5);
   std::ostringstream out;
-  WriteG2o(out, f.graph, f.values);
+  WriteG2o(out, f.factors, f.values);
   const GraphFile g = Parse(out.str());
-  ASSERT_EQ(g.graph.cliques().size(), 1u);
-  EXPECT_EQ(g.graph.cliques()[0].nodes.size(), 1001u);
-  EXPECT_EQ(g.graph.cliques()[0].information, f.graph.cliques()[0].information);
+  ASSERT_EQ(g.factors.cliques.size(), 1u);
+  EXPECT_EQ(g.factors.cliques[0].nodes.size(), 1001u);
+  EXPECT_EQ(g.factors.cliques[0].information, f.factors.cliques[0].information);
   const GraphFile bad = ChainWithClique(150, 2.0);
   std::ostringstream out_bad;
-  WriteG2o(out_bad, bad.graph, bad.values);
+  WriteG2o(out_bad, bad.factors, bad.values);
   EXPECT_THROW(Parse(out_bad.str()), InputError);
 }
 
@@ -135,10 +135,10 @@ TEST(GraphFile, CliqueSizeBeyondItsRecordIsRefusedBeforeAllocating) {
 TEST(GraphFile, ToroRoundTripKeepsInformation) {
   const GraphFile f = Parse(kG2o);
   std::ostringstream out;
-  WriteToro(out, f.graph, f.values);
+  WriteToro(out, f.factors, f.values);
   const GraphFile g = Parse(out.str());
   EXPECT_EQ(g.format, GraphFormat::kToro);
-  EXPECT_EQ(g.graph.edges()[0].information, f.graph.edges()[0].information);
+  EXPECT_EQ(g.factors.edges[0].information, f.factors.edges[0].information);
 }
 
 // Edges only: 0 at the origin, 1 = 0 * Z01 = (1,0,pi/2), 2 = 1 * Z12 = (1,1,pi/2);
@@ -205,10 +205,10 @@ TEST(GraphFile, MissingFileThrowsInputError) {
 TEST(GraphFile, FileRoundTripThroughDisk) {
   const GraphFile f = Parse(kG2o);
   const std::string path = ::testing::TempDir() + "graph_file_test.g2o";
-  WriteG2o(path, f.graph, f.values);
+  WriteG2o(path, f.factors, f.values);
   const GraphFile g = ReadGraphFile(path);
   std::remove(path.c_str());
-  EXPECT_EQ(g.graph.NumNodes(), 3u);
+  EXPECT_EQ(g.factors.nodes.size(), 3u);
   EXPECT_EQ(g.values.at(5).x, 3.0);
 }
 
@@ -216,16 +216,16 @@ TEST(GraphFile, RealDatasetsHaveTheDocumentedSizes) {
   const std::string dir = std::string(LIFELONG_SHARED_DIR) + "/datasets/pose_graphs/";
   if (!std::ifstream(dir + "intel.g2o")) GTEST_SKIP() << "datasets absent at " << dir;
   const GraphFile intel = ReadGraphFile(dir + "intel.g2o");
-  EXPECT_EQ(intel.graph.NumNodes(), 1728u);
-  EXPECT_EQ(intel.graph.edges().size(), 2512u);
+  EXPECT_EQ(intel.factors.nodes.size(), 1728u);
+  EXPECT_EQ(intel.factors.edges.size(), 2512u);
   const GraphFile toro = ReadGraphFile(dir + "INTEL_P_toro.graph");
   EXPECT_EQ(toro.format, GraphFormat::kToro);
-  EXPECT_EQ(toro.graph.NumNodes(), 1228u);
-  EXPECT_EQ(toro.graph.edges().size(), 1505u);
+  EXPECT_EQ(toro.factors.nodes.size(), 1228u);
+  EXPECT_EQ(toro.factors.edges.size(), 1505u);
   const GraphFile manhattan = ReadGraphFile(dir + "manhattan.g2o");
   EXPECT_TRUE(manhattan.values_from_edges);
-  EXPECT_EQ(manhattan.graph.NumNodes(), 3500u);
-  EXPECT_EQ(manhattan.graph.edges().size(), 5453u);
+  EXPECT_EQ(manhattan.factors.nodes.size(), 3500u);
+  EXPECT_EQ(manhattan.factors.edges.size(), 5453u);
 }
 
 }  // namespace

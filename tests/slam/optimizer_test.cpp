@@ -200,15 +200,16 @@ TEST(Optimizer, IntelLevenbergMarquardtAndGaussNewtonAgree) {
   const std::string path = std::string(LIFELONG_SHARED_DIR) + "/datasets/pose_graphs/intel.g2o";
   if (!std::ifstream(path)) GTEST_SKIP() << "dataset absent: " << path;
   const io::GraphFile f = io::ReadGraphFile(path);
+  const PoseGraph graph = PoseGraph::FromFactors(f.factors);
   Values lm = f.values, gn = f.values;
   OptimizerParams gn_params;
   gn_params.method = OptimizerMethod::kGaussNewton;
-  const OptimizerSummary a = Optimize(f.graph, &lm);
-  const OptimizerSummary b = Optimize(f.graph, &gn, gn_params);
+  const OptimizerSummary a = Optimize(graph, &lm);
+  const OptimizerSummary b = Optimize(graph, &gn, gn_params);
   EXPECT_TRUE(a.converged && b.converged) << a.message << " / " << b.message;
   EXPECT_LT(a.final_chi2, 0.2 * a.initial_chi2);
   EXPECT_NEAR(a.final_chi2, b.final_chi2, 1e-8 * b.final_chi2);
-  const OptimizerSummary again = Optimize(f.graph, &lm);
+  const OptimizerSummary again = Optimize(graph, &lm);
   EXPECT_NEAR(again.final_chi2, a.final_chi2, 1e-9 * a.final_chi2);
   EXPECT_EQ(lm.at(0).x, f.values.at(0).x);  // anchored
 }
@@ -320,11 +321,12 @@ TEST(Optimizer, PoorGuessDatasetsLevenbergMarquardtReachesGaussNewton) {
     const std::string path = std::string(LIFELONG_SHARED_DIR) + "/datasets/pose_graphs/" + name;
     if (!std::ifstream(path)) GTEST_SKIP() << "dataset absent: " << path;
     const io::GraphFile f = io::ReadGraphFile(path);
+    const PoseGraph graph = PoseGraph::FromFactors(f.factors);
     Values lm = f.values, gn = f.values;
     OptimizerParams gn_params;
     gn_params.method = OptimizerMethod::kGaussNewton;
-    const OptimizerSummary a = Optimize(f.graph, &lm);
-    const OptimizerSummary b = Optimize(f.graph, &gn, gn_params);
+    const OptimizerSummary a = Optimize(graph, &lm);
+    const OptimizerSummary b = Optimize(graph, &gn, gn_params);
     EXPECT_TRUE(a.converged && b.converged) << name << ": " << a.message << " / " << b.message;
     EXPECT_TRUE(a.initialization_used) << name;
     EXPECT_NEAR(a.final_chi2, b.final_chi2, 1e-6 * b.final_chi2) << name;

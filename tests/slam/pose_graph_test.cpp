@@ -37,6 +37,28 @@ TEST(PoseGraph, AddNodesAndEdgesBuildsAdjacency) {
   EXPECT_THROW(g.AddEdge(Edge(1, 1)), std::logic_error);
 }
 
+// The plain factors io reads and writes (types/pose_factors.hpp) make the same graph back.
+TEST(PoseGraph, FactorsRoundTripKeepsNodesEdgesAndCliquesInOrder) {
+  PoseFactors factors;
+  factors.nodes = {7, 1, 4, 9};
+  factors.edges = {Edge(4, 7), Edge(1, 4), Edge(7, 9)};
+  factors.cliques = {Clique({9, 1, 4})};
+  const PoseGraph g = PoseGraph::FromFactors(factors);
+  EXPECT_EQ(g.NodeIds(), (std::vector<NodeId>{1, 4, 7, 9}));
+  EXPECT_EQ(g.Neighbours(9), (std::set<NodeId>{1, 4, 7}));
+  const PoseFactors back = g.Factors();
+  EXPECT_EQ(back.nodes, (std::vector<NodeId>{1, 4, 7, 9}));  // ascending, as written
+  ASSERT_EQ(back.edges.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.edges[i].from, factors.edges[i].from);
+    EXPECT_EQ(back.edges[i].to, factors.edges[i].to);
+  }
+  ASSERT_EQ(back.cliques.size(), 1u);
+  EXPECT_EQ(back.cliques[0].nodes, (std::vector<NodeId>{9, 1, 4}));
+  factors.edges.push_back(Edge(4, 5));  // a node the factors do not list
+  EXPECT_THROW(PoseGraph::FromFactors(factors), std::logic_error);
+}
+
 // 4 nodes, 2 edges + one clique over 3 nodes (3 pairs): e = 5, v(v-1)/2 = 6.
 TEST(PoseGraph, GammaCountsCliquePairs) {
   PoseGraph g;

@@ -307,27 +307,54 @@ std::vector<PoseEdge> NaiveEdges(const PoseGraph& graph, NodeId k) {
 
 }  // namespace
 
-MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, NodeId k,
-                                  MarginalizationMethod method, BlanketPolicy blanket) {
-  if (method != MarginalizationMethod::kChowLiu) blanket = BlanketPolicy::kFactorsAtK;
+namespace {
+
+// What every method shares (steps 1-2 of the header, seed §5.3): the local system at k and,
+// for a clique of two or more, its marginal Lambda_N by the Schur complement.
+MarginalizationResult Begin(const PoseGraph& graph, const Values& values, NodeId k,
+                            BlanketPolicy blanket, MatrixXd* lambda_N) {
   const LocalHessian local = LinearizeAround(graph, values, k, blanket);
-  const std::vector<NodeId>& nodes = local.neighbours;
   MarginalizationResult result;
-  result.neighbours = nodes;
-  result.clique_size = nodes.size();
-  if (nodes.size() < 2) return result;  // a leaf (or isolated node) just drops out
-  const MatrixXd lambda_N = SchurComplementFirstBlock(local.H);
-  if (method == MarginalizationMethod::kExact) {
-    result.clique = ToCliqueFactor(nodes, values, lambda_N);
-    result.num_pairs = nodes.size() * (nodes.size() - 1) / 2;
-    return result;
-  }
-  result.edges = method == MarginalizationMethod::kChowLiu
-                     ? ChowLiuEdges(nodes, values, lambda_N, &result.regularized)
-                     : NaiveEdges(graph, k);
-  result.num_pairs = result.edges.size();
+  result.neighbours = local.neighbours;
+  result.clique_size = local.neighbours.size();
+  if (result.clique_size >= 2) *lambda_N = SchurComplementFirstBlock(local.H);
+  return result;
+}
+
+// A method that leaves pose edges: their pair count and what they lose against Lambda_N.
+void FinishEdges(const MatrixXd& lambda_N, const Values& values, MarginalizationResult* result) {
+  result->num_pairs = result->edges.size();
+  result->kl_divergence = EdgesKl(lambda_N, result->edges, values, result->neighbours);
+}
+
+}  // namespace
+
+MarginalizationResult MarginalizeExact(const PoseGraph& graph, const Values& values, NodeId k) {
+  MatrixXd lambda_N;
+  MarginalizationResult result = Begin(graph, values, k, BlanketPolicy::kFactorsAtK, &lambda_N);
+  if (result.clique_size < 2) return result;  // a leaf (or isolated node) just drops out
+  result.clique = ToCliqueFactor(result.neighbours, values, lambda_N);
+  result.num_pairs = result.clique_size * (result.clique_size - 1) / 2;
+  return result;
+}
+
+MarginalizationResult MarginalizeChowLiu(const PoseGraph& graph, const Values& values, NodeId k,
+                                         BlanketPolicy blanket) {
+  MatrixXd lambda_N;
+  MarginalizationResult result = Begin(graph, values, k, blanket, &lambda_N);
+  if (result.clique_size < 2) return result;
+  result.edges = ChowLiuEdges(result.neighbours, values, lambda_N, &result.regularized);
   result.absorbed_blanket = blanket == BlanketPolicy::kBlanket;
-  result.kl_divergence = EdgesKl(lambda_N, result.edges, values, nodes);
+  FinishEdges(lambda_N, values, &result);
+  return result;
+}
+
+MarginalizationResult MarginalizeNaive(const PoseGraph& graph, const Values& values, NodeId k) {
+  MatrixXd lambda_N;
+  MarginalizationResult result = Begin(graph, values, k, BlanketPolicy::kFactorsAtK, &lambda_N);
+  if (result.clique_size < 2) return result;
+  result.edges = NaiveEdges(graph, k);
+  FinishEdges(lambda_N, values, &result);
   return result;
 }
 

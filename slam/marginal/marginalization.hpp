@@ -3,9 +3,9 @@
 //  1. linearize every factor touching k (PoseEdges and CliqueFactors) at the current
 //     estimate into H over [x_k, x_N] (3(m+1) square; block i starts at row 3i);
 //  2. exact marginal Lambda_N = H_NN - H_Nk H_kk^-1 H_kN (Schur complement, rank 3m - 3);
-//  3. kExact: one CliqueFactor over N in root-relative coordinates (root = smallest id):
+//  3. exact: one CliqueFactor over N in root-relative coordinates (root = smallest id):
 //     Lambda_y = G^T Lambda_N G, G = [0; blockdiag(J_j^-1)], Z_j = X_r^-1 X_{n_j};
-//  4. kChowLiu: maximum spanning tree of the pairwise mutual information (seed eq. 5.35,
+//  4. Chow-Liu: maximum spanning tree of the pairwise mutual information (seed eq. 5.35,
 //     Kruskal), each tree edge p->c a PoseEdge with mean X_p^-1 X_c and the conditional
 //     information of p(x_c | x_p) mapped into the edge's error: Omega = J_c^-T L_c|p J_c^-1;
 //  5. KL(p || q) of the approximation against Lambda_N in the anchored gauge.
@@ -23,7 +23,7 @@
 // tree built this way is exact when Lambda_N is tree structured (KL = 0), and has the
 // smallest KL of all spanning trees with exact conditionals (both tested).
 //
-// kNaive uses only k's PoseEdges (the strongest per neighbour, by ln|Omega|); clique
+// Naive uses only k's PoseEdges (the strongest per neighbour, by ln|Omega|); clique
 // factors at k are dropped and neighbours joined to k only through cliques get no edge.
 //
 // Means: the new factors take their means from the current estimate (Carlevaris-Bianco &
@@ -42,19 +42,13 @@
 
 namespace lifelong::slam {
 
-enum class MarginalizationMethod {
-  kExact,    ///< one dense CliqueFactor over the neighbours (seed's fill-in)
-  kChowLiu,  ///< Chow-Liu tree of kMarginal PoseEdges (seed's contribution)
-  kNaive,    ///< star of composed edges through k, from the neighbour with the strongest edge
-};
-
 /// What to add to the graph after graph.RemoveNode(k).
 struct MarginalizationResult {
-  std::vector<PoseEdge> edges;         ///< kind kMarginal (kChowLiu, kNaive)
-  std::optional<CliqueFactor> clique;  ///< kExact with m >= 2
+  std::vector<PoseEdge> edges;         ///< kind kMarginal (Chow-Liu, naive)
+  std::optional<CliqueFactor> clique;  ///< exact, with m >= 2
   std::size_t clique_size = 0;         ///< m, number of neighbours of k
-  std::size_t num_pairs = 0;           ///< pairs kept: m(m-1)/2 for kExact, else edges.size()
-  double kl_divergence = 0.0;  ///< nats, KL(exact || approximation); 0 for kExact; +inf if the
+  std::size_t num_pairs = 0;           ///< pairs kept: m(m-1)/2 for exact, else edges.size()
+  double kl_divergence = 0.0;  ///< nats, KL(exact || approximation); 0 for exact; +inf if the
                                ///< approximation leaves the clique disconnected
   bool regularized = false;    ///< a near-singular matrix needed the documented diagonal shift
   /// Markov-blanket sparsification: the pose edges among the neighbours were folded into the
@@ -70,10 +64,18 @@ enum class BlanketPolicy {
                 ///< so a removal never leaves more than m - 1 edges inside N (Chow-Liu only)
 };
 
-/// Marginalizes node k (must exist in graph and values with all its neighbours).
-MarginalizationResult Marginalize(const PoseGraph& graph, const Values& values, NodeId k,
-                                  MarginalizationMethod method,
-                                  BlanketPolicy blanket = BlanketPolicy::kFactorsAtK);
+// Marginalizing node k (it must exist in graph and values with all its neighbours), one
+// function per approximation. A method is chosen once, by its Sparsifier
+// (slam/sparsify/sparsifier.hpp), which calls one of these.
+
+/// One dense CliqueFactor over the neighbours: the seed's fill-in (§5.3), lossless.
+MarginalizationResult MarginalizeExact(const PoseGraph& graph, const Values& values, NodeId k);
+/// The Chow-Liu tree of the clique's marginal as kMarginal PoseEdges (seed §5.4).
+MarginalizationResult MarginalizeChowLiu(const PoseGraph& graph, const Values& values, NodeId k,
+                                         BlanketPolicy blanket = BlanketPolicy::kFactorsAtK);
+/// A star of edges composed through k, from the neighbour with the strongest edge to k
+/// (the baseline the seed compares against).
+MarginalizationResult MarginalizeNaive(const PoseGraph& graph, const Values& values, NodeId k);
 
 /// graph->RemoveNode(k), then adds result.edges and result.clique.
 void ApplyMarginalization(PoseGraph* graph, NodeId k, const MarginalizationResult& result);

@@ -12,8 +12,7 @@ class ChowLiuSparsifier final : public Sparsifier {
   std::string Name() const override { return "chow-liu"; }
   bool LeavesTrees() const override { return true; }
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
-    Replacement r = FromMarginalization(
-        Marginalize(graph, values, k, MarginalizationMethod::kChowLiu, config_.blanket));
+    Replacement r = FromMarginalization(MarginalizeChowLiu(graph, values, k, config_.blanket));
     KeepGradientIfAsked(config_, graph, values, k, r.absorb_edges_within, false, &r);
     return r;
   }

@@ -13,8 +13,7 @@ class ExactSparsifier final : public Sparsifier {
   explicit ExactSparsifier(const SparsifierConfig& config) : config_(config) {}
   std::string Name() const override { return "exact"; }
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
-    Replacement r = FromMarginalization(
-        Marginalize(graph, values, k, MarginalizationMethod::kExact, BlanketPolicy::kFactorsAtK));
+    Replacement r = FromMarginalization(MarginalizeExact(graph, values, k));
     KeepGradientIfAsked(config_, graph, values, k, false, false, &r);
     return r;
   }

@@ -12,8 +12,7 @@ class NaiveSparsifier final : public Sparsifier {
   explicit NaiveSparsifier(const SparsifierConfig& config) : config_(config) {}
   std::string Name() const override { return "naive"; }
   Replacement Replace(const PoseGraph& graph, const Values& values, NodeId k) const override {
-    Replacement r = FromMarginalization(
-        Marginalize(graph, values, k, MarginalizationMethod::kNaive, BlanketPolicy::kFactorsAtK));
+    Replacement r = FromMarginalization(MarginalizeNaive(graph, values, k));
     KeepGradientIfAsked(config_, graph, values, k, false, false, &r);
     return r;
   }

@@ -176,7 +176,7 @@ TEST(InformativeKl, MatchesGaugeFixedKlWhenDefinite) {
   const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
   const PoseGraph g = Star(v, {1, 2, 3, 4}, {}, &rng);
   const MatrixXd lambda = Marginal(g, v, 0);
-  const MarginalizationResult cl = Marginalize(g, v, 0, MarginalizationMethod::kChowLiu);
+  const MarginalizationResult cl = MarginalizeChowLiu(g, v, 0);
   const MatrixXd q = FactorsHessian(cl.neighbours, v, cl.edges, {});
   EXPECT_NEAR(InformativeKl(lambda, q, 1e-12), GaugeFixedKl(lambda, q), 1e-9);
   EXPECT_GT(InformativeKl(lambda, q, 1e-12), 1e-6);

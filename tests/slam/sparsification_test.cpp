@@ -24,12 +24,11 @@ TEST(MarginalizeBlanket, TreeReplacesTheEdgesAmongTheNeighbours) {
   ASSERT_EQ(g.EdgesWithin(n).size(), 1u);
 
   PoseGraph kept = g;
-  const auto plain = Marginalize(kept, v, 0, MarginalizationMethod::kChowLiu);
+  const auto plain = MarginalizeChowLiu(kept, v, 0);
   ApplyMarginalization(&kept, 0, plain);
   EXPECT_EQ(kept.EdgesWithin(n).size(), 3u);
 
-  const auto blanket =
-      Marginalize(g, v, 0, MarginalizationMethod::kChowLiu, BlanketPolicy::kBlanket);
+  const auto blanket = MarginalizeChowLiu(g, v, 0, BlanketPolicy::kBlanket);
   EXPECT_TRUE(blanket.absorbed_blanket);
   EXPECT_GE(blanket.kl_divergence, 0.0);
   ApplyMarginalization(&g, 0, blanket);
@@ -37,11 +36,9 @@ TEST(MarginalizeBlanket, TreeReplacesTheEdgesAmongTheNeighbours) {
   EXPECT_EQ(g.EdgesWithin(n).size(), 2u);
   EXPECT_EQ(g.edges().size(), 2u);
 
-  // Exact marginalization ignores the policy: the clique is the seed's fill-in.
+  // Exact marginalization takes no policy: the clique is the seed's fill-in.
   PoseGraph dense = Star(v, {1, 2, 3}, {}, &rng);
-  const auto exact =
-      Marginalize(dense, v, 0, MarginalizationMethod::kExact, BlanketPolicy::kBlanket);
-  EXPECT_FALSE(exact.absorbed_blanket);
+  EXPECT_FALSE(MarginalizeExact(dense, v, 0).absorbed_blanket);
 }
 
 // Sparsification without a removal (the pruning edge budget): the edges among a node and its

@@ -68,12 +68,15 @@ TEST(Sparsifier, WrappersGiveTheMappersFactorsByteForByte) {
   std::mt19937 rng(41);
   const Values v = RandomValues({0, 1, 2, 3, 4}, &rng);
   const PoseGraph g = NoisyStar(v, &rng);
-  const std::pair<const char*, MarginalizationMethod> methods[] = {
-      {"naive", MarginalizationMethod::kNaive},
-      {"exact", MarginalizationMethod::kExact},
-      {"chow-liu", MarginalizationMethod::kChowLiu}};
-  for (const auto& [name, method] : methods) {
-    const MarginalizationResult m = Marginalize(g, v, 0, method, BlanketPolicy::kBlanket);
+  using MarginalizeFn = MarginalizationResult (*)(const PoseGraph&, const Values&, NodeId);
+  const std::pair<const char*, MarginalizeFn> methods[] = {
+      {"naive", MarginalizeNaive},
+      {"exact", MarginalizeExact},
+      {"chow-liu", [](const PoseGraph& graph, const Values& values, NodeId k) {
+         return MarginalizeChowLiu(graph, values, k, BlanketPolicy::kBlanket);
+       }}};
+  for (const auto& [name, marginalize] : methods) {
+    const MarginalizationResult m = marginalize(g, v, 0);
     const Replacement r = MakeSparsifier(name)->Replace(g, v, 0);
     ASSERT_EQ(r.edges.size(), m.edges.size()) << name;
     for (std::size_t i = 0; i < m.edges.size(); ++i) {

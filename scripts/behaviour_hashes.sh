@@ -15,10 +15,13 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 work=${2:-$(mktemp -d)}
 lifelong="$build/apps/lifelong"
-modes=standard,pruned,pruned-exact,pruned-naive,pruned-glc,pruned-nfr
 intel=../shared/datasets/intel/intel-raw-first1088s.clf.gz
 
 [[ -x $lifelong ]] || { echo "error: $lifelong not built" >&2; exit 2; }
+# Every named mode, as the program lists them (slam/mapping/mode.cpp's table).
+modes=$("$lifelong" run --help | sed -n 's/.*comma-separated, of \(.*\), or POLICY+SPARSIFIER.*/\1/p' |
+  tr -d ' ')
+[[ -n $modes ]] || { echo "error: no mode list in '$lifelong run --help'" >&2; exit 2; }
 mkdir -p "$work"
 log="$work/progress.log"
 printf 'loops:\n  global:\n    enabled: false\n' >"$work/no_global.yaml"

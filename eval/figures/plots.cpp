@@ -10,6 +10,7 @@
 #include "io/atomic_file.hpp"
 
 #include "eval/common/gnuplot_run.hpp"
+#include "eval/common/mode_order.hpp"
 #include "eval/figures/mode_colors.hpp"
 
 namespace lifelong::eval {
@@ -77,16 +78,12 @@ bool WritePlotFile(const fs::path& path, const std::string& text, PlotResult* re
   }
 }
 
-/// The (mode, data file) pairs with the modes of `order` first, in that order.
+/// The (mode, data file) pairs in the run's mode order (eval/common/mode_order.hpp).
 std::vector<std::pair<std::string, std::string>> InLegendOrder(
     const std::map<std::string, std::string>& data_files, const std::vector<std::string>& order) {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const std::string& mode : order) {
-    const auto it = data_files.find(mode);
-    if (it != data_files.end()) out.emplace_back(*it);
-  }
-  for (const auto& entry : data_files) {
-    if (std::find(order.begin(), order.end(), entry.first) == order.end()) out.push_back(entry);
+  for (const std::string& mode : ModesInOrder(data_files, order)) {
+    out.emplace_back(mode, data_files.at(mode));
   }
   return out;
 }

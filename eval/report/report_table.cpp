@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/common/html.hpp"
+#include "eval/common/mode_order.hpp"
 #include "eval/figures/mode_colors.hpp"
 
 namespace lifelong::eval {
@@ -297,16 +298,7 @@ std::string FormatRatio(double ratio) {
 }
 
 std::vector<std::string> OrderedModes(const RunSummary& summary) {
-  std::vector<std::string> out;
-  for (const std::string& m : summary.mode_order) {
-    if (summary.modes.count(m) && std::find(out.begin(), out.end(), m) == out.end()) {
-      out.push_back(m);
-    }
-  }
-  for (const auto& [name, mode] : summary.modes) {
-    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
-  }
-  return out;
+  return ModesInOrder(summary.modes, summary.mode_order);
 }
 
 std::string SummaryTableHtml(const RunSummary& summary) {

@@ -2,7 +2,9 @@
 // definitions, modes in run order, ratios to the first mode where they mean something,
 // and no row or group that no mode has.
 #include "eval/report/report_table.hpp"
+#include "eval/common/mode_order.hpp"
 
+#include <map>
 #include <set>
 #include <string>
 
@@ -92,6 +94,15 @@ TEST(ReportTableTest, OrderedModesPutsTheRunOrderFirstThenTheRest) {
   s.modes["a-new-mode"] = {};
   s.mode_order = {"pruned", "missing", "standard"};
   EXPECT_EQ(OrderedModes(s), (std::vector<std::string>{"pruned", "standard", "a-new-mode"}));
+}
+
+// The figures' legends use the same order (eval/common/mode_order.hpp): a mode named twice
+// is listed once, and a data file of a mode the run does not name comes last.
+TEST(ReportTableTest, ModesInOrderListsEachModeOnceRunOrderFirst) {
+  const std::map<std::string, std::string> files{
+      {"a-new-mode", "a.dat"}, {"pruned", "p.dat"}, {"standard", "s.dat"}};
+  EXPECT_EQ(ModesInOrder(files, {"standard", "pruned", "standard", "gone"}),
+            (std::vector<std::string>{"standard", "pruned", "a-new-mode"}));
 }
 
 // Every figure summary.json can hold has a row with a group and a definition.

@@ -16,6 +16,7 @@
 #include "eval/figures/run_maps.hpp"
 #include "eval/metrics/change_recall.hpp"
 #include "eval/metrics/map_quality.hpp"
+#include "eval/metrics/sequential_counts.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
 #include "eval/metrics/truth_metrics.hpp"
 #include "eval/truth/scan_cells.hpp"
@@ -29,13 +30,6 @@
 
 namespace lifelong::eval {
 namespace {
-
-// timeline.csv's `sequential` (TimelineRow).
-const char* SequentialOutcome(const slam::StepStats& s) {
-  if (s.observation_index == 0) return "first";
-  if (s.incremental_match_ok) return s.incremental_match_degenerate ? "degenerate" : "matched";
-  return s.incremental_match_weak ? "weak" : "odometry";
-}
 
 namespace fs = std::filesystem;
 
@@ -102,13 +96,7 @@ void ModeRunner::Record(const slam::StepStats& s) {
   row.odometry_lost = s.odometry_lost;
   timeline_.push_back(row);
   for (const slam::LoopAttempt& a : s.loop_attempts) loop_attempts_.push_back({row.obs, a});
-  if (s.observation_index > 0) {  // the first observation has nothing to match against
-    ++sequential_.count;
-    if (s.incremental_match_ok) ++sequential_.matched;
-    if (s.incremental_match_degenerate) ++sequential_.degenerate;
-    if (s.incremental_match_weak) ++sequential_.weak;
-    if (s.odometry_lost) ++sequential_.lost;
-  }
+  CountSequential(s, &sequential_);
   if (config_.first_pass_s && s.stamp_s < *config_.first_pass_s) first_pass_end_ = row.obs + 1;
 }
 

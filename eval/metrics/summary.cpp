@@ -118,11 +118,8 @@ void PutChangeFigures(json& j, const ModeSummary& m) {
 }
 
 json SequentialJson(const SequentialSummary& s) {
-  return {{"count", s.count},
-          {"matched", s.matched},
-          {"degenerate", s.degenerate},
-          {"weak", s.weak},
-          {"lost", s.lost}};
+  return {{"count", s.count}, {"matched", s.matched},     {"degenerate", s.degenerate},
+          {"weak", s.weak},   {"recovered", s.recovered}, {"lost", s.lost}};
 }
 
 }  // namespace

@@ -63,6 +63,8 @@ struct SequentialSummary {
   std::int64_t degenerate = 0;
   /// not matched: weak and not distinct from a rival, so they kept their odometry
   std::int64_t weak = 0;
+  /// of the matched, found by the wider second search (incremental.recovery_window_m)
+  std::int64_t recovered = 0;
   /// whose odometry the stream lost (searched over a full turn; counted in matched if found)
   std::int64_t lost = 0;
 };

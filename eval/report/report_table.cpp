@@ -191,6 +191,9 @@ const std::vector<TableRow>& SummaryTableRows() {
        "of the matched, those whose position along a corridor-like direction came from odometry"},
       {kAccuracy, "/sequential/weak", "weak matches refused", "", 1, false,
        "not matched: scored under incremental.weak_score with a rival too close; odometry kept"},
+      {kAccuracy, "/sequential/recovered", "matches found by the wider search", "", 1, false,
+       "of the matched, those found only by the second search over incremental.recovery_window_m "
+       "(the odometry step was further off than the matcher's window)"},
       {kAccuracy, "/sequential/lost", "steps whose odometry the log lost", "", 1, false,
        "searched over a full turn and incremental.lost_window_m (matched ones count above)"},
       {kAccuracy, "/loop_precision", "loop-closure precision", "%", 100, false,

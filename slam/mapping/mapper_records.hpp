@@ -29,6 +29,8 @@ struct StepStats {
   bool incremental_match_degenerate = false;
   /// ...or refused, weak and not distinct (incremental weak_score, weak_max_ambiguity)
   bool incremental_match_weak = false;
+  /// ...matched by the wider second search (incremental recovery_window_m)
+  bool incremental_match_recovered = false;
   /// The step's odometry was lost (Observation::odometry_lost): searched over a full turn
   bool odometry_lost = false;
   bool loop_closed = false;

@@ -50,6 +50,7 @@ PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta, bool odome
   stats->incremental_match_ok = m.matched;
   stats->incremental_match_degenerate = m.degenerate;
   stats->incremental_match_weak = m.weak;
+  stats->incremental_match_recovered = m.recovered;
   *X_new = m.X_new;
   PoseEdge edge;
   edge.from = last_node;

@@ -55,6 +55,13 @@ struct IncrementalConfig {
   /// full turn and this half-width in x and y around the last pose; when that search fails,
   /// its edge says only that the robot stayed within this much and turned somehow.
   double lost_window_m = 1.0;
+  /// A step whose match fails, or is refused as weak and not distinct, is searched again this
+  /// far in x and y around the odometry guess (the same heading window). The match is taken
+  /// only when it is neither weak nor close to a rival (score >= weak_score, ambiguity <=
+  /// weak_max_ambiguity): it departs from the odometry by more than the first window allows.
+  /// It catches an odometry step wrong by more than the matcher's window: freiburg-079's
+  /// odometry reads every reversing step as forward, twice the step (0.5-0.7 m) off. 0: off.
+  double recovery_window_m = 1.5;
 };
 
 /// The weak-match rule above: true when `match` (ok) is to be refused.

@@ -27,7 +27,7 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
                                          const std::vector<Eigen::Vector2d>& points,
                                          bool odometry_lost) {
   const Pose2 guess = X_last * delta;
-  std::vector<Eigen::Vector2d> reference = LocalMap(nodes, values, recent);
+  const std::vector<Eigen::Vector2d> reference = LocalMap(nodes, values, recent);
   SequentialMatch out;
   out.X_new = guess;
   out.lost = odometry_lost;
@@ -40,12 +40,19 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
     mc.linear_window_m = config_.lost_window_m;
     mc.angular_window_rad = kLostStepWindowRad;
   }
-  CropToSearch(points, guess, mc, &reference);
-  if (reference.size() < 10 || points.size() < 10) return out;
-  grid_.Build(reference, mc);
-  const MatchResult match = ::lifelong::slam::Match(grid_, points, guess, mc);
+  MatchResult match = Search(points, guess, mc, reference);
+  const bool refused = match.ok && WeakAndAmbiguous(match, config_);
+  if ((!match.ok || refused) && !odometry_lost && config_.recovery_window_m > mc.linear_window_m) {
+    MatcherConfig wide = mc;
+    wide.linear_window_m = config_.recovery_window_m;
+    const MatchResult second = Search(points, guess, wide, reference);
+    if (Recovers(second)) {
+      match = second;
+      out.recovered = true;
+    }
+  }
   if (!match.ok) return out;
-  if (WeakAndAmbiguous(match, config_)) {
+  if (!out.recovered && refused) {
     out.weak = true;
     return out;
   }
@@ -58,6 +65,20 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
   out.information = RotateIntoFrame(information, out.X_new.theta);
   out.matched = true;
   return out;
+}
+
+MatchResult SequentialMatcher::Search(const std::vector<Eigen::Vector2d>& points,
+                                      const Pose2& guess, const MatcherConfig& mc,
+                                      std::vector<Eigen::Vector2d> reference) {
+  CropToSearch(points, guess, mc, &reference);
+  if (reference.size() < 10 || points.size() < 10) return {};
+  grid_.Build(reference, mc);
+  return ::lifelong::slam::Match(grid_, points, guess, mc);
+}
+
+bool SequentialMatcher::Recovers(const MatchResult& match) const {
+  return match.ok && match.score >= config_.weak_score &&
+         match.ambiguity <= config_.weak_max_ambiguity;
 }
 
 std::vector<Eigen::Vector2d> SequentialMatcher::LocalMap(const NodeStore& nodes,

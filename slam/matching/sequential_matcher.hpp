@@ -31,6 +31,7 @@ struct SequentialMatch {
   bool degenerate = false;      ///< ...but ambiguous along a direction the odometry gave
   bool weak = false;            ///< refused: weak and not distinct (WeakAndAmbiguous)
   bool lost = false;            ///< the step's odometry was lost: searched over a full turn
+  bool recovered = false;       ///< matched by the second, wider search (recovery_window_m)
 };
 
 class SequentialMatcher {
@@ -49,6 +50,12 @@ class SequentialMatcher {
   /// (SurfaceRule::JoinsAny, cached while a node stays in the local map).
   std::vector<Eigen::Vector2d> LocalMap(const NodeStore& nodes, const Values& values,
                                         const std::vector<NodeId>& recent);
+
+  /// The match over `mc`'s window around `guess` (reference: the local map, uncropped).
+  MatchResult Search(const std::vector<Eigen::Vector2d>& points, const Pose2& guess,
+                     const MatcherConfig& mc, std::vector<Eigen::Vector2d> reference);
+  /// A match strong and distinct enough to take from the recovery search.
+  bool Recovers(const MatchResult& match) const;
 
   IncrementalConfig config_;
   ReferenceGrid grid_;  ///< the matcher's table, rebuilt for each match

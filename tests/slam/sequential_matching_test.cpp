@@ -134,5 +134,66 @@ TEST(SequentialMatching, ALostStepIsSearchedOverAFullTurn) {
   EXPECT_GT(std::abs(NormalizeAngle(unflagged.T_world_robot.theta - (-1.4))), 1.0);
 }
 
+// The robot backs 0.6 m away from the room's box while its odometry reads 0.6 m forward (as
+// freiburg-079's does on every reversing step): the truth is 1.2 m from the guess, beyond the
+// matcher's 0.3 m window. min_score 0.7 makes the window's best, at its edge, fail, as it does
+// on the log (a synthetic scan matches better than a real one).
+StampedPose MapThroughReversal(MapperConfig config, StepStats* stats) {
+  config.incremental.matcher.min_score = 0.7;
+  const testing::World room = testing::RoomWorld();
+  const Pose2 first(5.0, 2.0, 0.0), second(4.4, 2.0, 0.0);
+  Mapper mapper(config);
+  Observation a;
+  a.stamp_s = 0.0;
+  a.T_odom_robot = first;
+  a.scan = testing::SimulateScan(room, first);
+  mapper.AddObservation(a);
+  Observation b;
+  b.stamp_s = 1.0;
+  b.T_odom_robot = Pose2(first.x + 0.6, first.y, first.theta);  // forward, not back
+  b.scan = testing::SimulateScan(room, second);
+  *stats = mapper.AddObservation(b);
+  return mapper.LastScanPose();
+}
+
+TEST(SequentialMatching, AStepBeyondTheWindowIsFoundByTheRecoverySearch) {
+  StepStats stats;
+  const StampedPose last = MapThroughReversal(MapperConfig{}, &stats);
+  EXPECT_TRUE(stats.incremental_match_ok);
+  EXPECT_TRUE(stats.incremental_match_recovered);
+  // The mapper's frame is the first pose's: the truth is 0.6 m behind it.
+  EXPECT_NEAR(last.T_world_robot.x, -0.6, 0.05);
+  EXPECT_NEAR(last.T_world_robot.y, 0.0, 0.05);
+
+  MapperConfig off;
+  off.incremental.recovery_window_m = 0.0;
+  const StampedPose kept = MapThroughReversal(off, &stats);
+  EXPECT_FALSE(stats.incremental_match_recovered);
+  EXPECT_FALSE(stats.incremental_match_ok);
+  EXPECT_NEAR(kept.T_world_robot.x, 0.6, 1e-9);  // the odometry's wrong step, forward
+}
+
+// In a featureless corridor the wider search is ambiguous along it: nothing is recovered, and
+// the odometry keeps the step.
+TEST(SequentialMatching, TheRecoverySearchTakesNoAmbiguousMatch) {
+  const testing::World corridor = testing::CorridorWorld();
+  const Pose2 first(0.0, 1.0, 0.0), second(-0.6, 1.0, 0.0);
+  MapperConfig config;
+  config.incremental.matcher.min_score = 0.7;  // as above: the first search fails
+  Mapper mapper(config);
+  Observation a;
+  a.stamp_s = 0.0;
+  a.T_odom_robot = first;
+  a.scan = testing::SimulateScan(corridor, first);
+  mapper.AddObservation(a);
+  Observation b;
+  b.stamp_s = 1.0;
+  b.T_odom_robot = Pose2(0.6, 1.0, 0.0);
+  b.scan = testing::SimulateScan(corridor, second);
+  const StepStats stats = mapper.AddObservation(b);
+  EXPECT_FALSE(stats.incremental_match_recovered);
+  EXPECT_NEAR(mapper.LastScanPose().T_world_robot.x, 0.6, 0.05);  // the first pose's frame
+}
+
 }  // namespace
 }  // namespace lifelong::slam

@@ -114,5 +114,8 @@ std::string SourceName(const std::string& source);
 void WriteBook(const BookOutcome& outcome, const std::string& dir);
 /// The markdown of results.md.
 std::string BookMarkdown(const BookOutcome& outcome);
+/// A figure's caption: "As the seed's Fig. 6.7 (...)", or for a figure listed with seed
+/// "– (what it shows)", one the seed has no counterpart of, "Not in the seed: what it shows".
+std::string FigureCaption(const BookFigure& figure);
 
 }  // namespace lifelong::eval

@@ -73,6 +73,17 @@ const char* kHeader[] = {"claim (figure)",
 
 }  // namespace
 
+std::string FigureCaption(const BookFigure& figure) {
+  // A figure the seed has no counterpart of is listed with "– (what it shows)".
+  const std::string dash = "\u2013 ";
+  if (figure.seed.rfind(dash, 0) != 0) return "As the seed's " + figure.seed;
+  std::string what = figure.seed.substr(dash.size());
+  if (what.size() >= 2 && what.front() == '(' && what.back() == ')') {
+    what = what.substr(1, what.size() - 2);
+  }
+  return "Not in the seed: " + what;
+}
+
 std::string SourceName(const std::string& source) {
   const fs::path p(source);
   return p.extension() == ".yaml" ? p.stem().string() : p.filename().string();
@@ -112,8 +123,8 @@ std::string BookMarkdown(const BookOutcome& o) {
     }
     for (const std::string& chart : e.charts) md << "\n![" << chart << "](" << chart << ")\n";
     for (const BookFigure& f : e.figures) {
-      md << "\n![" << f.seed << "](" << f.file << ")\n\n*As the seed's " << f.seed << "* (`"
-         << f.file << "`)\n";
+      md << "\n![" << f.seed << "](" << f.file << ")\n\n*" << FigureCaption(f) << "* (`" << f.file
+         << "`)\n";
     }
   }
   return md.str();
@@ -174,7 +185,7 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
     }
     for (const BookFigure& f : e.figures) {
       h << "<figure><img src=\"" << HtmlEscape(f.file) << "\" alt=\"" << HtmlEscape(f.seed)
-        << "\"><figcaption>As the seed's " << HtmlEscape(f.seed) << " (" << HtmlEscape(f.file)
+        << "\"><figcaption>" << HtmlEscape(FigureCaption(f)) << " (" << HtmlEscape(f.file)
         << ")</figcaption></figure>\n";
     }
   }

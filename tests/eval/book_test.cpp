@@ -97,6 +97,15 @@ TEST(Book, AnExperimentNamesTheSeedsFigureEachOfItsFiguresStandsFor) {
   EXPECT_EQ(plain.experiments[0].figures[1].file, "nodes.png");
 }
 
+// A figure the seed has none of ("– (...)") is not captioned as the seed's.
+TEST(Book, AFigureWithoutASeedCounterpartSaysSo) {
+  EXPECT_EQ(FigureCaption({"pruned/map.png", "Fig. 6.7 (pruned)"}),
+            "As the seed's Fig. 6.7 (pruned)");
+  EXPECT_EQ(FigureCaption({"kld.png", "\u2013 (the KLD each removal loses)"}),
+            "Not in the seed: the KLD each removal loses");
+  EXPECT_EQ(FigureCaption({"memory.png", "\u2013 memory"}), "Not in the seed: memory");
+}
+
 TEST(Book, TheShippedBookLoadsInBothProfiles) {
   const Book book = LoadBook(kSource + "/book/chapter6.yaml");
   ASSERT_GE(book.experiments.size(), 5u);

@@ -14,6 +14,26 @@
 namespace lifelong::slam {
 namespace {
 
+// Maps two scans of `world`: the first taken at `first`, the second at `second`, whose
+// odometry reads `second_odometry` (first's odometry is `first`). Returns the second's stats.
+StepStats MapTwoScans(const MapperConfig& config, const testing::World& world, const Pose2& first,
+                      const Pose2& second, const Pose2& second_odometry, StampedPose* last,
+                      bool odometry_lost = false) {
+  Mapper mapper(config);
+  Observation a;
+  a.T_odom_robot = first;
+  a.scan = testing::SimulateScan(world, first);
+  mapper.AddObservation(a);
+  Observation b;
+  b.stamp_s = 1.0;
+  b.T_odom_robot = second_odometry;
+  b.odometry_lost = odometry_lost;
+  b.scan = testing::SimulateScan(world, second);
+  const StepStats stats = mapper.AddObservation(b);
+  *last = mapper.LastScanPose();
+  return stats;
+}
+
 struct SlipResult {
   bool matched = false;
   double heading_error_rad = 0.0;  ///< second pose's heading against the truth
@@ -22,21 +42,11 @@ struct SlipResult {
 // Two observations in the room 0.4 m apart; the odometry of the second turned by `slip_rad`
 // that the robot did not turn.
 SlipResult MapThroughSlip(const MapperConfig& config, double slip_rad) {
-  const testing::World room = testing::RoomWorld();
   const Pose2 first(3.0, 2.5, 0.0), second(3.4, 2.5, 0.0);
-  Mapper mapper(config);
-  Observation a;
-  a.stamp_s = 0.0;
-  a.T_odom_robot = first;
-  a.scan = testing::SimulateScan(room, first);
-  mapper.AddObservation(a);
-  Observation b;
-  b.stamp_s = 1.0;
-  b.T_odom_robot = Pose2(second.x, second.y, second.theta + slip_rad);
-  b.scan = testing::SimulateScan(room, second);
-  const StepStats stats = mapper.AddObservation(b);
+  StampedPose last;
+  const StepStats stats = MapTwoScans(config, testing::RoomWorld(), first, second,
+                                      Pose2(second.x, second.y, second.theta + slip_rad), &last);
   // The mapper's frame is the first pose's, which is the world's here up to the offset.
-  const StampedPose last = mapper.LastScanPose();
   return {stats.incremental_match_ok, NormalizeAngle(last.T_world_robot.theta - second.theta)};
 }
 
@@ -106,20 +116,12 @@ TEST(SequentialMatching, AWeakMatchMustBeDistinct) {
 // 81 degrees in place (Observation::odometry_lost). Read as a standstill, the turn stayed in the
 // map for the rest of the run (ATE 2.66 m); searched over a full turn, it is found.
 StampedPose MapThroughLostTurn(bool flag_lost, StepStats* stats) {
-  const testing::World room = testing::RoomWorld();
   const Pose2 first(3.0, 2.5, 0.3), second(3.05, 2.5, 0.3 - 1.4);
-  Mapper mapper(MapperConfig{});
-  Observation a;
-  a.T_odom_robot = Pose2();
-  a.scan = testing::SimulateScan(room, first);
-  mapper.AddObservation(a);
-  Observation b;
-  b.stamp_s = 1.0;
-  b.T_odom_robot = a.T_odom_robot;  // what the log gives: the previous pose again
-  b.odometry_lost = flag_lost;
-  b.scan = testing::SimulateScan(room, second);
-  *stats = mapper.AddObservation(b);
-  return mapper.LastScanPose();
+  MapperConfig config;
+  StampedPose last;
+  // The log gives the previous odometry again; the mapper's frame starts at the first pose.
+  *stats = MapTwoScans(config, testing::RoomWorld(), first, second, first, &last, flag_lost);
+  return last;
 }
 
 TEST(SequentialMatching, ALostStepIsSearchedOverAFullTurn) {
@@ -140,20 +142,12 @@ TEST(SequentialMatching, ALostStepIsSearchedOverAFullTurn) {
 // on the log (a synthetic scan matches better than a real one).
 StampedPose MapThroughReversal(MapperConfig config, StepStats* stats) {
   config.incremental.matcher.min_score = 0.7;
-  const testing::World room = testing::RoomWorld();
   const Pose2 first(5.0, 2.0, 0.0), second(4.4, 2.0, 0.0);
-  Mapper mapper(config);
-  Observation a;
-  a.stamp_s = 0.0;
-  a.T_odom_robot = first;
-  a.scan = testing::SimulateScan(room, first);
-  mapper.AddObservation(a);
-  Observation b;
-  b.stamp_s = 1.0;
-  b.T_odom_robot = Pose2(first.x + 0.6, first.y, first.theta);  // forward, not back
-  b.scan = testing::SimulateScan(room, second);
-  *stats = mapper.AddObservation(b);
-  return mapper.LastScanPose();
+  StampedPose last;
+  *stats = MapTwoScans(config, testing::RoomWorld(), first, second,
+                       Pose2(first.x + 0.6, first.y, first.theta),  // forward, not back
+                       &last);
+  return last;
 }
 
 TEST(SequentialMatching, AStepBeyondTheWindowIsFoundByTheRecoverySearch) {
@@ -176,23 +170,13 @@ TEST(SequentialMatching, AStepBeyondTheWindowIsFoundByTheRecoverySearch) {
 // In a featureless corridor the wider search is ambiguous along it: nothing is recovered, and
 // the odometry keeps the step.
 TEST(SequentialMatching, TheRecoverySearchTakesNoAmbiguousMatch) {
-  const testing::World corridor = testing::CorridorWorld();
-  const Pose2 first(0.0, 1.0, 0.0), second(-0.6, 1.0, 0.0);
   MapperConfig config;
   config.incremental.matcher.min_score = 0.7;  // as above: the first search fails
-  Mapper mapper(config);
-  Observation a;
-  a.stamp_s = 0.0;
-  a.T_odom_robot = first;
-  a.scan = testing::SimulateScan(corridor, first);
-  mapper.AddObservation(a);
-  Observation b;
-  b.stamp_s = 1.0;
-  b.T_odom_robot = Pose2(0.6, 1.0, 0.0);
-  b.scan = testing::SimulateScan(corridor, second);
-  const StepStats stats = mapper.AddObservation(b);
+  StampedPose last;
+  const StepStats stats = MapTwoScans(config, testing::CorridorWorld(), Pose2(0.0, 1.0, 0.0),
+                                      Pose2(-0.6, 1.0, 0.0), Pose2(0.6, 1.0, 0.0), &last);
   EXPECT_FALSE(stats.incremental_match_recovered);
-  EXPECT_NEAR(mapper.LastScanPose().T_world_robot.x, 0.6, 0.05);  // the first pose's frame
+  EXPECT_NEAR(last.T_world_robot.x, 0.6, 0.05);  // the odometry's step, in the first pose's frame
 }
 
 }  // namespace

@@ -112,6 +112,8 @@ lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
                                                     const std::string& command_line) {
   lifelong::eval::ExperimentConfig config;
   config.mapper = MapperSettings(config_path);
+  if (!config_path.empty())
+    config.false_closures = lifelong::eval::LoadFalseClosureConfig(config_path);
   config.modes = ParseModes(modes);
   lifelong::eval::CheckReplaceableOutput(out);
   config.out_dir = out;

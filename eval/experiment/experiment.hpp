@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/experiment/false_closures.hpp"
 #include "eval/figures/run_maps.hpp"
 #include "eval/figures/video.hpp"
 #include "eval/metrics/summary.hpp"
@@ -27,6 +28,7 @@ namespace lifelong::eval {
 struct ExperimentConfig {
   std::vector<slam::Mode> modes{slam::NamedMode("standard"), slam::NamedMode("pruned")};
   slam::MapperConfig mapper;
+  FalseClosureConfig false_closures;  ///< eval's test of the loop closer's defences (off)
   std::string out_dir;
   std::string source;                ///< scenario or log path, for the summary
   std::optional<std::int64_t> seed;  ///< simulation seed

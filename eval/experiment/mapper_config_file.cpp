@@ -177,20 +177,46 @@ int LineOfField(const YAML::Node& root, const std::string& fields) {
   return LineOf(at);
 }
 
-slam::MapperConfig Apply(const YAML::Node& root, const std::string& name,
-                         const slam::MapperConfig& base) {
-  slam::MapperConfig config = base;
-  if (!root || root.IsNull()) return config;
+// The false-closure test's section: eval's own, beside the mapper's (false_closures.hpp).
+template <class V>
+void VisitFalseClosures(V& v, FalseClosureConfig& c) {
+  v.Number("share", c.share, kUnit);
+  v.Number("dx_m", c.dx_m, kAnyNumber);
+  v.Number("dy_m", c.dy_m, kAnyNumber);
+}
+
+struct FileSettings {
+  slam::MapperConfig mapper;
+  FalseClosureConfig false_closures;
+};
+
+FileSettings Apply(const YAML::Node& root, const std::string& name,
+                   const slam::MapperConfig& base) {
+  FileSettings settings{base, {}};
+  slam::MapperConfig& config = settings.mapper;
+  if (!root || root.IsNull()) return settings;
   if (!root.IsMap()) throw InputError(name, LineOf(root), "", "expected a map of sections");
   Reader reader(name, root, "");
   VisitConfig(reader, config);
+  reader.Section("false_closures",
+                 [&](auto& s) { VisitFalseClosures(s, settings.false_closures); });
   reader.RejectUnknown();
   // The reader has checked every key against its range; what is left are the bounds across
   // settings.
   if (const std::optional<slam::ConfigProblem> problem = slam::Validate(config)) {
     throw InputError(name, LineOfField(root, problem->fields), problem->fields, problem->message);
   }
-  return config;
+  return settings;
+}
+
+YAML::Node LoadYamlFile(const std::string& path) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path, 0, "", "cannot open the config file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
 }
 
 /// Dotted settings as nested sections: {"a.b.c", v} -> a: {b: {c: v}}.
@@ -220,7 +246,7 @@ YAML::Node SettingsNode(const std::vector<std::pair<std::string, std::string>>& 
 slam::MapperConfig ApplyMapperSettings(
     const std::vector<std::pair<std::string, std::string>>& settings, const std::string& name,
     const slam::MapperConfig& base) {
-  return Apply(SettingsNode(settings), name, base);
+  return Apply(SettingsNode(settings), name, base).mapper;
 }
 
 std::string MapperSettingsYaml(const std::vector<std::pair<std::string, std::string>>& settings) {
@@ -239,19 +265,25 @@ slam::MapperConfig LoadMapperConfigFromString(const std::string& yaml, const std
   } catch (const YAML::ParserException& e) {
     throw InputError(name, e.mark.line + 1, "", "malformed YAML: " + e.msg);
   }
-  return Apply(root, name, base);
+  return Apply(root, name, base).mapper;
 }
 
 slam::MapperConfig LoadMapperConfig(const std::string& path, const slam::MapperConfig& base) {
+  return Apply(LoadYamlFile(path), path, base).mapper;
+}
+
+FalseClosureConfig LoadFalseClosureConfig(const std::string& path) {
+  return Apply(LoadYamlFile(path), path, slam::MapperConfig{}).false_closures;
+}
+
+FalseClosureConfig FalseClosureConfigFromString(const std::string& yaml, const std::string& name) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, 0, "", "cannot open the config file");
+    root = YAML::Load(yaml);
   } catch (const YAML::ParserException& e) {
-    throw InputError(path, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+    throw InputError(name, e.mark.line + 1, "", "malformed YAML: " + e.msg);
   }
-  return Apply(root, path, base);
+  return Apply(root, name, slam::MapperConfig{}).false_closures;
 }
 
 }  // namespace lifelong::eval

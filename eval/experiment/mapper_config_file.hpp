@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "eval/experiment/false_closures.hpp"
 #include "slam/mapping/mapper_config.hpp"
 
 namespace lifelong::eval {
@@ -38,6 +39,12 @@ slam::MapperConfig LoadMapperConfigFromString(
 slam::MapperConfig ApplyMapperSettings(
     const std::vector<std::pair<std::string, std::string>>& settings, const std::string& name,
     const slam::MapperConfig& base = slam::MapperConfig{});
+
+/// The file's `false_closures` section (eval's false-closure test, false_closures.hpp), read
+/// with the same checks as the rest of the file; its defaults (off) when the file has none.
+FalseClosureConfig LoadFalseClosureConfig(const std::string& path);
+/// Same, from a YAML text; `name` stands for the file name in error messages.
+FalseClosureConfig FalseClosureConfigFromString(const std::string& yaml, const std::string& name);
 
 /// The same settings as a YAML document that LoadMapperConfigFromString reads to the config
 /// ApplyMapperSettings gives ("{}" for none): a sweep cell's config file.

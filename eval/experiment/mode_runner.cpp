@@ -45,10 +45,9 @@ ModeRunner::ModeRunner(const slam::Mode& mode, const ExperimentConfig& config)
   mc.pruning.mode = mode;
   mapper_ = std::make_unique<slam::Mapper>(mc);
   mapper_->on_observation = [this](const slam::StepStats& s) { Record(s); };
-  const slam::LoopClosingConfig& loops = config.mapper.loops;
-  if (loops.inject_false_share > 0.0) {
-    mapper_->set_hypothesis_hook(FalseClosureInjector(
-        loops.inject_false_share, loops.inject_false_dx_m, loops.inject_false_dy_m));
+  const FalseClosureConfig& inject = config.false_closures;
+  if (inject.share > 0.0) {
+    mapper_->set_hypothesis_hook(FalseClosureInjector(inject.share, inject.dx_m, inject.dy_m));
   }
 }
 void ModeRunner::Step(const Observation& obs) {
@@ -260,8 +259,7 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
 
 LoopVerificationSummary ModeRunner::SummarizeLoops() const {
   const slam::Mapper& m = *mapper_;
-  return LoopVerificationSummary{m.loop_verification(),
-                                 config_.mapper.loops.inject_false_share > 0.0,
+  return LoopVerificationSummary{m.loop_verification(), config_.false_closures.share > 0.0,
                                  config_.mapper.loops.global.enabled, m.SuspectLoopEdges()};
 }
 

@@ -225,7 +225,7 @@ const std::vector<TableRow>& SummaryTableRows() {
       {kAccuracy, "/loop_verification/expired", "closures expired", "", 1, false,
        "hypotheses never confirmed within loops.verify.expiry_m of travel"},
       {kAccuracy, "/loop_verification/injected", "false closures injected", "", 1, false,
-       "wrong closures injected on purpose (loops.inject_false_share)"},
+       "wrong closures injected on purpose (false_closures.share)"},
       {kAccuracy, "/loop_verification/injected_accepted", "false closures accepted", "", 1, false,
        "injected wrong closures that verification let into the graph"},
       {kAccuracy, "/relations/count", "relations used", "", 1, false,

@@ -100,12 +100,6 @@ struct LoopClosingConfig {
   /// switching it off): its nodes are neither removed nor sparsified, so that no
   /// marginal bakes it in.
   double suspect_chi2 = 16.27;
-  /// False-closure test, read by eval (eval/experiment/false_closures.hpp), which installs it as
-  /// the mapper's hypothesis hook: this share of the matcher's closures is moved by (dx, dy) in the
-  /// world frame before verification, as a closure into the neighbouring aisle would be. 0: off.
-  double inject_false_share = 0.0;
-  double inject_false_dx_m = 0.0;  ///< m, world frame
-  double inject_false_dy_m = 3.0;  ///< m, world frame
   GlobalLoopConfig global;
 };
 

@@ -184,9 +184,6 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Section("verify", [&](auto& s) { VisitVerify(s, c.verify); });
   v.Section("global", [&](auto& s) { VisitGlobal(s, c.global); });
   v.Number("suspect_chi2", c.suspect_chi2, kPositive);
-  v.Number("inject_false_share", c.inject_false_share, kUnit);
-  v.Number("inject_false_dx_m", c.inject_false_dx_m, kAnyNumber);
-  v.Number("inject_false_dy_m", c.inject_false_dy_m, kAnyNumber);
 }
 
 template <class V>

@@ -78,9 +78,6 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(ga.descriptor.sectors, gb.descriptor.sectors);
   EXPECT_EQ(ga.descriptor.max_range_m, gb.descriptor.max_range_m);
   EXPECT_EQ(a.suspect_chi2, b.suspect_chi2);
-  EXPECT_EQ(a.inject_false_share, b.inject_false_share);
-  EXPECT_EQ(a.inject_false_dx_m, b.inject_false_dx_m);
-  EXPECT_EQ(a.inject_false_dy_m, b.inject_false_dy_m);
 }
 
 void ExpectSameOptimizer(const slam::OptimizerParams& a, const slam::OptimizerParams& b) {
@@ -119,6 +116,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.weak_score, ib.weak_score);
   EXPECT_EQ(ia.weak_max_ambiguity, ib.weak_max_ambiguity);
   EXPECT_EQ(ia.lost_window_m, ib.lost_window_m);
+  EXPECT_EQ(ia.recovery_window_m, ib.recovery_window_m);
   ExpectSameLoops(a.loops, b.loops);
   EXPECT_EQ(a.pruning.mode.name, b.pruning.mode.name);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
@@ -190,6 +188,7 @@ MapperConfig AllChanged() {
   c.incremental.weak_score = 0.45;
   c.incremental.weak_max_ambiguity = 0.65;
   c.incremental.lost_window_m = 1.5;
+  c.incremental.recovery_window_m = 2.5;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;
@@ -218,9 +217,6 @@ MapperConfig AllChanged() {
   l.verify = {false, 2, 9.0, 30.0, 20.0, 0.004, 0.002, 0.0005, 0.0001};
   l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 0.5, 3, 3.0, 0.3, 2.5, {15, 72, 25.0}};
   l.suspect_chi2 = 12.0;
-  l.inject_false_share = 0.05;
-  l.inject_false_dx_m = 1.0;
-  l.inject_false_dy_m = -2.5;
   c.pruning = {slam::NamedMode("standard"),
                -0.5,
                4.5,
@@ -260,6 +256,27 @@ TEST(MapperConfigFile, DefaultYamlSetsEveryKeyToTheCodeDefaults) {
   // Loaded on top of a config where everything differs, so a key missing from the file or a
   // value that drifted from MapperConfig{} both show.
   ExpectSameConfig(LoadMapperConfig(kDir + "default.yaml", AllChanged()), slam::MapperConfig{});
+}
+
+// The false-closure test is eval's section, beside the mapper's: default.yaml gives it off,
+// a file sets it with the same checks, and a sweep's dotted settings reach it.
+TEST(MapperConfigFile, TheFalseClosureSectionIsReadBesideTheMappersSettings) {
+  const FalseClosureConfig defaults = LoadFalseClosureConfig(kDir + "default.yaml");
+  const FalseClosureConfig off;
+  EXPECT_EQ(defaults.share, off.share);
+  EXPECT_EQ(defaults.dx_m, off.dx_m);
+  EXPECT_EQ(defaults.dy_m, off.dy_m);
+  const FalseClosureConfig set = FalseClosureConfigFromString(
+      "loops:\n  min_score: 0.7\nfalse_closures:\n  share: 0.05\n  dy_m: 3.8\n", "test.yaml");
+  EXPECT_EQ(set.share, 0.05);
+  EXPECT_EQ(set.dx_m, 0.0);
+  EXPECT_EQ(set.dy_m, 3.8);
+  EXPECT_THROW(FalseClosureConfigFromString("false_closures:\n  share: 2\n", "t.yaml"), InputError);
+  EXPECT_THROW(FalseClosureConfigFromString("loops:\n  inject_false_share: 0.05\n", "t.yaml"),
+               InputError);  // the mapper has no such key any more
+  EXPECT_EQ(MapperSettingsYaml({{"false_closures.share", "0.05"}}),
+            "false_closures:\n  share: 0.05\n");
+  EXPECT_NO_THROW(ApplyMapperSettings({{"false_closures.share", "0.05"}}, "setting"));
 }
 
 TEST(MapperConfigFile, PrunedBudgetExampleSetsOnlyThePruning) {

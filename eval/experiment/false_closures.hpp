@@ -6,8 +6,10 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "slam/loops/loop_verifier.hpp"
+#include "slam/mapping/mapper_config.hpp"
 
 namespace lifelong::eval {
 
@@ -19,6 +21,10 @@ struct FalseClosureConfig {
   double dx_m = 0.0;   ///< m, world frame
   double dy_m = 3.0;   ///< m, world frame
 };
+
+/// The first setting outside its allowed values, named as in a config file
+/// ("false_closures.share"), or nothing.
+std::optional<slam::ConfigProblem> Validate(const FalseClosureConfig& config);
 
 /// The hook for `share` in (0, 1] (nothing is moved at 0), deterministic: the n-th hypothesis
 /// (0-based) is moved when floor((n + 1) share) steps up from floor(n share).

@@ -56,41 +56,25 @@ class Reader {
     child.RejectUnknown();
   }
 
-  void Number(const char* key, double& value, const Range& range) {
+  // The ranges are not checked here: slam::Validate checks every field of the result against
+  // the same table, and the file's line is found from the field it names (LineOfField).
+  void Number(const char* key, double& value, const Range&) {
     const YAML::Node n = Take(key);
     if (!n) return;
-    double v = 0.0;
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v)) {
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, value)) {
       Fail(n, Name(key), "expected a number, got '" + Text(n) + "'");
     }
-    if (!range.Admits(v)) {
-      Fail(n, Name(key), std::string("must be ") + range.text + ", got " + Text(n));
-    }
-    value = v;
   }
 
-  void Int(const char* key, int& value, int min, int max = std::numeric_limits<int>::max()) {
+  void Int(const char* key, int& value, int, int = 0) {
     const YAML::Node n = Take(key);
     if (!n) return;
-    int v = 0;
-    if (!n.IsScalar() || !YAML::convert<int>::decode(n, v)) {
+    if (!n.IsScalar() || !YAML::convert<int>::decode(n, value)) {
       Fail(n, Name(key), "expected an integer, got '" + Text(n) + "'");
     }
-    if (v < min) Fail(n, Name(key), "must be >= " + std::to_string(min) + ", got " + Text(n));
-    if (v > max) Fail(n, Name(key), "must be <= " + std::to_string(max) + ", got " + Text(n));
-    value = v;
   }
 
-  void PowerOfTwo(const char* key, int& value) {
-    int v = value;
-    Int(key, v, 1);
-    const YAML::Node n = Node()[key];
-    // A matcher's top level has coarse_factor^2 cells per block: past 1024 it exhausted memory.
-    if (n && ((v & (v - 1)) != 0 || v > 1024)) {
-      Fail(n, Name(key), "must be a power of 2 up to 1024, got " + Text(n));
-    }
-    value = v;
-  }
+  void PowerOfTwo(const char* key, int& value) { Int(key, value, 1); }
 
   void Bool(const char* key, bool& value) {
     const YAML::Node n = Take(key);
@@ -115,14 +99,7 @@ class Reader {
     Fail(n, Name(key), "expected one of " + choices + ", got '" + Text(n) + "'");
   }
 
-  /// lo <= hi once both are read; blames hi when the file gives it, else lo.
-  void Ordered(const char* lo_key, double lo, const char* hi_key, double hi) {
-    if (lo <= hi) return;
-    const char* key = Node()[hi_key] ? hi_key : lo_key;
-    Fail(Node()[key], Name(key),
-         std::string(lo_key) + " (" + ShortestDouble(lo) + ") exceeds " + hi_key + " (" +
-             ShortestDouble(hi) + ")");
-  }
+  void Ordered(const char*, double, const char*, double) {}  // slam::Validate's
 
   /// Every key must be a known one, given once (yaml-cpp would silently keep the first).
   void RejectUnknown() const {
@@ -159,6 +136,22 @@ class Reader {
   std::set<std::string> used_;
 };
 
+// Whether the file sets the dotted `field`.
+bool FileGives(const YAML::Node& root, const std::string& field) {
+  YAML::Node at = root;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t dot = field.find('.', start);
+    const std::string key = field.substr(start, dot == std::string::npos ? dot : dot - start);
+    if (!at.IsMap()) return false;
+    const YAML::Node next = static_cast<const YAML::Node&>(at)[key];
+    if (!next) return false;
+    if (dot == std::string::npos) return true;
+    at.reset(next);  // rebinds; operator= would overwrite the node `at` refers to
+    start = dot + 1;
+  }
+}
+
 // The line to blame for a problem Validate found: the first field it names, or the
 // deepest section of it the file has (a bound across settings may come from defaults).
 int LineOfField(const YAML::Node& root, const std::string& fields) {
@@ -170,7 +163,7 @@ int LineOfField(const YAML::Node& root, const std::string& fields) {
     const std::string key = first.substr(start, dot == std::string::npos ? dot : dot - start);
     const YAML::Node next = at.IsMap() ? static_cast<const YAML::Node&>(at)[key] : YAML::Node();
     if (!next) break;
-    at = next;
+    at.reset(next);  // rebinds; operator= would overwrite the node `at` refers to
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
@@ -201,10 +194,16 @@ FileSettings Apply(const YAML::Node& root, const std::string& name,
   reader.Section("false_closures",
                  [&](auto& s) { VisitFalseClosures(s, settings.false_closures); });
   reader.RejectUnknown();
-  // The reader has checked every key against its range; what is left are the bounds across
-  // settings.
-  if (const std::optional<slam::ConfigProblem> problem = slam::Validate(config)) {
-    throw InputError(name, LineOfField(root, problem->fields), problem->fields, problem->message);
+  // The reader has mapped keys to fields; each config's Validate checks their values.
+  std::optional<slam::ConfigProblem> problem = slam::Validate(config);
+  if (!problem) problem = Validate(settings.false_closures);
+  if (problem) {
+    // A bound between two settings blames the one the file gives.
+    const std::string& field = !problem->counterpart.empty() && !FileGives(root, problem->fields) &&
+                                       FileGives(root, problem->counterpart)
+                                   ? problem->counterpart
+                                   : problem->fields;
+    throw InputError(name, LineOfField(root, field), field, problem->message);
   }
   return settings;
 }

@@ -97,6 +97,9 @@ struct MapperConfig {
 struct ConfigProblem {
   std::string fields;
   std::string message;
+  /// For a bound between two settings (a minimum above its maximum), `fields` names the upper
+  /// one and this the lower: a reader blames this one when a file gives it and not the other.
+  std::string counterpart = {};
 };
 
 /// The first setting of `config` outside its allowed values (mapper_config_fields.hpp), or a

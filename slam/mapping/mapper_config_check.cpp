@@ -1,6 +1,7 @@
 // Validate(MapperConfig): every setting against its allowed values, as declared once in
 // mapper_config_fields.hpp, then the bounds across settings (the matchers' tables, the place
-// descriptors). eval's config reader checks the same ranges as it reads, to name the line.
+// descriptors). eval's config reader only maps keys to fields, and names the line of the
+// field this finds.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -53,6 +54,7 @@ class Checker {
     if (lo > hi) {
       Fail(hi_key, std::string(lo_key) + " (" + ShortestDouble(lo) + ") exceeds " + hi_key + " (" +
                        ShortestDouble(hi) + ")");
+      if (problem_->counterpart.empty()) problem_->counterpart = Name(lo_key);
     }
   }
 

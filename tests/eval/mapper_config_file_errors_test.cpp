@@ -54,7 +54,7 @@ TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
   ExpectError("incremental:\n  matcher:\n    coarse_factor: 12\n", 3,
               "incremental.matcher.coarse_factor", "power of 2");
   ExpectError("incremental:\n  matcher:\n    coarse_factor: 0\n", 3,
-              "incremental.matcher.coarse_factor", ">= 1");
+              "incremental.matcher.coarse_factor", "power of 2");
   ExpectError("loops:\n  min_score: 1.5\n", 2, "loops.min_score", "in [0, 1]");
   ExpectError("incremental:\n  matcher: {linear_window_m: 0}\n", 2,
               "incremental.matcher.linear_window_m", "in (0, 50] m");
@@ -72,7 +72,7 @@ TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
               "0 (no thinning) or in [0.005, 1] m");
   ExpectError("optimizer:\n  max_iterations: 0\n", 2, "optimizer.max_iterations", ">= 1");
   ExpectError("keyframes:\n  min_translation_m: .nan\n", 2, "keyframes.min_translation_m",
-              "got .nan");
+              "got nan");
   // max below min: blame max when the file gives it, else min.
   ExpectError("loops:\n  min_window_m: 0.5\n  max_window_m: 0.4\n", 3, "loops.max_window_m",
               "min_window_m (0.5) exceeds max_window_m (0.4)");

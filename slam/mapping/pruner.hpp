@@ -39,7 +39,6 @@ class Pruner {
  public:
   /// The policy and sparsifier of config.mode; std::invalid_argument when either is unknown
   /// (the standard mode has neither).
-  /// std::invalid_argument when either name is unknown.
   Pruner(const PruningConfig& config, const OptimizerParams& optimizer);
 
   /// Starts a round over the candidates and their gains (bits); `view` shows the scans.

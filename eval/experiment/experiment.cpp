@@ -254,8 +254,8 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
   ExperimentConfig config = final_config;
   config.out_dir = output.path();
   io::WriteFileAtomically((fs::path(config.out_dir) / "config.yaml").string(),
-                          "# Mapper settings of this run (lifelong --config format)\n" +
-                              MapperConfigToYaml(config.mapper));
+                          "# Settings of this run (lifelong --config format)\n" +
+                              MapperConfigToYaml(config.mapper, config.false_closures));
   const std::unique_ptr<FrameSink> sink = OpenFrameSink(config);
   Runners runners;
   for (const slam::Mode& mode : config.modes) {

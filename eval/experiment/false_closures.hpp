@@ -10,6 +10,7 @@
 
 #include "slam/loops/loop_verifier.hpp"
 #include "slam/mapping/mapper_config.hpp"
+#include "slam/mapping/mapper_config_fields.hpp"
 
 namespace lifelong::eval {
 
@@ -21,6 +22,15 @@ struct FalseClosureConfig {
   double dx_m = 0.0;   ///< m, world frame
   double dy_m = 3.0;   ///< m, world frame
 };
+
+/// The section's keys, for the config file's reader and writer (the visitors of
+/// slam/mapping/mapper_config_fields.hpp).
+template <class V>
+void VisitFalseClosures(V& v, FalseClosureConfig& c) {
+  v.Number("share", c.share, slam::config_fields::kUnit);
+  v.Number("dx_m", c.dx_m, slam::config_fields::kAnyNumber);
+  v.Number("dy_m", c.dy_m, slam::config_fields::kAnyNumber);
+}
 
 /// The first setting outside its allowed values, named as in a config file
 /// ("false_closures.share"), or nothing.

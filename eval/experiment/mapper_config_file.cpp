@@ -170,14 +170,6 @@ int LineOfField(const YAML::Node& root, const std::string& fields) {
   return LineOf(at);
 }
 
-// The false-closure test's section: eval's own, beside the mapper's (false_closures.hpp).
-template <class V>
-void VisitFalseClosures(V& v, FalseClosureConfig& c) {
-  v.Number("share", c.share, kUnit);
-  v.Number("dx_m", c.dx_m, kAnyNumber);
-  v.Number("dy_m", c.dy_m, kAnyNumber);
-}
-
 struct FileSettings {
   slam::MapperConfig mapper;
   FalseClosureConfig false_closures;

@@ -50,8 +50,10 @@ FalseClosureConfig FalseClosureConfigFromString(const std::string& yaml, const s
 /// ApplyMapperSettings gives ("{}" for none): a sweep cell's config file.
 std::string MapperSettingsYaml(const std::vector<std::pair<std::string, std::string>>& settings);
 
-/// Every setting of `config` (except those listed above) as a YAML document that
-/// LoadMapperConfigFromString reads back to an equal config (doubles in shortest exact form).
-std::string MapperConfigToYaml(const slam::MapperConfig& config);
+/// Every setting of `config` (except those listed above), then the `false_closures` section,
+/// as a YAML document that LoadMapperConfigFromString and LoadFalseClosureConfig read back to
+/// equal configs (doubles in shortest exact form): a run's config.yaml.
+std::string MapperConfigToYaml(const slam::MapperConfig& config,
+                               const FalseClosureConfig& false_closures = {});
 
 }  // namespace lifelong::eval

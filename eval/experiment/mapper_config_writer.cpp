@@ -43,12 +43,15 @@ class Writer {
 
 }  // namespace
 
-std::string MapperConfigToYaml(const slam::MapperConfig& config) {
+std::string MapperConfigToYaml(const slam::MapperConfig& config,
+                               const FalseClosureConfig& false_closures) {
   slam::MapperConfig copy = config;
+  FalseClosureConfig test = false_closures;
   YAML::Emitter out;
   out << YAML::BeginMap;
   Writer writer(&out);
   VisitConfig(writer, copy);
+  writer.Section("false_closures", [&](auto& s) { VisitFalseClosures(s, test); });
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

@@ -340,6 +340,13 @@ TEST(MapperConfigFile, RoundTripsTheDefaultsAndAChangedConfig) {
   ExpectSameConfig(LoadMapperConfigFromString(defaults, "rt", AllChanged()), slam::MapperConfig{});
   const MapperConfig changed = AllChanged();
   ExpectSameConfig(LoadMapperConfigFromString(MapperConfigToYaml(changed), "rt"), changed);
+  // A run's config.yaml keeps its false-closure test too.
+  const FalseClosureConfig injected{0.05, -1.0, 3.8};
+  const FalseClosureConfig back =
+      FalseClosureConfigFromString(MapperConfigToYaml(changed, injected), "rt");
+  EXPECT_EQ(back.share, 0.05);
+  EXPECT_EQ(back.dx_m, -1.0);
+  EXPECT_EQ(back.dy_m, 3.8);
 }
 
 }  // namespace

@@ -82,7 +82,7 @@ DistanceRpe ComputeRpeAtDistance(const std::vector<Pose2>& estimate,
   std::size_t j = 0;
   for (std::size_t i = 0; i < reference.size(); ++i) {
     j = std::max(j, i + 1);
-    while (j < reference.size() && along[j] - along[i] < distance_m) ++j;
+    while (j < reference.size() && along[j] - along[i] < distance_m - kRpeDistanceTolerance_m) ++j;
     if (j >= reference.size()) break;
     const Pose2 err =
         Between(Between(reference[i], reference[j]), Between(estimate[i], estimate[j]));

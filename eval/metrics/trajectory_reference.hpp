@@ -40,8 +40,13 @@ struct DistanceRpe {
   double trans_rmse_m = 0.0;  ///< m
   double rot_rmse_deg = 0.0;  ///< deg
 };
-/// RPE over pairs distance_m apart along the reference path; poses matched by index.
-/// No pair (a path shorter than distance_m): count 0.
+/// RPE over pairs distance_m apart along the reference path; poses matched by index. Pose j
+/// pairs with pose i when it is the first at least distance_m - kRpeDistanceTolerance_m along:
+/// a simulated robot at constant speed covers exactly distance_m in whole steps, and without
+/// the tolerance the rounding of a trajectory file (6 decimals) flipped which pose each pair
+/// took, so `score` read RPE 2 % off `run`'s own. No pair (a path shorter than distance_m):
+/// count 0.
+inline constexpr double kRpeDistanceTolerance_m = 1e-3;
 DistanceRpe ComputeRpeAtDistance(const std::vector<Pose2>& estimate,
                                  const std::vector<Pose2>& reference, double distance_m = 1.0);
 

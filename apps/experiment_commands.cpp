@@ -10,6 +10,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "apps/commands.hpp"
 #include "apps/exit_codes.hpp"
@@ -99,21 +100,17 @@ struct VideoArgs {
   int stride = 20;
 };
 
-// Mapper settings: the defaults, or a YAML file over them (configs/default.yaml).
-lifelong::slam::MapperConfig MapperSettings(const std::string& config_path) {
-  return config_path.empty() ? lifelong::slam::MapperConfig{}
-                             : lifelong::eval::LoadMapperConfig(config_path);
-}
-
 // Settings every experiment shares; inputs are all checked here, before any work.
 lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
                                                     const std::string& modes,
                                                     const std::string& config_path,
                                                     const std::string& command_line) {
   lifelong::eval::ExperimentConfig config;
-  config.mapper = MapperSettings(config_path);
-  if (!config_path.empty())
-    config.false_closures = lifelong::eval::LoadFalseClosureConfig(config_path);
+  if (!config_path.empty()) {  // else the defaults (configs/default.yaml)
+    lifelong::eval::ConfigFile file = lifelong::eval::LoadConfigFile(config_path);
+    config.mapper = std::move(file.mapper);
+    config.false_closures = file.false_closures;
+  }
   config.modes = ParseModes(modes);
   lifelong::eval::CheckReplaceableOutput(out);
   config.out_dir = out;

@@ -136,48 +136,33 @@ class Reader {
   std::set<std::string> used_;
 };
 
-// Whether the file sets the dotted `field`.
-bool FileGives(const YAML::Node& root, const std::string& field) {
+// The deepest node of the dotted `field` the file has, and whether that is the field itself.
+std::pair<YAML::Node, bool> Walk(const YAML::Node& root, const std::string& field) {
   YAML::Node at = root;
   std::size_t start = 0;
   for (;;) {
     const std::size_t dot = field.find('.', start);
     const std::string key = field.substr(start, dot == std::string::npos ? dot : dot - start);
-    if (!at.IsMap()) return false;
-    const YAML::Node next = static_cast<const YAML::Node&>(at)[key];
-    if (!next) return false;
-    if (dot == std::string::npos) return true;
+    const YAML::Node next = at.IsMap() ? static_cast<const YAML::Node&>(at)[key] : YAML::Node();
+    if (!next) return {at, false};
     at.reset(next);  // rebinds; operator= would overwrite the node `at` refers to
+    if (dot == std::string::npos) return {at, true};
     start = dot + 1;
   }
+}
+
+bool FileGives(const YAML::Node& root, const std::string& field) {
+  return Walk(root, field).second;
 }
 
 // The line to blame for a problem Validate found: the first field it names, or the
 // deepest section of it the file has (a bound across settings may come from defaults).
 int LineOfField(const YAML::Node& root, const std::string& fields) {
-  const std::string first = fields.substr(0, fields.find(','));
-  YAML::Node at = root;
-  std::size_t start = 0;
-  while (start <= first.size()) {
-    const std::size_t dot = first.find('.', start);
-    const std::string key = first.substr(start, dot == std::string::npos ? dot : dot - start);
-    const YAML::Node next = at.IsMap() ? static_cast<const YAML::Node&>(at)[key] : YAML::Node();
-    if (!next) break;
-    at.reset(next);  // rebinds; operator= would overwrite the node `at` refers to
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  return LineOf(at);
+  return LineOf(Walk(root, fields.substr(0, fields.find(','))).first);
 }
 
-struct FileSettings {
-  slam::MapperConfig mapper;
-  FalseClosureConfig false_closures;
-};
-
-FileSettings Apply(const YAML::Node& root, const std::string& name,
-                   const slam::MapperConfig& base) {
-  FileSettings settings{base, {}};
+ConfigFile Apply(const YAML::Node& root, const std::string& name, const slam::MapperConfig& base) {
+  ConfigFile settings{base, {}};
   slam::MapperConfig& config = settings.mapper;
   if (!root || root.IsNull()) return settings;
   if (!root.IsMap()) throw InputError(name, LineOf(root), "", "expected a map of sections");
@@ -207,6 +192,14 @@ YAML::Node LoadYamlFile(const std::string& path) {
     throw InputError(path, 0, "", "cannot open the config file");
   } catch (const YAML::ParserException& e) {
     throw InputError(path, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
+}
+
+YAML::Node ParseYaml(const std::string& yaml, const std::string& name) {
+  try {
+    return YAML::Load(yaml);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(name, e.mark.line + 1, "", "malformed YAML: " + e.msg);
   }
 }
 
@@ -250,13 +243,11 @@ std::string MapperSettingsYaml(const std::vector<std::pair<std::string, std::str
 
 slam::MapperConfig LoadMapperConfigFromString(const std::string& yaml, const std::string& name,
                                               const slam::MapperConfig& base) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(name, e.mark.line + 1, "", "malformed YAML: " + e.msg);
-  }
-  return Apply(root, name, base).mapper;
+  return Apply(ParseYaml(yaml, name), name, base).mapper;
+}
+
+ConfigFile LoadConfigFile(const std::string& path) {
+  return Apply(LoadYamlFile(path), path, slam::MapperConfig{});
 }
 
 slam::MapperConfig LoadMapperConfig(const std::string& path, const slam::MapperConfig& base) {
@@ -264,17 +255,11 @@ slam::MapperConfig LoadMapperConfig(const std::string& path, const slam::MapperC
 }
 
 FalseClosureConfig LoadFalseClosureConfig(const std::string& path) {
-  return Apply(LoadYamlFile(path), path, slam::MapperConfig{}).false_closures;
+  return LoadConfigFile(path).false_closures;
 }
 
 FalseClosureConfig FalseClosureConfigFromString(const std::string& yaml, const std::string& name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(name, e.mark.line + 1, "", "malformed YAML: " + e.msg);
-  }
-  return Apply(root, name, slam::MapperConfig{}).false_closures;
+  return Apply(ParseYaml(yaml, name), name, slam::MapperConfig{}).false_closures;
 }
 
 }  // namespace lifelong::eval

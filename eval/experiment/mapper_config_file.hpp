@@ -40,6 +40,14 @@ slam::MapperConfig ApplyMapperSettings(
     const std::vector<std::pair<std::string, std::string>>& settings, const std::string& name,
     const slam::MapperConfig& base = slam::MapperConfig{});
 
+/// A config file: the mapper's settings over the defaults, and eval's `false_closures`
+/// section, read and checked in one pass (what `run` and `replay` take from --config).
+struct ConfigFile {
+  slam::MapperConfig mapper;
+  FalseClosureConfig false_closures;
+};
+ConfigFile LoadConfigFile(const std::string& path);
+
 /// The file's `false_closures` section (eval's false-closure test, false_closures.hpp), read
 /// with the same checks as the rest of the file; its defaults (off) when the file has none.
 FalseClosureConfig LoadFalseClosureConfig(const std::string& path);

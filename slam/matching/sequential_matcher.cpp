@@ -27,7 +27,6 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
                                          const std::vector<Eigen::Vector2d>& points,
                                          bool odometry_lost) {
   const Pose2 guess = X_last * delta;
-  const std::vector<Eigen::Vector2d> reference = LocalMap(nodes, values, recent);
   SequentialMatch out;
   out.X_new = guess;
   out.lost = odometry_lost;
@@ -40,12 +39,14 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
     mc.linear_window_m = config_.lost_window_m;
     mc.angular_window_rad = kLostStepWindowRad;
   }
-  MatchResult match = Search(points, guess, mc, reference);
+  MatchResult match = Search(points, guess, mc, LocalMap(nodes, values, recent));
   const bool refused = match.ok && WeakAndAmbiguous(match, config_);
   if ((!match.ok || refused) && !odometry_lost && config_.recovery_window_m > mc.linear_window_m) {
     MatcherConfig wide = mc;
     wide.linear_window_m = config_.recovery_window_m;
-    const MatchResult second = Search(points, guess, wide, reference);
+    // The local map again (its surfaces are cached): the first search cropped its copy, and
+    // keeping one uncropped would cost every step a copy for the rare one that recovers.
+    const MatchResult second = Search(points, guess, wide, LocalMap(nodes, values, recent));
     if (Recovers(second)) {
       match = second;
       out.recovered = true;

@@ -3,7 +3,8 @@
 
 Usage: scripts/trajectory_stretch.py RUN_DIR [MODE ...]
 
-RUN_DIR is a `lifelong run` output (or a sweep cell) with truth/trajectory.tum and
+RUN_DIR is a `lifelong run` output (or a sweep cell) with truth/trajectory.tum, or a
+`lifelong replay` output with reference/trajectory.tum (a log's reference poses), and
 MODE/trajectory.tum (default: every mode directory present). For each mode it pairs the
 poses by stamp and prints:
   rigid_m     RMS position error after the best rigid alignment (the ATE of summary.json)
@@ -88,15 +89,24 @@ def main(argv):
         sys.stderr.write(__doc__)
         return 2
     run = argv[1]
-    truth_path = os.path.join(run, "truth", "trajectory.tum")
-    if not os.path.exists(truth_path):
-        sys.stderr.write(f"{truth_path}: no such file (is {run} a run directory?)\n")
+    found = [
+        os.path.join(run, d, "trajectory.tum")
+        for d in ("truth", "reference")
+        if os.path.exists(os.path.join(run, d, "trajectory.tum"))
+    ]
+    if not found:
+        sys.stderr.write(
+            f"{run}: neither truth/trajectory.tum nor reference/trajectory.tum "
+            "(is it a run or replay directory?)\n"
+        )
         return 2
+    truth_path = found[0]
     truth = load_tum(truth_path)
     modes = argv[2:] or sorted(
         d
         for d in os.listdir(run)
-        if d != "truth" and os.path.exists(os.path.join(run, d, "trajectory.tum"))
+        if d not in ("truth", "reference")
+        and os.path.exists(os.path.join(run, d, "trajectory.tum"))
     )
     print("mode            poses   rigid_m  affine_m  stretch")
     for mode in modes:

@@ -229,6 +229,17 @@ void RunInTurn(const std::vector<Observation>& stream, const std::optional<Groun
   }
 }
 
+/// reference/trajectory.tum: the log's reference poses (a corrected log's own, or
+/// --reference), so that a tool outside can score the modes' trajectories against them as
+/// against a run's truth/trajectory.tum; whether it was written.
+bool WriteReferenceTrajectory(const ExperimentConfig& config) {
+  if (config.reference.empty()) return false;
+  const fs::path dir = fs::path(config.out_dir) / "reference";
+  fs::create_directories(dir);
+  io::WriteTum((dir / "trajectory.tum").string(), config.reference);
+  return true;
+}
+
 /// trajectories.png: the modes aligned to the log's reference trajectory, when it has one;
 /// whether it was written.
 bool WriteReferenceFigure(const ExperimentConfig& config, const std::vector<AlignedTrack>& tracks) {
@@ -281,6 +292,7 @@ RunSummary RunExperiment(const std::vector<Observation>& stream,
     const std::vector<std::string> written = WriteTruth(stream, *truth, results.frame, config);
     results.files.insert(written.begin(), written.end());
   }
+  if (WriteReferenceTrajectory(config)) results.files.insert("reference/trajectory.tum");
   if (WriteReferenceFigure(config, results.reference_tracks)) {
     results.files.insert("trajectories.png");
   }

@@ -210,6 +210,8 @@ std::vector<ReportLinkGroup> FileLinks(const ReportContext& c, const ReportPage&
   ReportLinkGroup truth =
       Links(c, "ground truth", "truth", {"trajectory.tum", "map.pgm", "map.yaml", "map.png"});
   if (!truth.links.empty()) out.push_back(truth);
+  ReportLinkGroup reference = Links(c, "reference", "reference", {"trajectory.tum"});
+  if (!reference.links.empty()) out.push_back(reference);
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,6 +42,18 @@ TEST(ReferenceCli, ACorrectedLogIsScoredAgainstItsOwnPoses) {
   EXPECT_TRUE(m.contains("ate_rmse_m"));
   EXPECT_TRUE(fs::exists(out / "trajectories.png"));
   EXPECT_NE(Read(out / "report.html").find("trajectories.png"), std::string::npos);
+  // The reference is written beside the modes' trajectories, for tools outside to score with.
+  std::istringstream tum(Read(out / "reference" / "trajectory.tum"));
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(tum, line);) {
+    std::istringstream fields(line);
+    rows.emplace_back(std::istream_iterator<double>(fields), std::istream_iterator<double>());
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[1].size(), 8u);
+  EXPECT_DOUBLE_EQ(rows[0][0], 2.0);
+  EXPECT_DOUBLE_EQ(rows[1][0], 4.0);
+  EXPECT_NE(Read(out / "report.html").find("reference/trajectory.tum"), std::string::npos);
 }
 
 // Some corrected logs stamp every scan 0 (freiburg-campus): their own poses are paired by

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """scripts/trajectory_stretch.py on made-up runs: a rotated, shifted copy of the truth loses
 nothing to a rigid fit; one 1 % short along x shows stretch 1.0101 and an affine error of
-0; a missing truth file is exit 2."""
+0, against a run's truth or a replay's reference; a missing truth file is exit 2."""
 import math
 import os
 import subprocess
@@ -42,6 +42,15 @@ def main():
         assert rows["short"][4:] == ["1.0101", "1.0000"], out.stdout
         missing = run([os.path.join(d, "nowhere")])
         assert missing.returncode == 2 and "truth/trajectory.tum" in missing.stderr
+    # A replay's directory: the log's reference poses stand where a run's truth does.
+    with tempfile.TemporaryDirectory() as d:
+        write_tum(os.path.join(d, "reference", "trajectory.tum"), truth)
+        write_tum(os.path.join(d, "short", "trajectory.tum"), short)
+        out = run([d])
+        assert out.returncode == 0, out.stderr
+        rows = [line.split() for line in out.stdout.splitlines()[1:]]
+        assert [r[0] for r in rows] == ["short"], out.stdout
+        assert rows[0][4:] == ["1.0101", "1.0000"], out.stdout
     print("ok")
 
 

@@ -31,7 +31,8 @@ void WriteSparsifications(const std::string& path, const slam::Mapper& mapper) {
 }
 
 void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow>& rows) {
-  std::string text = "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted\n";
+  std::string text =
+      "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted,ambiguity\n";
   char line[192];
   for (const LoopAttemptRow& r : rows) {
     const slam::LoopAttempt& a = r.attempt;
@@ -40,10 +41,12 @@ void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow
         a.refused ? slam::MatchRefusalName(*a.refused) : (a.proposed ? "proposed" : "none");
     char score[32] = "";  // empty: no match ran
     if (!std::isnan(a.score)) std::snprintf(score, sizeof(score), "%.4f", a.score);
-    std::snprintf(line, sizeof(line), "%d,%lld,%s,%d,%lld,%.4f,%.5f,%s,%s,%d\n", r.obs,
+    char ambiguity[32] = "";
+    if (!std::isnan(a.ambiguity)) std::snprintf(ambiguity, sizeof(ambiguity), "%.4f", a.ambiguity);
+    std::snprintf(line, sizeof(line), "%d,%lld,%s,%d,%lld,%.4f,%.5f,%s,%s,%d,%s\n", r.obs,
                   static_cast<long long>(a.current), search, a.candidates,
                   static_cast<long long>(a.old), a.window_m, a.window_rad, score, outcome,
-                  a.accepted);
+                  a.accepted, ambiguity);
     text += line;
   }
   io::WriteFileAtomically(path, text);

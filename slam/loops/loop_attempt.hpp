@@ -9,6 +9,12 @@
 
 namespace lifelong::slam {
 
+/// What one submap match measured, whether it passed or not.
+struct MatchMeasure {
+  double score = std::numeric_limits<double>::quiet_NaN();
+  double ambiguity = std::numeric_limits<double>::quiet_NaN();
+};
+
 struct LoopAttempt {
   enum class Search { kLocal, kGlobal };
   Search search = Search::kLocal;
@@ -19,6 +25,9 @@ struct LoopAttempt {
   /// The best match's score (the points' mean likelihood on the reference, scan_matcher.hpp),
   /// whether it passed or not; NaN when no match ran (too few reference points).
   double score = std::numeric_limits<double>::quiet_NaN();
+  /// That match's best distinct rival's score over its own (MatchResult::ambiguity; 0: no
+  /// rival), which loops.max_ambiguity bounds; NaN when no match ran.
+  double ambiguity = std::numeric_limits<double>::quiet_NaN();
   int candidates = 0;                   ///< nodes (local) or places (global) matched against
   double window_m = 0.0;                ///< the matcher's half-width...
   double window_rad = 0.0;              ///< ...and heading half-width

@@ -174,8 +174,11 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   attempt.window_rad = mc.angular_window_rad;
   MatchRefusal why = MatchRefusal::kLowScore;
   const Pose2& X_cur = view.values.at(current);
+  MatchMeasure measured;
   const std::optional<MatchResult> found =
-      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why, &attempt.score);
+      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why, &measured);
+  attempt.score = measured.score;
+  attempt.ambiguity = measured.ambiguity;
   if (!found) return refuse(why);
   const MatchResult& match = *found;
 
@@ -193,7 +196,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
 std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
                                                    const std::set<NodeId>& submap, NodeId current,
                                                    const Pose2& guess, const MatcherConfig& mc,
-                                                   MatchRefusal* why, double* score) {
+                                                   MatchRefusal* why, MatchMeasure* measured) {
   const LoopClosingConfig& lc = config_;
   const std::vector<Eigen::Vector2d>& points = view.nodes.at(current).points;
   std::vector<Eigen::Vector2d> reference;
@@ -208,7 +211,8 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
   }
   grid_.Build(reference, mc);
   const MatchResult match = Match(grid_, points, guess, mc);
-  *score = match.score;
+  measured->score = match.score;
+  measured->ambiguity = match.ambiguity;
   if (!match.ok || match.score < lc.min_score) {
     *why = MatchRefusal::kLowScore;
   } else if (match.ambiguity > lc.max_ambiguity) {

@@ -76,11 +76,12 @@ class LoopCloser {
   std::vector<Eigen::Vector2d> Reference(const LoopClosingView& view, NodeId id);
   /// Matches the current node's points against the submap's references around `guess`: the
   /// match when it has enough points in reach, scores, is unambiguous and locally unique;
-  /// else nothing and *why. *score: the match's score whenever one ran (else untouched).
+  /// else nothing and *why. *measured: the match's score and ambiguity whenever one ran
+  /// (else untouched).
   std::optional<MatchResult> MatchSubmap(const LoopClosingView& view,
                                          const std::set<NodeId>& submap, NodeId current,
                                          const Pose2& guess, const MatcherConfig& mc,
-                                         MatchRefusal* why, double* score);
+                                         MatchRefusal* why, MatchMeasure* measured);
   /// The match's correction of the current pose lies inside the consistency gate
   /// (loops.consistency_chi2) of `covariance` plus the match's own.
   bool Plausible(const LoopClosingView& view, const MatchResult& match, NodeId current,

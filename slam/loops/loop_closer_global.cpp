@@ -117,11 +117,13 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
       submap.insert(n);
     }
     MatchRefusal refused = MatchRefusal::kLowScore;
-    double score = std::numeric_limits<double>::quiet_NaN();
+    MatchMeasure measured;
     const std::optional<MatchResult> match =
-        MatchSubmap(view, submap, current, guess, mc, &refused, &score);
+        MatchSubmap(view, submap, current, guess, mc, &refused, &measured);
+    const double score = measured.score;
     if (!std::isnan(score) && (std::isnan(attempt->score) || score > attempt->score)) {
       attempt->score = score;
+      attempt->ambiguity = measured.ambiguity;
       attempt->old = p.id;
     }
     if (!match) {
@@ -183,6 +185,7 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   verifier_.NoteGlobalProposed();
   attempt.old = best->id;
   attempt.score = best->match.score;
+  attempt.ambiguity = best->match.ambiguity;
   attempt.proposed = true;
   attempt.accepted = Propose(view, best->id, current, best->match, accepted);
   return attempt;

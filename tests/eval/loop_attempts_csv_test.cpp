@@ -25,6 +25,7 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
   refused.current = 40;
   refused.old = 3;
   refused.score = 0.25;
+  refused.ambiguity = 0.0;  // no rival
   refused.candidates = 2;
   refused.window_m = 0.5;
   refused.window_rad = 0.15;
@@ -34,6 +35,7 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
   proposed.current = 41;
   proposed.old = 7;
   proposed.score = 0.8125;
+  proposed.ambiguity = 0.75;
   proposed.candidates = 3;
   proposed.window_m = 4.0;
   proposed.window_rad = 0.2;
@@ -47,10 +49,10 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
   const fs::path path = fs::temp_directory_path() / "lifelong_loop_attempts_test.csv";
   WriteLoopAttempts(path.string(), {{40, refused}, {41, proposed}, {42, few}});
   EXPECT_EQ(Read(path),
-            "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted\n"
-            "40,40,local,2,3,0.5000,0.15000,0.2500,low_score,0\n"
-            "41,41,global,3,7,4.0000,0.20000,0.8125,proposed,2\n"
-            "42,42,local,1,-1,0.0000,0.00000,,few_points,0\n");
+            "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted,ambiguity\n"
+            "40,40,local,2,3,0.5000,0.15000,0.2500,low_score,0,0.0000\n"
+            "41,41,global,3,7,4.0000,0.20000,0.8125,proposed,2,0.7500\n"
+            "42,42,local,1,-1,0.0000,0.00000,,few_points,0,\n");
   fs::remove(path);
 }
 

@@ -13,6 +13,25 @@ MD = re.compile(r"\]\(([^)\s]+)\)")
 HTML = re.compile(r"""(?:href|src)="([^"]+)\"""")
 
 
+def local_target(page, link):
+    """The checkout- or book-relative path a link of `page` points at, or None for a URL,
+    an in-page anchor or an absolute path."""
+    if re.match(r"^[a-z]+:", link) or link.startswith(("#", "/")):
+        return None
+    return os.path.normpath(os.path.join(os.path.dirname(page), link.split("#")[0]))
+
+
+def local_links(root, page):
+    """(line number, link as written, target) of each local link of a .md or .html page."""
+    pattern = MD if page.endswith(".md") else HTML
+    with open(os.path.join(root, page), encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            for link in pattern.findall(line):
+                target = local_target(page, link)
+                if target is not None:
+                    yield number, link, target
+
+
 def pages(root):
     yield "README.md"
     for d, _, files in os.walk(os.path.join(root, "docs")):
@@ -22,15 +41,9 @@ def pages(root):
 
 
 def broken(root, page):
-    pattern = MD if page.endswith(".md") else HTML
-    with open(os.path.join(root, page), encoding="utf-8") as f:
-        for number, line in enumerate(f, 1):
-            for link in pattern.findall(line):
-                if re.match(r"^[a-z]+:", link) or link.startswith(("#", "/")):
-                    continue
-                target = os.path.join(os.path.dirname(page), link.split("#")[0])
-                if not os.path.exists(os.path.join(root, target)):
-                    yield number, link
+    for number, link, target in local_links(root, page):
+        if not os.path.exists(os.path.join(root, target)):
+            yield number, link
 
 
 def main(argv):

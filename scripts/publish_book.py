@@ -16,26 +16,17 @@ import re
 import shutil
 import sys
 
-LINK_MD = re.compile(r"\]\(([^)\s]+)\)")
-LINK_HTML = re.compile(r"""(?:href|src)="([^"]+)\"""")
+sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_doc_links import local_links, local_target  # noqa: E402
+
 ANCHOR = re.compile(r"""<a href="([^"]+)">(.*?)</a>""", re.S)
 ROOTS = ("results.md", "index.html")
 
 
-def local_target(page, link):
-    """The book-relative path a link of `page` points at, or None (absolute, a URL, a
-    fragment)."""
-    if re.match(r"^[a-z]+:", link) or link.startswith(("#", "/")):
-        return None
-    target = os.path.normpath(os.path.join(os.path.dirname(page), link.split("#")[0]))
-    return None if target.startswith("..") else target
-
-
 def links(book, page):
-    with open(os.path.join(book, page), encoding="utf-8") as f:
-        text = f.read()
-    found = LINK_MD.findall(text) if page.endswith(".md") else LINK_HTML.findall(text)
-    return [t for t in (local_target(page, link) for link in found) if t]
+    """Book-relative targets of the local links of a page inside the book."""
+    return [t for _, _, t in local_links(book, page) if not t.startswith("..")]
 
 
 def select(book):

@@ -40,9 +40,10 @@ void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow
     const char* outcome =
         a.refused ? slam::MatchRefusalName(*a.refused) : (a.proposed ? "proposed" : "none");
     char score[32] = "";  // empty: no match ran
-    if (!std::isnan(a.score)) std::snprintf(score, sizeof(score), "%.4f", a.score);
+    const slam::MatchMeasure& m = a.measured;
+    if (!std::isnan(m.score)) std::snprintf(score, sizeof(score), "%.4f", m.score);
     char ambiguity[32] = "";
-    if (!std::isnan(a.ambiguity)) std::snprintf(ambiguity, sizeof(ambiguity), "%.4f", a.ambiguity);
+    if (!std::isnan(m.ambiguity)) std::snprintf(ambiguity, sizeof(ambiguity), "%.4f", m.ambiguity);
     std::snprintf(line, sizeof(line), "%d,%lld,%s,%d,%lld,%.4f,%.5f,%s,%s,%d,%s\n", r.obs,
                   static_cast<long long>(a.current), search, a.candidates,
                   static_cast<long long>(a.old), a.window_m, a.window_rad, score, outcome,

@@ -9,9 +9,13 @@
 
 namespace lifelong::slam {
 
-/// What one submap match measured, whether it passed or not.
+/// What one submap match measured, whether it passed or not; NaN when no match ran (too few
+/// reference points).
 struct MatchMeasure {
+  /// The points' mean likelihood on the reference at the best pose (scan_matcher.hpp).
   double score = std::numeric_limits<double>::quiet_NaN();
+  /// The best distinct rival's score over the best's (MatchResult::ambiguity; 0: no rival),
+  /// which loops.max_ambiguity bounds.
   double ambiguity = std::numeric_limits<double>::quiet_NaN();
 };
 
@@ -22,12 +26,8 @@ struct LoopAttempt {
   /// The node the best match was against: the likeliest candidate (local) or the most similar
   /// place matched (global); -1 when no match ran.
   NodeId old = -1;
-  /// The best match's score (the points' mean likelihood on the reference, scan_matcher.hpp),
-  /// whether it passed or not; NaN when no match ran (too few reference points).
-  double score = std::numeric_limits<double>::quiet_NaN();
-  /// That match's best distinct rival's score over its own (MatchResult::ambiguity; 0: no
-  /// rival), which loops.max_ambiguity bounds; NaN when no match ran.
-  double ambiguity = std::numeric_limits<double>::quiet_NaN();
+  /// The best match's figures (of `old`'s submap), whether it passed or not.
+  MatchMeasure measured;
   int candidates = 0;                   ///< nodes (local) or places (global) matched against
   double window_m = 0.0;                ///< the matcher's half-width...
   double window_rad = 0.0;              ///< ...and heading half-width

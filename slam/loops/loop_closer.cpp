@@ -174,11 +174,8 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   attempt.window_rad = mc.angular_window_rad;
   MatchRefusal why = MatchRefusal::kLowScore;
   const Pose2& X_cur = view.values.at(current);
-  MatchMeasure measured;
   const std::optional<MatchResult> found =
-      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why, &measured);
-  attempt.score = measured.score;
-  attempt.ambiguity = measured.ambiguity;
+      MatchSubmap(view, submap.nodes, current, X_cur, mc, &why, &attempt.measured);
   if (!found) return refuse(why);
   const MatchResult& match = *found;
 

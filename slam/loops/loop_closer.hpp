@@ -116,7 +116,7 @@ class LoopCloser {
                                             const PlaceDescriptor& place) const;
   /// Each candidate matched around the descriptor's heading; those that match and are
   /// plausible where the covariance projection reaches them. *why: the last refusal;
-  /// attempt->old and ->score: the best-scoring candidate's, refused or not.
+  /// attempt->old and ->measured: the best-scoring candidate's, refused or not.
   std::vector<PlaceCandidate> MatchCandidates(const LoopClosingView& view, NodeId current,
                                               const std::vector<PlaceCandidate>& candidates,
                                               const MatcherConfig& mc, MatchRefusal* why,

@@ -120,10 +120,9 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
     MatchMeasure measured;
     const std::optional<MatchResult> match =
         MatchSubmap(view, submap, current, guess, mc, &refused, &measured);
-    const double score = measured.score;
-    if (!std::isnan(score) && (std::isnan(attempt->score) || score > attempt->score)) {
-      attempt->score = score;
-      attempt->ambiguity = measured.ambiguity;
+    const double best = attempt->measured.score;
+    if (!std::isnan(measured.score) && (std::isnan(best) || measured.score > best)) {
+      attempt->measured = measured;
       attempt->old = p.id;
     }
     if (!match) {
@@ -184,8 +183,7 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   }
   verifier_.NoteGlobalProposed();
   attempt.old = best->id;
-  attempt.score = best->match.score;
-  attempt.ambiguity = best->match.ambiguity;
+  attempt.measured = {best->match.score, best->match.ambiguity};
   attempt.proposed = true;
   attempt.accepted = Propose(view, best->id, current, best->match, accepted);
   return attempt;

@@ -24,8 +24,8 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
   slam::LoopAttempt refused;
   refused.current = 40;
   refused.old = 3;
-  refused.score = 0.25;
-  refused.ambiguity = 0.0;  // no rival
+  refused.measured.score = 0.25;
+  refused.measured.ambiguity = 0.0;  // no rival
   refused.candidates = 2;
   refused.window_m = 0.5;
   refused.window_rad = 0.15;
@@ -34,8 +34,8 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
   proposed.search = slam::LoopAttempt::Search::kGlobal;
   proposed.current = 41;
   proposed.old = 7;
-  proposed.score = 0.8125;
-  proposed.ambiguity = 0.75;
+  proposed.measured.score = 0.8125;
+  proposed.measured.ambiguity = 0.75;
   proposed.candidates = 3;
   proposed.window_m = 4.0;
   proposed.window_rad = 0.2;

@@ -71,11 +71,11 @@ TEST(LoopCloser, ClosesTheReturnOntoTheStartAndCorrectsItsOffset) {
   EXPECT_EQ(attempt->current, 12);
   EXPECT_GE(attempt->old, 0);
   EXPECT_LT(attempt->old, 12);
-  EXPECT_GE(attempt->score, Immediate().min_score);
-  EXPECT_LE(attempt->score, 1.0);
+  EXPECT_GE(attempt->measured.score, Immediate().min_score);
+  EXPECT_LE(attempt->measured.score, 1.0);
   // Accepted, so its rival (if any) stayed under max_ambiguity of its score.
-  EXPECT_GE(attempt->ambiguity, 0.0);
-  EXPECT_LE(attempt->ambiguity, Immediate().max_ambiguity);
+  EXPECT_GE(attempt->measured.ambiguity, 0.0);
+  EXPECT_LE(attempt->measured.ambiguity, Immediate().max_ambiguity);
   EXPECT_FALSE(attempt->refused.has_value());
   EXPECT_TRUE(attempt->proposed);
   EXPECT_GE(attempt->candidates, 1);
@@ -108,9 +108,9 @@ TEST(LoopCloser, ARefusedAttemptKeepsItsScoreAndCandidate) {
   EXPECT_EQ(*attempt->refused, MatchRefusal::kLowScore);
   EXPECT_FALSE(attempt->proposed);
   EXPECT_GE(attempt->old, 0);
-  EXPECT_GT(attempt->score, 0.5);  // the right place, refused only by the threshold
-  EXPECT_LT(attempt->score, 1.5);
-  EXPECT_FALSE(std::isnan(attempt->ambiguity));
+  EXPECT_GT(attempt->measured.score, 0.5);  // the right place, refused only by the threshold
+  EXPECT_LT(attempt->measured.score, 1.5);
+  EXPECT_FALSE(std::isnan(attempt->measured.ambiguity));
   EXPECT_TRUE(accepted.empty());
 }
 

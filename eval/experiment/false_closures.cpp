@@ -2,24 +2,33 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "sensor/pose2.hpp"
 #include "slam/mapping/mapper_config_fields.hpp"
 
 namespace lifelong::eval {
 
+namespace {
+
+// Checks each value against the range VisitFalseClosures declares for it: the first outside.
+struct RangeChecker {
+  std::optional<slam::ConfigProblem> problem;
+  void Number(const char* key, double value, const slam::config_fields::Range& range) {
+    if (problem || range.Admits(value)) return;
+    problem = slam::ConfigProblem{std::string("false_closures.") + key,
+                                  std::string("must be ") + range.text + ", got " +
+                                      slam::config_fields::ShortestDouble(value)};
+  }
+};
+
+}  // namespace
+
 std::optional<slam::ConfigProblem> Validate(const FalseClosureConfig& config) {
-  if (!(config.share >= 0.0 && config.share <= 1.0)) {
-    return slam::ConfigProblem{
-        "false_closures.share",
-        "must be in [0, 1], got " + slam::config_fields::ShortestDouble(config.share)};
-  }
-  if (!std::isfinite(config.dx_m) || !std::isfinite(config.dy_m)) {
-    return slam::ConfigProblem{
-        std::isfinite(config.dx_m) ? "false_closures.dy_m" : "false_closures.dx_m",
-        "must be a finite number"};
-  }
-  return std::nullopt;
+  RangeChecker checker;
+  FalseClosureConfig values = config;  // the visitor takes the fields by reference
+  VisitFalseClosures(checker, values);
+  return checker.problem;
 }
 
 std::function<void(slam::LoopHypothesis*, const slam::Values&)> FalseClosureInjector(double share,

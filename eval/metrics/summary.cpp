@@ -49,7 +49,6 @@ json LoopVerificationJson(const LoopVerificationSummary& l) {
              {"accepted", v.accepted},
              {"rejected", v.rejected},
              {"expired", v.expired},
-             {"rival_deferred", v.rival_deferred},
              {MatchRefusalName(MatchRefusal::kNotUnique), v.not_unique},
              {"switched_off", l.switched_off},
              {"attempts", v.attempts},

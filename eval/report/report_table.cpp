@@ -224,10 +224,6 @@ const std::vector<TableRow>& SummaryTableRows() {
        "hypotheses inconsistent with every accepted closure around them"},
       {kAccuracy, "/loop_verification/expired", "closures expired", "", 1, false,
        "hypotheses never confirmed within loops.verify.expiry_m of travel"},
-      {kAccuracy, "/loop_verification/rival_deferred", "confirmations deferred for a rival", "", 1,
-       false,
-       "times a group confirmed a hypothesis its match's close rival would have passed too "
-       "(loops.verify.rival_ambiguity); it stayed pending"},
       {kAccuracy, "/loop_verification/injected", "false closures injected", "", 1, false,
        "wrong closures injected on purpose (false_closures.share)"},
       {kAccuracy, "/loop_verification/injected_accepted", "false closures accepted", "", 1, false,

@@ -241,9 +241,6 @@ int LoopCloser::Propose(const LoopClosingView& view, NodeId old, NodeId current,
   h.information = RotateIntoFrame(pair.information, pair.T_ref_cur.theta);
   h.covariance = h.information.inverse();
   h.travelled_m = cur.travelled_m;
-  if (match.ambiguity > 0.0 && match.ambiguity >= config_.verify.rival_ambiguity) {
-    h.T_old_rival = Between(view.values.at(old), match.T_ref_rival);
-  }
   if (hook_) hook_(&h, view.values);
   const std::vector<LoopHypothesis> now = verifier_.Add(h, view.values);
   accepted->insert(accepted->end(), now.begin(), now.end());

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <Eigen/Cholesky>
 
@@ -36,18 +35,12 @@ Eigen::Matrix3d ChainCovariance(const LoopVerifierConfig& c, double d) {
 
 bool LoopVerifier::Consistent(const LoopHypothesis& a, const LoopHypothesis& b,
                               const Values& values) const {
-  return CycleChi2(a, b, values) <= config_.consistency_chi2;
-}
-
-double LoopVerifier::CycleChi2(const LoopHypothesis& a, const LoopHypothesis& b,
-                               const Values& values) const {
-  constexpr double kNever = std::numeric_limits<double>::infinity();
   const auto X = [&](NodeId id) -> const Pose2* {
     const auto it = values.find(id);
     return it == values.end() ? nullptr : &it->second;
   };
   const Pose2 *Xi = X(a.old), *Xj = X(a.current), *Xk = X(b.old), *Xl = X(b.current);
-  if (!Xi || !Xj || !Xk || !Xl) return kNever;
+  if (!Xi || !Xj || !Xk || !Xl) return false;
   // C = Z_a * T_jl * Z_b^-1 * T_ki; right perturbations moved to the end of the product:
   // eps = Adj((F2 F3 F4)^-1) d1 + Adj((F3 F4)^-1) d2 + Adj(F4^-1) d3 + d4, and the
   // inverse's perturbation d3 = -Adj(Z_b) d_b.
@@ -65,8 +58,8 @@ double LoopVerifier::CycleChi2(const LoopHypothesis& a, const LoopHypothesis& b,
       A1 * a.covariance * A1.transpose() + A2 * ChainCovariance(config_, d_jl) * A2.transpose() +
       A3 * b.covariance * A3.transpose() + ChainCovariance(config_, std::hypot(T_ki.x, T_ki.y));
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(S);
-  if (ldlt.info() != Eigen::Success) return kNever;
-  return e.dot(ldlt.solve(e));
+  if (ldlt.info() != Eigen::Success) return false;
+  return e.dot(ldlt.solve(e)) <= config_.consistency_chi2;
 }
 
 void LoopVerifier::Expire(double travelled_m) {
@@ -98,7 +91,6 @@ void LoopVerifier::Accept(const LoopHypothesis& h, std::vector<LoopHypothesis>* 
   ++stats_.accepted;
   if (h.injected) ++stats_.injected_accepted;
   accepted_.push_back(h);
-  accepted_.back().T_old_rival.reset();  // confirmed: it tells rivals apart now (rule 4)
   out->push_back(h);
 }
 
@@ -164,13 +156,9 @@ std::vector<LoopHypothesis> LoopVerifier::Add(const LoopHypothesis& h, const Val
   }
   const std::vector<std::size_t> clique = GreedyClique(ok, self);
   if (static_cast<int>(clique.size()) < config_.min_group) return out;
-  std::vector<const LoopHypothesis*> group;
-  for (std::size_t i : clique) group.push_back(members[i]);
   std::vector<bool> confirmed(first_accepted, false);
   for (std::size_t i : clique) {
-    if (i >= first_accepted) continue;
-    confirmed[i] = TellsFromRival(*members[i], group, values);
-    if (!confirmed[i]) ++stats_.rival_deferred;
+    if (i < first_accepted) confirmed[i] = true;
   }
   std::vector<LoopHypothesis> still_pending;
   const std::vector<LoopHypothesis> pool = pending_;
@@ -183,29 +171,6 @@ std::vector<LoopHypothesis> LoopVerifier::Add(const LoopHypothesis& h, const Val
   }
   pending_ = std::move(still_pending);
   return out;
-}
-
-bool LoopVerifier::TellsFromRival(const LoopHypothesis& h,
-                                  const std::vector<const LoopHypothesis*>& group,
-                                  const Values& values) const {
-  if (!h.T_old_rival) return true;
-  LoopHypothesis rival = h;
-  rival.T_old_current = *h.T_old_rival;
-  // A member that has a close rival of its own tells nothing: a run of wrong closures along
-  // one aliased traversal agrees with itself and conflicts with each other's true rival.
-  // The others tell h from its rival when one refutes the rival, or when together they fit
-  // h better than the rival (the sum of the cycle chi^2).
-  double h_fit = 0.0, rival_fit = 0.0;
-  bool any = false;
-  for (const LoopHypothesis* m : group) {
-    if (m == &h || m->T_old_rival) continue;
-    const double r = CycleChi2(rival, *m, values);
-    if (r > config_.consistency_chi2) return true;
-    rival_fit += r;
-    h_fit += CycleChi2(h, *m, values);
-    any = true;
-  }
-  return any && h_fit < rival_fit;
 }
 
 }  // namespace lifelong::slam

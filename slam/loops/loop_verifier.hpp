@@ -28,20 +28,12 @@
 //     contains h is found. When it holds at least min_group members, its pending members
 //     are accepted together.
 //  3. Pending hypotheses older than expiry_m of travel are dropped unconfirmed.
-//  4. A hypothesis whose match had a distinct rival scoring at least rival_ambiguity of it
-//     (an aisle beside the matched one) is confirmed only by a group that tells the two
-//     apart: a member the rival conflicts with, or members that together fit h better than
-//     the rival (a lower sum of cycle chi^2). Only accepted closures and hypotheses without
-//     such a rival of their own count: a run of wrong closures along one aliased traversal
-//     agrees with itself and conflicts with each other's true rivals. A group that fits the
-//     rival as well or better leaves h pending.
 // Pending hypotheses never enter the graph, so no optimization or marginalization ever sees
 // an unverified closure.
 #pragma once
 
 #include <cstddef>
 #include <functional>
-#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -61,7 +53,6 @@ struct LoopVerifierConfig {
   double var_xy_per_m = 0.0005;     ///< m^2 per m of chain (0.14 m after 40 m)
   double base_var_rad2 = 3e-4;      ///< rad^2 (1 deg)
   double var_rad_per_m = 3e-5;      ///< rad^2 per m of chain (2 deg after 40 m)
-  double rival_ambiguity = 0.7;     ///< rule 4 for rivals above this share of the best; 1: off
 };
 
 struct LoopHypothesis {
@@ -71,10 +62,7 @@ struct LoopHypothesis {
   Eigen::Matrix3d information;  ///< of the edge error (right perturbation of T_old_current)
   Eigen::Matrix3d covariance;   ///< its inverse
   double travelled_m = 0.0;     ///< robot path length at `current`
-  /// The match's best distinct rival, as a closure, when it scored at least
-  /// LoopVerifierConfig::rival_ambiguity of the best (rule 4).
-  std::optional<Pose2> T_old_rival;
-  bool injected = false;  ///< a deliberately wrong closure (false-closure test)
+  bool injected = false;        ///< a deliberately wrong closure (false-closure test)
 };
 
 /// Counts over the run; summary.json's loop_verification.
@@ -93,9 +81,6 @@ struct LoopVerifierStats {
   int low_score = 0;    ///< ...whose best match scored below the minimum
   int ambiguous = 0;    ///< ...whose best match had a close second farther away
   int implausible = 0;  ///< ...whose correction lay outside the consistency gate
-  /// Confirmations of a hypothesis deferred because its group could not tell it from its
-  /// match's rival (rule 4; one hypothesis may be deferred several times).
-  int rival_deferred = 0;
   /// Observations with no attempt whose only candidates inside the gate were uncertain
   /// beyond the largest window, between the searches of loops.beyond_window_every.
   int beyond_window = 0;
@@ -157,17 +142,12 @@ class LoopVerifier {
 
   /// Whether two closures are consistent at the current estimate (the header's test).
   bool Consistent(const LoopHypothesis& a, const LoopHypothesis& b, const Values& values) const;
-  /// The cycle error's chi^2 (infinity when a node is missing or the covariance singular).
-  double CycleChi2(const LoopHypothesis& a, const LoopHypothesis& b, const Values& values) const;
 
   const std::vector<LoopHypothesis>& pending() const { return pending_; }
   const LoopVerifierStats& stats() const { return stats_; }
 
  private:
   void Accept(const LoopHypothesis& h, std::vector<LoopHypothesis>* out);
-  /// Rule 4: whether some member of `group` other than `h` conflicts with h's rival.
-  bool TellsFromRival(const LoopHypothesis& h, const std::vector<const LoopHypothesis*>& group,
-                      const Values& values) const;
 
   LoopVerifierConfig config_;
   std::vector<LoopHypothesis> pending_;

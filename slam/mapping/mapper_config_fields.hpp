@@ -128,7 +128,6 @@ void VisitVerify(V& v, slam::LoopVerifierConfig& c) {
   v.Number("var_xy_per_m", c.var_xy_per_m, kNonNegative);
   v.Number("base_var_rad2", c.base_var_rad2, kPositive);
   v.Number("var_rad_per_m", c.var_rad_per_m, kNonNegative);
-  v.Number("rival_ambiguity", c.rival_ambiguity, kUnit);
 }
 
 template <class V>

@@ -176,28 +176,6 @@ TEST(LoopCloser, TheHookSeesEveryHypothesisBeforeTheVerifier) {
   EXPECT_EQ(closer.stats().injected, 1);
 }
 
-TEST(LoopCloser, AnAmbiguousMatchHandsItsRivalToTheVerifier) {
-  const Chain chain(Pose2(0.25, -0.15, 0.04));
-  for (const double share : {1e-9, 1.0}) {
-    LoopClosingConfig lc = Immediate();
-    lc.verify.rival_ambiguity = share;  // any rival, or only one scoring as well as the best
-    LoopCloser closer(lc, IncrementalConfig{});
-    std::vector<LoopHypothesis> accepted;
-    const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
-    ASSERT_TRUE(attempt.has_value());
-    ASSERT_GT(attempt->measured.ambiguity, 0.0);  // the room has a distinct second best
-    ASSERT_LT(attempt->measured.ambiguity, 1.0);
-    ASSERT_EQ(accepted.size(), 1u);
-    const LoopHypothesis& h = accepted.front();
-    ASSERT_EQ(h.T_old_rival.has_value(), share < 1.0);
-    if (!h.T_old_rival) continue;
-    // Distinct from the closure (scan_matcher.hpp's ambiguity radius or angle).
-    const Pose2 d = Between(h.T_old_current, *h.T_old_rival);
-    EXPECT_TRUE(std::hypot(d.x, d.y) >= lc.matcher.ambiguity_radius_m - lc.matcher.resolution_m ||
-                std::abs(d.theta) >= lc.matcher.ambiguity_angle_rad - 0.02);
-  }
-}
-
 TEST(LoopCloser, TheGlobalSearchIsOffByDefault) {
   const Chain chain(Pose2(0.0, 0.0, 0.0));
   LoopCloser closer(Immediate(), IncrementalConfig{});

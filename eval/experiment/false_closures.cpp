@@ -2,33 +2,17 @@
 
 #include <cmath>
 #include <memory>
-#include <string>
 
 #include "sensor/pose2.hpp"
-#include "slam/mapping/mapper_config_fields.hpp"
+#include "slam/mapping/config_checker.hpp"
 
 namespace lifelong::eval {
 
-namespace {
-
-// Checks each value against the range VisitFalseClosures declares for it: the first outside.
-struct RangeChecker {
-  std::optional<slam::ConfigProblem> problem;
-  void Number(const char* key, double value, const slam::config_fields::Range& range) {
-    if (problem || range.Admits(value)) return;
-    problem = slam::ConfigProblem{std::string("false_closures.") + key,
-                                  std::string("must be ") + range.text + ", got " +
-                                      slam::config_fields::ShortestDouble(value)};
-  }
-};
-
-}  // namespace
-
 std::optional<slam::ConfigProblem> Validate(const FalseClosureConfig& config) {
-  RangeChecker checker;
+  slam::config_fields::Checker checker("false_closures");
   FalseClosureConfig values = config;  // the visitor takes the fields by reference
   VisitFalseClosures(checker, values);
-  return checker.problem;
+  return checker.problem();
 }
 
 std::function<void(slam::LoopHypothesis*, const slam::Values&)> FalseClosureInjector(double share,

@@ -1,6 +1,6 @@
 // Every mapper setting once, with its key and its allowed values: the Visit* functions walk
 // the MapperConfig, calling the visitor's Section, Number, Int, PowerOfTwo, Bool, Enum and
-// Ordered for each key. Three visitors walk them: Validate (mapper_config_check.cpp),
+// Ordered for each key. Three visitors walk them: the range Checker (config_checker.hpp),
 // and eval's config file reader and writer, which only map keys to fields and back.
 #pragma once
 

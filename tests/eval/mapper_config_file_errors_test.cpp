@@ -56,6 +56,9 @@ TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
   ExpectError("incremental:\n  matcher:\n    coarse_factor: 0\n", 3,
               "incremental.matcher.coarse_factor", "power of 2");
   ExpectError("loops:\n  min_score: 1.5\n", 2, "loops.min_score", "in [0, 1]");
+  // eval's own section, checked by the same range visitor as the mapper's.
+  ExpectError("false_closures:\n  share: 1.5\n", 2, "false_closures.share",
+              "must be in [0, 1], got 1.5");
   ExpectError("incremental:\n  matcher: {linear_window_m: 0}\n", 2,
               "incremental.matcher.linear_window_m", "in (0, 50] m");
   // Windows, heading steps and block sizes that exhausted memory (bad_alloc) are refused.

@@ -217,13 +217,8 @@ std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool give
   return lifelong::io::ShiftRelations(file_time, d.offset_s);
 }
 
-int Replay(const ReplayArgs& a) {
-  const std::string& log = a.log;
-  lifelong::eval::ExperimentConfig config =
-      ExperimentSettings(a.out, a.modes, a.config, a.command_line);
-  // Read before the log, so that a bad reference costs no wait.
-  if (!a.reference.empty()) config.reference = lifelong::io::ReadTrajectory(a.reference);
-  const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
+// What the log holds, told on stderr and kept for summary.json's "log" object.
+lifelong::eval::LogInfo DescribeLog(const lifelong::io::CarmenLog& data, const std::string& log) {
   std::cerr << "read " << data.observations.size() << " scans from " << log
             << (data.odometry_recovered ? " (raw odometry recovered from a corrected log)" : "")
             << "\n";
@@ -237,6 +232,8 @@ int Replay(const ReplayArgs& a) {
   info.scans = static_cast<std::int64_t>(data.observations.size());
   info.backward_stamps = data.backward_scan_stamps;
   info.odometry_lost = data.lost_odometry_scans;
+  std::vector<double> stamps = SortedScanStamps(data);
+  info.distinct_stamps = std::unique(stamps.begin(), stamps.end()) - stamps.begin();
   if (data.lost_odometry_scans > 0) {
     std::cerr << "note: " << data.lost_odometry_scans
               << " scans have no odometry of their own (first: " << log << ":"
@@ -248,15 +245,31 @@ int Replay(const ReplayArgs& a) {
               << " scans are stamped earlier than the scan before them (first: " << log << ":"
               << data.first_backward_scan_line << "); they are replayed in file order\n";
   }
+  if (info.distinct_stamps < info.scans) {
+    std::cerr << "warning: the log's scans share their stamps (" << info.distinct_stamps
+              << " distinct of " << info.scans
+              << "); the trajectory files carry them as they are, so pair them by line, not "
+                 "by time\n";
+  }
+  return info;
+}
+
+int Replay(const ReplayArgs& a) {
+  const std::string& log = a.log;
+  lifelong::eval::ExperimentConfig config =
+      ExperimentSettings(a.out, a.modes, a.config, a.command_line);
+  // Read before the log, so that a bad reference costs no wait.
+  if (!a.reference.empty()) config.reference = lifelong::io::ReadTrajectory(a.reference);
+  const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
+  lifelong::eval::LogInfo info = DescribeLog(data, log);
   if (!a.relations.empty())
     config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, data, &info);
   if (!a.reference.empty()) {
-    std::vector<double> stamps = SortedScanStamps(data);
-    const auto distinct = std::unique(stamps.begin(), stamps.end()) - stamps.begin();
-    if (2 * distinct <= static_cast<std::ptrdiff_t>(stamps.size())) {
+    if (2 * info.distinct_stamps <= info.scans) {
       throw InputError(log, 0, "--reference",
-                       "the log's scans share their stamps (" + std::to_string(distinct) +
-                           " distinct of " + std::to_string(stamps.size()) +
+                       "the log's scans share their stamps (" +
+                           std::to_string(info.distinct_stamps) + " distinct of " +
+                           std::to_string(info.scans) +
                            "): a reference cannot be paired with them by time");
     }
     info.reference = a.reference;

@@ -6,7 +6,8 @@ Usage: scripts/trajectory_stretch.py RUN_DIR [MODE ...]
 RUN_DIR is a `lifelong run` output (or a sweep cell) with truth/trajectory.tum, or a
 `lifelong replay` output with reference/trajectory.tum (a log's reference poses), and
 MODE/trajectory.tum (default: every mode directory present). For each mode it pairs the
-poses by stamp and prints:
+poses by stamp, or line by line when the two files have as many poses and some stamp
+repeats (a log whose clock is broken), and prints:
   rigid_m     RMS position error after the best rigid alignment (the ATE of summary.json)
   affine_m    RMS error after the best affine map (a rigid motion plus stretch and shear)
   stretch     the affine map's two principal scale factors (singular values), largest
@@ -19,14 +20,27 @@ import sys
 
 
 def load_tum(path):
-    poses = {}
+    """The file's poses in order, as (stamp, (x, y))."""
+    poses = []
     with open(path) as f:
         for line in f:
             fields = line.split()
             if not fields or fields[0].startswith("#"):
                 continue
-            poses[round(float(fields[0]), 3)] = (float(fields[1]), float(fields[2]))
+            poses.append((round(float(fields[0]), 3), (float(fields[1]), float(fields[2]))))
     return poses
+
+
+def pair(est, truth):
+    """The paired positions (estimate, truth): line by line when the files have as many
+    poses and a stamp repeats in either, else by stamp."""
+    repeats = any(len({s for s, _ in p}) < len(p) for p in (est, truth))
+    if repeats and len(est) == len(truth):
+        return [p for _, p in est], [p for _, p in truth]
+    by_stamp = dict(truth)
+    shared = [(s, p) for s, p in dict(est).items() if s in by_stamp]
+    shared.sort()
+    return [p for _, p in shared], [by_stamp[s] for s, _ in shared]
 
 
 def solve3(m, v):
@@ -114,15 +128,12 @@ def main(argv):
         if not os.path.exists(path):
             sys.stderr.write(f"{path}: no such file\n")
             return 2
-        est = load_tum(path)
-        stamps = sorted(set(est) & set(truth))
-        if len(stamps) < 3:
-            sys.stderr.write(f"{path}: fewer than 3 stamps shared with {truth_path}\n")
+        e, t = pair(load_tum(path), truth)
+        if len(e) < 3:
+            sys.stderr.write(f"{path}: fewer than 3 poses paired with {truth_path}\n")
             return 2
-        e = [est[t] for t in stamps]
-        t = [truth[t] for t in stamps]
         affine, (big, small) = affine_fit(e, t)
-        print(f"{mode:<14} {len(stamps):6d}  {rigid_rms(e, t):7.3f}  {affine:8.3f}  "
+        print(f"{mode:<14} {len(e):6d}  {rigid_rms(e, t):7.3f}  {affine:8.3f}  "
               f"{big:.4f} {small:.4f}")
     return 0
 

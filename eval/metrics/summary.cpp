@@ -282,6 +282,7 @@ std::string SummaryJsonText(const RunSummary& s) {
   if (s.log) {
     json log = {{"scans", s.log->scans},
                 {"backward_stamps", s.log->backward_stamps},
+                {"distinct_stamps", s.log->distinct_stamps},
                 {"odometry_lost", s.log->odometry_lost}};
     Put(log, "relations_offset_s", s.log->relations_offset_s);
     Put(log, "relations_offset_detected", s.log->relations_offset_detected);

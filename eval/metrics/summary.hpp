@@ -140,7 +140,10 @@ struct ModeSummary {
 /// What was read from a real log (replay only): summary.json's "log" object.
 struct LogInfo {
   std::int64_t scans = 0;
-  std::int64_t backward_stamps = 0;          ///< scans stamped earlier than the scan before them
+  std::int64_t backward_stamps = 0;  ///< scans stamped earlier than the scan before them
+  /// Distinct stamps among the scans: fewer than `scans` means the trajectory files, which
+  /// carry the log's stamps, pair with the reference by line, not by time.
+  std::int64_t distinct_stamps = 0;
   std::int64_t odometry_lost = 0;            ///< scans with no odometry of their own (Observation)
   std::optional<double> relations_offset_s;  ///< s, relation time = log time + this
   std::optional<bool> relations_offset_detected;  ///< false: given with --relations-offset

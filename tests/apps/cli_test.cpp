@@ -266,6 +266,9 @@ TEST(Cli, BackwardStampsAreReportedAndTheDurationNeverNegative) {
   EXPECT_NE(r.output.find(log.string() + ":"), std::string::npos) << r.output;
   const auto summary = nlohmann::json::parse(Read(dir / "summary.json"));
   EXPECT_EQ(summary["log"]["backward_stamps"].get<int>(), 1);
+  // Out of order, but every stamp its own: no word about shared stamps.
+  EXPECT_EQ(summary["log"]["distinct_stamps"], summary["log"]["scans"]);
+  EXPECT_EQ(r.output.find("share their stamps"), std::string::npos) << r.output;
   EXPECT_GT(summary["log_duration_s"].get<double>(), 0.0);
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """scripts/trajectory_stretch.py on made-up runs: a rotated, shifted copy of the truth loses
 nothing to a rigid fit; one 1 % short along x shows stretch 1.0101 and an affine error of
-0, against a run's truth or a replay's reference; a missing truth file is exit 2."""
+0, against a run's truth or a replay's reference, also when the stamps repeat (paired line by
+line); a missing truth file is exit 2."""
 import math
 import os
 import subprocess
@@ -11,11 +12,11 @@ import tempfile
 SCRIPT = os.path.join(sys.argv[1], "scripts", "trajectory_stretch.py")
 
 
-def write_tum(path, poses):
+def write_tum(path, poses, stamp=lambda t: t * 0.2):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
         for t, (x, y) in enumerate(poses):
-            f.write(f"{t * 0.2:.6f} {x:.9f} {y:.9f} 0 0 0 0 1\n")
+            f.write(f"{stamp(t):.6f} {x:.9f} {y:.9f} 0 0 0 0 1\n")
 
 
 def run(args):
@@ -51,6 +52,16 @@ def main():
         rows = [line.split() for line in out.stdout.splitlines()[1:]]
         assert [r[0] for r in rows] == ["short"], out.stdout
         assert rows[0][4:] == ["1.0101", "1.0000"], out.stdout
+    # A log whose clock is broken (the infinite-corridor log: all but four scans stamped
+    # 4294970000): the files pair line by line, not on the few distinct stamps.
+    broken = lambda t: -0.5 * t if t < 4 else 4294970000.0
+    with tempfile.TemporaryDirectory() as d:
+        write_tum(os.path.join(d, "reference", "trajectory.tum"), truth, broken)
+        write_tum(os.path.join(d, "short", "trajectory.tum"), short, broken)
+        out = run([d])
+        assert out.returncode == 0, out.stderr
+        rows = [line.split() for line in out.stdout.splitlines()[1:]]
+        assert rows[0][1] == "400" and rows[0][4:] == ["1.0101", "1.0000"], out.stdout
     print("ok")
 
 

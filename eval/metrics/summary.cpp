@@ -56,6 +56,7 @@ json LoopVerificationJson(const LoopVerificationSummary& l) {
              {MatchRefusalName(MatchRefusal::kLowScore), v.low_score},
              {MatchRefusalName(MatchRefusal::kAmbiguous), v.ambiguous},
              {MatchRefusalName(MatchRefusal::kImplausible), v.implausible},
+             {MatchRefusalName(MatchRefusal::kApproachDisagrees), v.approach_disagrees},
              {"beyond_window", v.beyond_window}};
   if (l.global) {
     lv["global_attempts"] = v.global_attempts;

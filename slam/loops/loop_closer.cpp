@@ -13,6 +13,7 @@
 #include <Eigen/LU>
 
 #include "slam/graph/se2.hpp"
+#include "slam/loops/approach_check.hpp"
 
 namespace lifelong::slam {
 namespace {
@@ -216,6 +217,10 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
     *why = MatchRefusal::kAmbiguous;
   } else if (!LocallyUnique(match, points)) {
     *why = MatchRefusal::kNotUnique;
+  } else if (match.ambiguity >= lc.context_ambiguity &&
+             !ApproachAgrees(view, current, match.T_ref_cur, match.T_ref_rival, lc,
+                             &approach_grid_)) {
+    *why = MatchRefusal::kApproachDisagrees;
   } else {
     return match;
   }

@@ -84,6 +84,14 @@ struct LoopClosingConfig {
   /// heading) scores above max_flatness times the best. 1: off.
   double max_flatness = 0.9;
   double uniqueness_radius_m = 0.25;
+  /// ...and, when a distinct rival scored at least context_ambiguity of it, one the robot's
+  /// approach agrees with: the scans of the last context_span_m of travel, placed by the
+  /// sequential estimate, must score at the match's pose at least as well as at the rival's
+  /// against the older nodes' scans there. One scan in an aisle or a corridor sees the
+  /// shelves or walls that every aisle shows; the way in (a cross aisle, a door) tells them
+  /// apart. 1: off.
+  double context_ambiguity = 1.0;
+  double context_span_m = 8.0;
   /// The edge is measured against the attached node's scan alone, in this window around
   /// the submap's answer (0: the submap match is the edge).
   double refine_window_m = 0.0;

@@ -75,12 +75,14 @@ struct LoopVerifierStats {
   int injected = 0;    ///< wrong closures injected (false-closure test)
   int injected_accepted = 0;
   // The funnel before verification: attempts = few_points + low_score + ambiguous +
-  // not_unique + implausible + proposed.
+  // not_unique + approach_disagrees + implausible + proposed.
   int attempts = 0;     ///< observations with a candidate inside the gate
   int few_points = 0;   ///< ...whose submap had fewer points in reach than the minimum
   int low_score = 0;    ///< ...whose best match scored below the minimum
   int ambiguous = 0;    ///< ...whose best match had a close second farther away
   int implausible = 0;  ///< ...whose correction lay outside the consistency gate
+  /// ...whose rival the robot's approach fitted better (loops.context_ambiguity)
+  int approach_disagrees = 0;
   /// Observations with no attempt whose only candidates inside the gate were uncertain
   /// beyond the largest window, between the searches of loops.beyond_window_every.
   int beyond_window = 0;
@@ -90,7 +92,14 @@ struct LoopVerifierStats {
 };
 
 /// Why the mapper refused a loop-closure match before it became a hypothesis.
-enum class MatchRefusal { kFewPoints, kLowScore, kAmbiguous, kNotUnique, kImplausible };
+enum class MatchRefusal {
+  kFewPoints,
+  kLowScore,
+  kAmbiguous,
+  kNotUnique,
+  kImplausible,
+  kApproachDisagrees
+};
 
 /// A refusal's name, as summary.json's loop_verification and loop_attempts.csv give it.
 inline const char* MatchRefusalName(MatchRefusal why) {
@@ -105,6 +114,8 @@ inline const char* MatchRefusalName(MatchRefusal why) {
       return "not_unique";
     case MatchRefusal::kImplausible:
       return "implausible";
+    case MatchRefusal::kApproachDisagrees:
+      return "approach_disagrees";
   }
   return "unknown";
 }
@@ -132,9 +143,9 @@ class LoopVerifier {
   void NoteRefused(MatchRefusal why) {
     // In the order of MatchRefusal.
     static constexpr int LoopVerifierStats::*kCount[] = {
-        &LoopVerifierStats::few_points, &LoopVerifierStats::low_score,
-        &LoopVerifierStats::ambiguous, &LoopVerifierStats::not_unique,
-        &LoopVerifierStats::implausible};
+        &LoopVerifierStats::few_points,  &LoopVerifierStats::low_score,
+        &LoopVerifierStats::ambiguous,   &LoopVerifierStats::not_unique,
+        &LoopVerifierStats::implausible, &LoopVerifierStats::approach_disagrees};
     ++(stats_.*kCount[static_cast<int>(why)]);
   }
   /// True when a pending hypothesis involves the node (pruning must keep it).

@@ -172,6 +172,8 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("max_ambiguity", c.max_ambiguity, kUnit);
   v.Number("max_flatness", c.max_flatness, kUnit);
   v.Number("uniqueness_radius_m", c.uniqueness_radius_m, kPositive);
+  v.Number("context_ambiguity", c.context_ambiguity, kUnit);
+  v.Number("context_span_m", c.context_span_m, kPositive);
   v.Number("refine_window_m", c.refine_window_m, Range{0.0, 50.0, false, "in [0, 50] m"});
   v.Number("refine_window_rad", c.refine_window_rad, kWindowRad);
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);

@@ -49,6 +49,8 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(a.submap_span, b.submap_span);
   EXPECT_EQ(a.max_flatness, b.max_flatness);
   EXPECT_EQ(a.uniqueness_radius_m, b.uniqueness_radius_m);
+  EXPECT_EQ(a.context_ambiguity, b.context_ambiguity);
+  EXPECT_EQ(a.context_span_m, b.context_span_m);
   EXPECT_EQ(a.refine_window_m, b.refine_window_m);
   EXPECT_EQ(a.refine_window_rad, b.refine_window_rad);
   EXPECT_EQ(a.verify.enabled, b.verify.enabled);
@@ -203,6 +205,8 @@ MapperConfig AllChanged() {
   l.submap_span = 7;
   l.max_flatness = 0.8;
   l.uniqueness_radius_m = 0.4;
+  l.context_ambiguity = 0.55;
+  l.context_span_m = 12.0;
   l.refine_window_m = 0.2;
   l.refine_window_rad = 0.07;
   l.min_score = 0.7;

@@ -1,0 +1,72 @@
+// The approach test of a loop-closure match; see approach_check.hpp.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "slam/graph/se2.hpp"
+#include "slam/loops/approach_check.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+/// The points of the nodes observed in the last `span_m` of travel before `current` (not
+/// current's own), in current's frame.
+std::vector<Eigen::Vector2d> ApproachPoints(const LoopClosingView& view, NodeId current,
+                                            double span_m) {
+  const Pose2& X = view.values.at(current);
+  const double since = view.nodes.at(current).travelled_m - span_m;
+  std::vector<Eigen::Vector2d> points;
+  for (auto it = view.recent.rbegin(); it != view.recent.rend(); ++it) {
+    if (*it == current) continue;
+    const NodeData& node = view.nodes.at(*it);
+    if (node.travelled_m < since) break;
+    const Pose2 T = Between(X, view.values.at(*it));
+    for (const Eigen::Vector2d& p : node.points) {
+      double x = 0.0, y = 0.0;
+      T.Apply(p.x(), p.y(), &x, &y);
+      points.emplace_back(x, y);
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+bool ApproachAgrees(const LoopClosingView& view, NodeId current, const Pose2& match,
+                    const Pose2& rival, const LoopClosingConfig& lc, ReferenceGrid* grid) {
+  const std::vector<Eigen::Vector2d> approach =
+      ApproachPoints(view, current, lc.context_span_m);
+  if (approach.size() < 10) return true;  // no way in to judge by
+  double reach = 0.0;
+  for (const Eigen::Vector2d& p : approach) reach = std::max(reach, p.norm());
+  reach += 1.0;
+  // The older scans: nodes observed before the approach by more than the closing's path
+  // separation, so that neither the approach nor the scans just before it vouch for
+  // themselves. A node whose farthest point cannot reach either pose adds nothing; the
+  // others' points are filtered one by one.
+  const double before =
+      view.nodes.at(current).travelled_m - lc.context_span_m - lc.min_path_separation_m;
+  const Pose2 poses[2] = {match, rival};
+  const auto within = [&](const Eigen::Vector2d& p, double r) {
+    return std::any_of(std::begin(poses), std::end(poses),
+                       [&](const Pose2& T) { return std::hypot(p.x() - T.x, p.y() - T.y) <= r; });
+  };
+  std::vector<Eigen::Vector2d> reference;
+  for (const auto& [id, node] : view.nodes) {
+    if (node.travelled_m >= before) continue;
+    const Pose2& T = view.values.at(id);
+    double range = 0.0;
+    for (const Eigen::Vector2d& p : node.points) range = std::max(range, p.squaredNorm());
+    if (!within({T.x, T.y}, reach + std::sqrt(range))) continue;
+    for (const Eigen::Vector2d& p : ToWorld(node.points, T)) {
+      if (within(p, reach)) reference.push_back(p);
+    }
+  }
+  if (static_cast<int>(reference.size()) < lc.min_reference_points) return true;
+  MatcherConfig mc = lc.matcher;
+  mc.coarse_factor = 1;  // scores at two poses: the bound tables are not needed
+  grid->Build(reference, mc);
+  return ScoreAt(*grid, approach, match) >= ScoreAt(*grid, approach, rival);
+}
+
+}  // namespace lifelong::slam

@@ -89,8 +89,8 @@ struct LoopClosingConfig {
   /// sequential estimate, must score at the match's pose at least as well as at the rival's
   /// against the older nodes' scans there. One scan in an aisle or a corridor sees the
   /// shelves or walls that every aisle shows; the way in (a cross aisle, a door) tells them
-  /// apart. 1: off.
-  double context_ambiguity = 1.0;
+  /// apart. 1: off. 0.6 since 2026-12-05 (docs/results.md "Loop-closing settings measured").
+  double context_ambiguity = 0.6;
   double context_span_m = 8.0;
   /// The edge is measured against the attached node's scan alone, in this window around
   /// the submap's answer (0: the submap match is the edge).

@@ -32,14 +32,22 @@ std::vector<Eigen::Vector2d> ApproachPoints(const LoopClosingView& view, NodeId 
 
 }  // namespace
 
+double NodeReach::Of(NodeId id, const NodeData& node) {
+  const auto found = reach_.find(id);
+  if (found != reach_.end()) return found->second;
+  double squared = 0.0;
+  for (const Eigen::Vector2d& p : node.points) squared = std::max(squared, p.squaredNorm());
+  return reach_[id] = std::sqrt(squared);
+}
+
 bool ApproachAgrees(const LoopClosingView& view, NodeId current, const Pose2& match,
-                    const Pose2& rival, const LoopClosingConfig& lc, ReferenceGrid* grid) {
-  const std::vector<Eigen::Vector2d> approach =
-      ApproachPoints(view, current, lc.context_span_m);
+                    const Pose2& rival, const LoopClosingConfig& lc, NodeReach* reach,
+                    ReferenceGrid* grid) {
+  const std::vector<Eigen::Vector2d> approach = ApproachPoints(view, current, lc.context_span_m);
   if (approach.size() < 10) return true;  // no way in to judge by
-  double reach = 0.0;
-  for (const Eigen::Vector2d& p : approach) reach = std::max(reach, p.norm());
-  reach += 1.0;
+  double span = 0.0;                      // how far from the poses the approach's points lie
+  for (const Eigen::Vector2d& p : approach) span = std::max(span, p.norm());
+  span += 1.0;
   // The older scans: nodes observed before the approach by more than the closing's path
   // separation, so that neither the approach nor the scans just before it vouch for
   // themselves. A node whose farthest point cannot reach either pose adds nothing; the
@@ -55,11 +63,9 @@ bool ApproachAgrees(const LoopClosingView& view, NodeId current, const Pose2& ma
   for (const auto& [id, node] : view.nodes) {
     if (node.travelled_m >= before) continue;
     const Pose2& T = view.values.at(id);
-    double range = 0.0;
-    for (const Eigen::Vector2d& p : node.points) range = std::max(range, p.squaredNorm());
-    if (!within({T.x, T.y}, reach + std::sqrt(range))) continue;
+    if (!within({T.x, T.y}, span + reach->Of(id, node))) continue;
     for (const Eigen::Vector2d& p : ToWorld(node.points, T)) {
-      if (within(p, reach)) reference.push_back(p);
+      if (within(p, span)) reference.push_back(p);
     }
   }
   if (static_cast<int>(reference.size()) < lc.min_reference_points) return true;

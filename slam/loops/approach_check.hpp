@@ -10,6 +10,7 @@
 #pragma once
 
 #include "slam/loops/loop_closer.hpp"
+#include "slam/loops/node_reach.hpp"
 
 namespace lifelong::slam {
 
@@ -17,8 +18,10 @@ namespace lifelong::slam {
 /// `current` (placed in current's frame by the estimate) score at `match` (current's pose)
 /// at least as well as at `rival`, against the points of the nodes observed more than
 /// lc.min_path_separation_m before that span. True when either side has too few points to
-/// judge by. `grid` is a scratch table, rebuilt.
+/// judge by. `reach` keeps the nodes' reaches between calls; `grid` is a scratch table,
+/// rebuilt.
 bool ApproachAgrees(const LoopClosingView& view, NodeId current, const Pose2& match,
-                    const Pose2& rival, const LoopClosingConfig& lc, ReferenceGrid* grid);
+                    const Pose2& rival, const LoopClosingConfig& lc, NodeReach* reach,
+                    ReferenceGrid* grid);
 
 }  // namespace lifelong::slam

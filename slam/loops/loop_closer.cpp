@@ -130,6 +130,7 @@ void LoopCloser::ForgetNode(NodeId id) {
   verifier_.ForgetNode(id);
   surfaces_.Erase(id);
   places_.Remove(id);
+  reach_.Forget(id);
 }
 
 std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, NodeId current,
@@ -218,7 +219,7 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
   } else if (!LocallyUnique(match, points)) {
     *why = MatchRefusal::kNotUnique;
   } else if (match.ambiguity >= lc.context_ambiguity &&
-             !ApproachAgrees(view, current, match.T_ref_cur, match.T_ref_rival, lc,
+             !ApproachAgrees(view, current, match.T_ref_cur, match.T_ref_rival, lc, &reach_,
                              &approach_grid_)) {
     *why = MatchRefusal::kApproachDisagrees;
   } else {

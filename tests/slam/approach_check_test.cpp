@@ -57,23 +57,25 @@ LoopClosingConfig Config() {
 TEST(ApproachCheck, TheWayInTellsTheTruePlaceFromALookAlikeOne) {
   const Corridor c;
   ReferenceGrid grid;
+  NodeReach reach;
   const Pose2 truth(14.0, 1.0, 0.0), along(16.0, 1.0, 0.0);
   // Node 43's own scan sees two walls (and, 8 m back, the pillar): only the approach's
   // pillar, placed by the chain behind it, says which of the two is right.
-  EXPECT_TRUE(ApproachAgrees(c.View(), 43, truth, along, Config(), &grid));
-  EXPECT_FALSE(ApproachAgrees(c.View(), 43, along, truth, Config(), &grid));
+  EXPECT_TRUE(ApproachAgrees(c.View(), 43, truth, along, Config(), &reach, &grid));
+  EXPECT_FALSE(ApproachAgrees(c.View(), 43, along, truth, Config(), &reach, &grid));
 }
 
 TEST(ApproachCheck, NoApproachOrNoOlderScansJudgeNothing) {
   const Corridor c;
   ReferenceGrid grid;
+  NodeReach reach;
   const Pose2 truth(14.0, 1.0, 0.0), along(16.0, 1.0, 0.0);
   LoopClosingConfig lc = Config();
   lc.context_span_m = 0.5;  // no node in the last half metre but the current one
-  EXPECT_TRUE(ApproachAgrees(c.View(), 43, along, truth, lc, &grid));
+  EXPECT_TRUE(ApproachAgrees(c.View(), 43, along, truth, lc, &reach, &grid));
   lc = Config();
   lc.min_path_separation_m = 200.0;  // every node is too recent to count as older
-  EXPECT_TRUE(ApproachAgrees(c.View(), 43, along, truth, lc, &grid));
+  EXPECT_TRUE(ApproachAgrees(c.View(), 43, along, truth, lc, &reach, &grid));
 }
 
 }  // namespace

@@ -20,12 +20,9 @@ std::vector<Eigen::Vector2d> ApproachPoints(const LoopClosingView& view, NodeId 
     if (*it == current) continue;
     const NodeData& node = view.nodes.at(*it);
     if (node.travelled_m < since) break;
-    const Pose2 T = Between(X, view.values.at(*it));
-    for (const Eigen::Vector2d& p : node.points) {
-      double x = 0.0, y = 0.0;
-      T.Apply(p.x(), p.y(), &x, &y);
-      points.emplace_back(x, y);
-    }
+    const std::vector<Eigen::Vector2d> in_current =
+        ToWorld(node.points, Between(X, view.values.at(*it)));
+    points.insert(points.end(), in_current.begin(), in_current.end());
   }
   return points;
 }

@@ -31,6 +31,9 @@ struct StepStats {
   bool incremental_match_weak = false;
   /// ...matched by the wider second search (incremental recovery_window_m)
   bool incremental_match_recovered = false;
+  /// The stream index of the oldest scan the step was matched against (the front end's local
+  /// map: the last incremental local_map_nodes observed nodes, whether or not pruned since)
+  std::size_t local_map_from_scan = 0;
   /// The step's odometry was lost (Observation::odometry_lost): searched over a full turn
   bool odometry_lost = false;
   bool loop_closed = false;

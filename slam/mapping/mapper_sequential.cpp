@@ -1,6 +1,7 @@
 // The mapper's side of the front end (DESIGN.md data flow, step 2): a new observation becomes
 // a graph node, tied to the last one by the sequential matcher's edge
 // (slam/matching/sequential_matcher.hpp), and its scan goes to the map and the scan store.
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -35,7 +36,9 @@ void Mapper::State::AddSequentialNode(const Observation& obs, StepStats* stats) 
   recent.push_back(id);
 
   if (have_last) scans.AnchorPending(last_node, id, obs.T_odom_robot);
-  scans.AddNodeScan(obs.stamp_s, id, obs.T_odom_robot);
+  const std::size_t scan = scans.AddNodeScan(obs.stamp_s, id, obs.T_odom_robot);
+  const NodeData& node = nodes.at(id);
+  sequential.Remember(id, scan, node.scan, node.points);
   last_node = id;
   have_last = true;
 }
@@ -44,8 +47,13 @@ PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta, bool odome
                                        const std::vector<Eigen::Vector2d>& points, Pose2* X_new,
                                        StepStats* stats) {
   const Pose2& X_last = values.at(last_node);
-  const SequentialMatch m =
-      sequential.Match(nodes, values, recent, X_last, delta, points, odometry_lost);
+  const SequentialMatch m = sequential.Match(
+      [this](NodeId node, std::size_t scan) {
+        const auto it = values.find(node);
+        return it != values.end() ? it->second : scans.Pose(scan, values);
+      },
+      X_last, delta, points, odometry_lost);
+  stats->local_map_from_scan = m.local_map_from_scan;
   stats->odometry_lost = m.lost;
   stats->incremental_match_ok = m.matched;
   stats->incremental_match_degenerate = m.degenerate;

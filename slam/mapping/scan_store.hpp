@@ -33,6 +33,10 @@ class ScanStore {
   double stamp(std::size_t scan) const { return scans_[scan].stamp_s; }
   /// Every scan's pose at the estimate `values`, in stream order.
   std::vector<StampedPose> Trajectory(const Values& values) const;
+  /// Scan `scan`'s pose at `values`.
+  Pose2 Pose(std::size_t scan, const Values& values) const {
+    return values.at(scans_[scan].anchor) * scans_[scan].T_anchor_scan;
+  }
   /// The last scan's pose at `values` (none yet: a default pose).
   StampedPose Last(const Values& values) const;
 

@@ -24,8 +24,9 @@ inline MatcherConfig IncrementalMatcherDefaults() {
 inline constexpr double kLostStepWindowRad = 3.14159265358979323846;
 
 struct IncrementalConfig {
-  /// Recent nodes whose scans form the local map: 20 nodes cover about 10 m of path (8, before
-  /// 2026-12-04, covered 4 m, too little to hold a heading through a room on real odometry).
+  /// The last observations whose scans form the local map, removed from the graph or not: 20
+  /// cover about 10 m of path (8, before 2026-12-04, covered 4 m, too little to hold a heading
+  /// through a room on real odometry).
   int local_map_nodes = 20;
   double point_spacing_m = 0.05;  ///< voxel thinning of matched points
   /// The local map joins consecutive returns of a scan into surfaces (SurfacePoints), so its

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <utility>
 
 #include "slam/matching/match_degeneracy.hpp"
@@ -21,8 +20,16 @@ Eigen::Matrix3d LostStepInformation(const IncrementalConfig& c) {
   return Eigen::Vector3d(1.0 / w2, 1.0 / w2, 1.0 / t2).asDiagonal();
 }
 
-SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& values,
-                                         const std::vector<NodeId>& recent, const Pose2& X_last,
+void SequentialMatcher::Remember(NodeId id, std::size_t scan_index, const LaserScan& scan,
+                                 const std::vector<Eigen::Vector2d>& points) {
+  local_.push_back(
+      {id, scan_index,
+       config_.surfaces.JoinsAny() ? ScanSurfaces(scan, config_, config_.surfaces) : points});
+  while (local_.size() > static_cast<std::size_t>(std::max(config_.local_map_nodes, 1)))
+    local_.pop_front();
+}
+
+SequentialMatch SequentialMatcher::Match(const ScanPoseFn& scan_pose, const Pose2& X_last,
                                          const Pose2& delta,
                                          const std::vector<Eigen::Vector2d>& points,
                                          bool odometry_lost) {
@@ -30,6 +37,7 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
   SequentialMatch out;
   out.X_new = guess;
   out.lost = odometry_lost;
+  if (!local_.empty()) out.local_map_from_scan = local_.front().scan_index;
   // The odometry's information is the same in any frame; a lost step has almost none.
   const Eigen::Matrix3d odometry =
       odometry_lost ? LostStepInformation(config_) : OdometryInformation(config_, delta);
@@ -39,14 +47,14 @@ SequentialMatch SequentialMatcher::Match(const NodeStore& nodes, const Values& v
     mc.linear_window_m = config_.lost_window_m;
     mc.angular_window_rad = kLostStepWindowRad;
   }
-  MatchResult match = Search(points, guess, mc, LocalMap(nodes, values, recent));
+  MatchResult match = Search(points, guess, mc, LocalMap(scan_pose));
   const bool refused = match.ok && WeakAndAmbiguous(match, config_);
   if ((!match.ok || refused) && !odometry_lost && config_.recovery_window_m > mc.linear_window_m) {
     MatcherConfig wide = mc;
     wide.linear_window_m = config_.recovery_window_m;
-    // The local map again (its surfaces are cached): the first search cropped its copy, and
-    // keeping one uncropped would cost every step a copy for the rare one that recovers.
-    const MatchResult second = Search(points, guess, wide, LocalMap(nodes, values, recent));
+    // The local map again (its scans' surfaces are held): the first search cropped its copy,
+    // and keeping one uncropped would cost every step a copy for the rare one that recovers.
+    const MatchResult second = Search(points, guess, wide, LocalMap(scan_pose));
     if (Recovers(second)) {
       match = second;
       out.recovered = true;
@@ -82,26 +90,12 @@ bool SequentialMatcher::Recovers(const MatchResult& match) const {
          match.ambiguity <= config_.weak_max_ambiguity;
 }
 
-std::vector<Eigen::Vector2d> SequentialMatcher::LocalMap(const NodeStore& nodes,
-                                                         const Values& values,
-                                                         const std::vector<NodeId>& recent) {
-  const auto count = static_cast<std::ptrdiff_t>(config_.local_map_nodes);
-  const auto first = recent.end() - std::min(count, static_cast<std::ptrdiff_t>(recent.size()));
-  std::map<NodeId, std::vector<Eigen::Vector2d>> kept;
+std::vector<Eigen::Vector2d> SequentialMatcher::LocalMap(const ScanPoseFn& scan_pose) const {
   std::vector<Eigen::Vector2d> reference;
-  for (auto it = first; it != recent.end(); ++it) {
-    const NodeId id = *it;
-    const std::vector<Eigen::Vector2d>* local = &nodes.at(id).points;
-    if (config_.surfaces.JoinsAny()) {
-      const auto cached = local_surfaces_.find(id);
-      local = &(kept[id] = cached != local_surfaces_.end()
-                               ? std::move(cached->second)
-                               : ScanSurfaces(nodes.at(id).scan, config_, config_.surfaces));
-    }
-    const auto world = ToWorld(*local, values.at(id));
+  for (const LocalScan& local : local_) {
+    const auto world = ToWorld(local.reference, scan_pose(local.id, local.scan_index));
     reference.insert(reference.end(), world.begin(), world.end());
   }
-  local_surfaces_ = std::move(kept);
   return reference;
 }
 

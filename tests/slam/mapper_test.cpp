@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -108,6 +109,28 @@ TEST(Mapper, PrunedStaysConnectedSparseAndAccurate) {
   EXPECT_TRUE(run.anchor_kept);
   EXPECT_LE(run.edges, 2 * run.nodes);  // Chow-Liu keeps the graph sparse
   EXPECT_LT(AnchoredRmse(run.trajectory, Corridor3()), 0.10);
+}
+
+// The front end matches each observation against the scans of the last local_map_nodes
+// observations, whether the back end has removed their nodes or not: its cost and its local
+// map do not depend on the mode (before, a pruned run's local map reached further back).
+TEST(Mapper, FrontEndLocalMapIsTheLastObservationsInEveryMode) {
+  MapperConfig config;
+  config.pruning.mode = NamedMode("pruned");
+  const std::size_t span = static_cast<std::size_t>(config.incremental.local_map_nodes);
+  Mapper mapper(config);
+  std::vector<std::size_t> observed;  // each observation's stream index
+  int checked = 0, wrong = 0;
+  mapper.on_observation = [&](const StepStats& s) {
+    observed.push_back(static_cast<std::size_t>(s.scan_index));
+    if (observed.size() <= span + 1) return;
+    ++checked;
+    if (s.local_map_from_scan != observed[observed.size() - 1 - span]) ++wrong;
+  };
+  for (const Observation& o : Corridor3()) mapper.AddObservation(o);
+  EXPECT_GT(mapper.marginalizations().size(), span);
+  EXPECT_GT(checked, 0);
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(Mapper, ExactMarginalizationKeepsDenseCliques) {

@@ -24,10 +24,12 @@ inline MatcherConfig IncrementalMatcherDefaults() {
 inline constexpr double kLostStepWindowRad = 3.14159265358979323846;
 
 struct IncrementalConfig {
-  /// The last observations whose scans form the local map, removed from the graph or not: 20
-  /// cover about 10 m of path (8, before 2026-12-04, covered 4 m, too little to hold a heading
-  /// through a room on real odometry).
-  int local_map_nodes = 20;
+  /// The last observations whose scans form the local map, removed from the graph or not: 60
+  /// cover about 30 m of path. A longer memory holds the heading through wide halls whose
+  /// scans see few walls (acapulco 0.301 -> 0.127 m); 8 (before 2026-12-04) could not hold it
+  /// through a room, and 100 took wrong closures on two real logs (docs/results.md "The front
+  /// end's local map: how long").
+  int local_map_nodes = 60;
   double point_spacing_m = 0.05;  ///< voxel thinning of matched points
   /// The local map joins consecutive returns of a scan into surfaces (SurfacePoints), so its
   /// likelihood field is smooth along walls hit at grazing angles and motion along them is

@@ -56,14 +56,6 @@ class NearSet {
 
 }  // namespace
 
-double NodeReach::Of(NodeId id, const NodeData& node) {
-  const auto found = reach_.find(id);
-  if (found != reach_.end()) return found->second;
-  double squared = 0.0;
-  for (const Eigen::Vector2d& p : node.points) squared = std::max(squared, p.squaredNorm());
-  return reach_[id] = std::sqrt(squared);
-}
-
 bool ApproachAgrees(const LoopClosingView& view, NodeId current, const Pose2& match,
                     const Pose2& rival, const LoopClosingConfig& lc, NodeReach* reach,
                     ReferenceGrid* grid) {

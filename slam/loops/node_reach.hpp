@@ -1,6 +1,8 @@
 // A node's reach, for the approach test (approach_check.hpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include "slam/graph/pose_graph.hpp"
@@ -13,7 +15,13 @@ namespace lifelong::slam {
 /// points of only those that can reach the two poses.
 class NodeReach {
  public:
-  double Of(NodeId id, const NodeData& node);
+  double Of(NodeId id, const NodeData& node) {
+    const auto found = reach_.find(id);
+    if (found != reach_.end()) return found->second;
+    double squared = 0.0;
+    for (const Eigen::Vector2d& p : node.points) squared = std::max(squared, p.squaredNorm());
+    return reach_[id] = std::sqrt(squared);
+  }
   void Forget(NodeId id) { reach_.erase(id); }
 
  private:

@@ -48,7 +48,7 @@ PoseEdge Mapper::State::SequentialEdge(NodeId id, const Pose2& delta, bool odome
                                        StepStats* stats) {
   const Pose2& X_last = values.at(last_node);
   const SequentialMatch m = sequential.Match(
-      [this](NodeId node, std::size_t scan) {
+      [this](NodeId node, std::size_t scan) {  // a surviving node's own pose, exactly
         const auto it = values.find(node);
         return it != values.end() ? it->second : scans.Pose(scan, values);
       },

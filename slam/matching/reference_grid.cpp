@@ -137,7 +137,7 @@ void ReferenceGrid::Build(const std::vector<Eigen::Vector2d>& points_in_ref,
   coarse_factor_ = 1;
   while (coarse_factor_ < config.coarse_factor) coarse_factor_ *= 2;
   Rasterize(points_in_ref, config.sigma_m);
-  BuildLevels();
+  ResetLevels();
 }
 
 // Computed at each lookup rather than tabled: a match reads a few thousand cells (its points
@@ -195,7 +195,6 @@ Eigen::Vector2i ReferenceGrid::CellOf(const Eigen::Vector2d& p) const {
 
 // Step 1: v = exp(-d^2 / (2 sigma^2)) of the nearest point within 3 sigma, at cell centres.
 void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m) {
-  num_levels_ = 1;
   width_ = height_ = 0;
   if (points.empty()) {
     levels_[0].clear();
@@ -240,36 +239,6 @@ void ReferenceGrid::Rasterize(const std::vector<Eigen::Vector2d>& points, double
         v = std::max(v, static_cast<float>(gx[ki] * gy[kj]));
       }
     }
-  }
-}
-
-// Step 2: level l holds the max of level 0 over [x, x + 2^l)^2, from level l - 1 as the max
-// of four shifted copies, taken separably (along x into the new level, then along y in
-// place: row y reads row y + h before that row is rewritten) so that the inner loops are
-// branch-free and vectorize. Cells past the table's edge count as 0.
-void ReferenceGrid::BuildLevels() {
-  const auto w = static_cast<std::size_t>(width_);
-  const auto rows = static_cast<std::size_t>(height_);
-  const std::size_t cells = levels_[0].size();
-  for (int half = 1; half < coarse_factor_; half *= 2) {
-    if (levels_.size() <= static_cast<std::size_t>(num_levels_)) levels_.emplace_back();
-    Table& next = levels_[static_cast<std::size_t>(num_levels_)];
-    const Table& prev = levels_[static_cast<std::size_t>(num_levels_ - 1)];
-    ResizeTable(&next, cells);  // every cell is written below
-    const auto h = static_cast<std::size_t>(std::min(half, width_));
-    for (std::size_t y = 0; y < rows; ++y) {
-      const float* in = prev.data() + y * w;
-      float* out = next.data() + y * w;
-      for (std::size_t x = 0; x + h < w; ++x) out[x] = std::max(in[x], in[x + h]);
-      for (std::size_t x = w - h; x < w; ++x) out[x] = in[x];
-    }
-    const auto hy = static_cast<std::size_t>(std::min(half, height_));
-    for (std::size_t y = 0; y + hy < rows; ++y) {
-      float* a = next.data() + y * w;
-      const float* b = a + hy * w;
-      for (std::size_t x = 0; x < w; ++x) a[x] = std::max(a[x], b[x]);
-    }
-    ++num_levels_;
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <unordered_map>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -319,7 +320,10 @@ MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& 
   l.W = static_cast<int>(std::ceil(config.linear_window_m / l.res_m));
   l.top_level = ref.num_levels() - 1;
   while (l.top_level > 0 && (1 << (l.top_level - 1)) > 2 * l.W) --l.top_level;
-  Searcher s(ref, RotatedCells(ref, points_in_cur, T_ref_cur_guess, l), l);
+  std::vector<std::vector<Eigen::Vector2i>> cells =
+      RotatedCells(ref, points_in_cur, T_ref_cur_guess, l);
+  ref.PrepareBounds(cells, l.W, l.top_level);
+  Searcher s(ref, std::move(cells), l);
   // Branch and bound for the best pose, then for the best distinct competitor.
   const Eval best = s.Search([](const Eval&) { return true; },
                              [](const Node&, int) { return true; }, Eval{0, 0, 0, -1.0, 0.0});

@@ -17,6 +17,7 @@
 //     variance and a floor; information = Sigma^-1.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -85,12 +86,24 @@ class ReferenceGrid {
   double Interpolate(const Eigen::Vector2d& p, Eigen::Vector2d* gradient) const;
   /// Number of tables: level 0 is Likelihood, level l the max over 2^l x 2^l cells.
   int num_levels() const { return num_levels_; }
-  /// Max of Likelihood over [x, x + 2^level) x [y, y + 2^level); 0 outside the table.
+  /// Builds the coarse levels 1..top_level where a search can read them: on the tiles
+  /// (coarse_factor x coarse_factor cells) within `reach` cells of any of `cells` (the query
+  /// cells at every rotation; a search reads level l at c + (i, j), |i|, |j| <= reach), and
+  /// below them on what each of those reads. A wide hall's table is mostly free space that no
+  /// search looks at: building every level over it was 37 % of a real log's replay. Tiles
+  /// built since the last Build are kept. The lazily built levels are a cache behind a const
+  /// interface, so a grid must not be searched from two threads at once.
+  void PrepareBounds(const std::vector<std::vector<Eigen::Vector2i>>& cells, int reach,
+                     int top_level) const;
+  /// Every coarse level on every tile.
+  void PrepareAllBounds() const;
+  /// Max of Likelihood over [x, x + 2^level) x [y, y + 2^level); 0 outside the table. Valid
+  /// where PrepareBounds or PrepareAllBounds built the level.
   float Bound(int level, int x, int y) const {
     return Contains(x, y) ? levels_[static_cast<std::size_t>(level)][Index(x, y)] : 0.0f;
   }
   /// Level `level`'s table, row-major (width() x height()): Bound without the bounds check,
-  /// for callers that know their cells lie inside.
+  /// for callers that know their cells lie inside (and were prepared).
   const float* BoundTable(int level) const {
     return levels_[static_cast<std::size_t>(level)].data();
   }
@@ -103,7 +116,11 @@ class ReferenceGrid {
            static_cast<std::size_t>(x);
   }
   void Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m);
-  void BuildLevels();
+  /// Sizes the coarse levels, none of their tiles built (reference_grid_levels.cpp).
+  void ResetLevels();
+  /// Builds level `level` (>= 1) on tiles whose bit `level` is set in need_, from level - 1.
+  void BuildTiles(int level) const;
+  void BuildTile(int level, int tx, int ty) const;
 
   double resolution_m_ = 1.0;
   int coarse_factor_ = 1;
@@ -111,10 +128,15 @@ class ReferenceGrid {
   int width_ = 0;
   int height_ = 0;
   int num_levels_ = 1;
-  /// levels_[0]: v per cell; levels past num_levels_ are spare capacity. Rebuilt per scan
-  /// with every cell written, so never zeroed by a resize (scratch_table.hpp).
+  /// levels_[0]: v per cell, every cell written by Build; levels 1.. are built tile by tile
+  /// (PrepareBounds), so never zeroed by a resize (scratch_table.hpp). Levels past
+  /// num_levels_ are spare capacity.
   using Table = std::vector<float, UninitializedAllocator<float>>;
-  std::vector<Table> levels_ = {{}};
+  mutable std::vector<Table> levels_ = {{}};
+  int tile_ = 1;                                   ///< cells per tile side: coarse_factor_
+  int tiles_x_ = 0, tiles_y_ = 0;                  ///< tiles across and up the table
+  mutable std::vector<std::uint32_t> tile_ready_;  ///< per tile, bit l: level l built there
+  mutable std::vector<std::uint32_t> need_;        ///< per tile, bit l: level l wanted (scratch)
 };
 
 struct MatchResult {

@@ -129,6 +129,7 @@ TEST(ScanMatcherTest, CoarseLevelsAreTheExactMaxOfTheFineTable) {
   config.sigma_m = 0.04;
   config.coarse_factor = 16;
   const ReferenceGrid grid(points, config);
+  grid.PrepareAllBounds();
   ASSERT_EQ(grid.num_levels(), 5);
   for (int level = 1; level < grid.num_levels(); ++level) {
     const int side = 1 << level;
@@ -274,6 +275,8 @@ TEST(ScanMatcherTest, RebuildingInPlaceEqualsBuildingAfresh) {
   reused.Build({}, config);
   EXPECT_EQ(reused.width(), 0);
   reused.Build(small, config);
+  reused.PrepareAllBounds();
+  fresh.PrepareAllBounds();
   ASSERT_EQ(reused.width(), fresh.width());
   ASSERT_EQ(reused.height(), fresh.height());
   ASSERT_EQ(reused.num_levels(), fresh.num_levels());

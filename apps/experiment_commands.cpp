@@ -173,10 +173,9 @@ std::vector<double> SortedScanStamps(const lifelong::io::CarmenLog& data) {
 // puts relation stamps on scan stamps. No matching relation is an input error, never a
 // zero error figure.
 std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool given, double given_s,
-                                              const lifelong::io::CarmenLog& data,
+                                              const std::vector<double>& stamps,
                                               lifelong::eval::LogInfo* info) {
   const auto file_time = lifelong::io::ReadRelations(path, 0.0);
-  const std::vector<double> stamps = SortedScanStamps(data);
   const lifelong::io::OffsetDetection d =
       given ? lifelong::io::OffsetDetection{given_s,
                                             lifelong::io::CountMatchedRelations(file_time, stamps,
@@ -218,7 +217,9 @@ std::vector<lifelong::Relation> LoadRelations(const std::string& path, bool give
 }
 
 // What the log holds, told on stderr and kept for summary.json's "log" object.
-lifelong::eval::LogInfo DescribeLog(const lifelong::io::CarmenLog& data, const std::string& log) {
+// `stamps`: the scans' stamps, ascending.
+lifelong::eval::LogInfo DescribeLog(const lifelong::io::CarmenLog& data, const std::string& log,
+                                    const std::vector<double>& stamps) {
   std::cerr << "read " << data.observations.size() << " scans from " << log
             << (data.odometry_recovered ? " (raw odometry recovered from a corrected log)" : "")
             << "\n";
@@ -232,8 +233,9 @@ lifelong::eval::LogInfo DescribeLog(const lifelong::io::CarmenLog& data, const s
   info.scans = static_cast<std::int64_t>(data.observations.size());
   info.backward_stamps = data.backward_scan_stamps;
   info.odometry_lost = data.lost_odometry_scans;
-  std::vector<double> stamps = SortedScanStamps(data);
-  info.distinct_stamps = std::unique(stamps.begin(), stamps.end()) - stamps.begin();
+  info.distinct_stamps = 0;
+  for (std::size_t i = 0; i < stamps.size(); ++i)
+    info.distinct_stamps += (i == 0 || stamps[i] != stamps[i - 1]) ? 1 : 0;
   if (data.lost_odometry_scans > 0) {
     std::cerr << "note: " << data.lost_odometry_scans
               << " scans have no odometry of their own (first: " << log << ":"
@@ -261,9 +263,10 @@ int Replay(const ReplayArgs& a) {
   // Read before the log, so that a bad reference costs no wait.
   if (!a.reference.empty()) config.reference = lifelong::io::ReadTrajectory(a.reference);
   const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
-  lifelong::eval::LogInfo info = DescribeLog(data, log);
+  const std::vector<double> stamps = SortedScanStamps(data);
+  lifelong::eval::LogInfo info = DescribeLog(data, log, stamps);
   if (!a.relations.empty())
-    config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, data, &info);
+    config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, stamps, &info);
   if (!a.reference.empty()) {
     if (2 * info.distinct_stamps <= info.scans) {
       throw InputError(log, 0, "--reference",

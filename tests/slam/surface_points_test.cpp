@@ -70,8 +70,8 @@ TEST(SurfacePoints, DoesNotJoinReturnsFartherApartThanTheGapOrAcrossAMiss) {
 
 // The local map's thinning across scans: the first point of each voxel stays, in order.
 TEST(ThinToVoxels, KeepsTheFirstPointOfEachVoxelInOrder) {
-  std::vector<Eigen::Vector2d> points = {{0.011, 0.0}, {0.505, 0.505}, {0.019, 0.005}, {-0.001, 0.0},
-                                         {0.51, 0.51}, {0.021, 0.0}};
+  std::vector<Eigen::Vector2d> points = {{0.011, 0.0},  {0.505, 0.505}, {0.019, 0.005},
+                                         {-0.001, 0.0}, {0.51, 0.51},   {0.021, 0.0}};
   ThinToVoxels(0.02, &points);
   ASSERT_EQ(points.size(), 4u);
   EXPECT_EQ(points[0], Eigen::Vector2d(0.011, 0.0));

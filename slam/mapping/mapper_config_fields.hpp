@@ -102,8 +102,6 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   // Finer thinning than a matcher cell only multiplies the points (1e-9 m exhausted memory).
   v.Number("point_spacing_m", c.point_spacing_m,
            Range{0.0, 1.0, false, "0 (no thinning) or in [0.005, 1] m", 0.005});
-  v.Number("local_map_voxel_m", c.local_map_voxel_m,
-           Range{0.0, 1.0, false, "0 (off) or in [0.005, 1] m", 0.005});
   v.Number("surface_gap_m", c.surfaces.gap_m, kNonNegative);
   v.Number("surface_line_gap_m", c.surfaces.line_gap_m, kNonNegative);
   v.Number("surface_line_tol_m", c.surfaces.line_tol_m, kPositive);

@@ -31,9 +31,6 @@ struct IncrementalConfig {
   /// end's local map: how long").
   int local_map_nodes = 60;
   double point_spacing_m = 0.05;  ///< voxel thinning of matched points
-  /// > 0: the local map, whose scans overlap where the robot drove, is thinned across its
-  /// scans to one point per voxel of this side, the newest scan's. 0: every scan's points.
-  double local_map_voxel_m = 0.0;
   /// The local map joins consecutive returns of a scan into surfaces (SurfacePoints), so its
   /// likelihood field is smooth along walls hit at grazing angles and motion along them is
   /// not under-measured. YAML keys surface_gap_m (0: return points, before 2026-12-02),

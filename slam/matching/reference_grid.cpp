@@ -111,17 +111,6 @@ std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing
   return out;
 }
 
-void ThinToVoxels(double spacing_m, std::vector<Eigen::Vector2d>* points) {
-  if (!(spacing_m > 0.0)) throw std::invalid_argument("ThinToVoxels: spacing_m must be > 0");
-  std::unordered_set<std::uint64_t> seen;
-  seen.reserve(points->size());
-  points->erase(std::remove_if(points->begin(), points->end(),
-                               [&](const Eigen::Vector2d& p) {
-                                 return !seen.insert(VoxelKey(p, spacing_m)).second;
-                               }),
-                points->end());
-}
-
 std::vector<Eigen::Vector2d> ScanToPoints(const LaserScan& scan, double spacing_m) {
   return PointsInReference({PosedScan{&scan, Pose2()}}, spacing_m);
 }

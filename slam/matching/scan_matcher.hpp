@@ -192,9 +192,6 @@ struct SurfaceRule {
 std::vector<Eigen::Vector2d> SurfacePoints(const LaserScan& scan, double spacing_m,
                                            const SurfaceRule& rule);
 
-/// Keeps the first point of each spacing_m x spacing_m voxel (spacing_m > 0), in order.
-void ThinToVoxels(double spacing_m, std::vector<Eigen::Vector2d>* points);
-
 /// A scan placed at a pose in the reference frame.
 struct PosedScan {
   const LaserScan* scan = nullptr;

@@ -92,13 +92,10 @@ bool SequentialMatcher::Recovers(const MatchResult& match) const {
 
 std::vector<Eigen::Vector2d> SequentialMatcher::LocalMap(const ScanPoseFn& scan_pose) const {
   std::vector<Eigen::Vector2d> reference;
-  // Newest first, so that thinning keeps the newest scan's point of a voxel: the one placed
-  // with the least drift from the scan being matched.
-  for (auto local = local_.rbegin(); local != local_.rend(); ++local) {
-    const auto world = ToWorld(local->reference, scan_pose(local->id, local->scan_index));
+  for (const LocalScan& local : local_) {
+    const auto world = ToWorld(local.reference, scan_pose(local.id, local.scan_index));
     reference.insert(reference.end(), world.begin(), world.end());
   }
-  if (config_.local_map_voxel_m > 0.0) ThinToVoxels(config_.local_map_voxel_m, &reference);
   return reference;
 }
 

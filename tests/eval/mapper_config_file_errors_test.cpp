@@ -73,8 +73,6 @@ TEST(MapperConfigFile, OutOfRangeValuesAreRejected) {
   ExpectError("loops:\n  max_window_m: 1e6\n", 2, "loops.max_window_m", "in (0, 50] m");
   ExpectError("incremental:\n  point_spacing_m: 1e-9\n", 2, "incremental.point_spacing_m",
               "0 (no thinning) or in [0.005, 1] m");
-  ExpectError("incremental:\n  local_map_voxel_m: 0.001\n", 2, "incremental.local_map_voxel_m",
-              "0 (off) or in [0.005, 1] m");
   ExpectError("optimizer:\n  max_iterations: 0\n", 2, "optimizer.max_iterations", ">= 1");
   ExpectError("keyframes:\n  min_translation_m: .nan\n", 2, "keyframes.min_translation_m",
               "got nan");

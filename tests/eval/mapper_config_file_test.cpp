@@ -106,7 +106,6 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   const slam::IncrementalConfig& ib = b.incremental;
   EXPECT_EQ(ia.local_map_nodes, ib.local_map_nodes);
   EXPECT_EQ(ia.point_spacing_m, ib.point_spacing_m);
-  EXPECT_EQ(ia.local_map_voxel_m, ib.local_map_voxel_m);
   EXPECT_EQ(ia.surfaces.gap_m, ib.surfaces.gap_m);
   EXPECT_EQ(ia.surfaces.line_gap_m, ib.surfaces.line_gap_m);
   EXPECT_EQ(ia.surfaces.line_tol_m, ib.surfaces.line_tol_m);
@@ -181,7 +180,6 @@ MapperConfig AllChanged() {
   c.keyframes = {0.25, 0.2};
   c.incremental.local_map_nodes = 5;
   c.incremental.point_spacing_m = 0.04;
-  c.incremental.local_map_voxel_m = 0.02;
   c.incremental.surfaces = {0.25, 2.5, 0.03};
   ChangeMatcher(&c.incremental.matcher, true);
   c.incremental.odom_sigma_xy_m = 0.06;

@@ -68,19 +68,6 @@ TEST(SurfacePoints, DoesNotJoinReturnsFartherApartThanTheGapOrAcrossAMiss) {
   }
 }
 
-// The local map's thinning across scans: the first point of each voxel stays, in order.
-TEST(ThinToVoxels, KeepsTheFirstPointOfEachVoxelInOrder) {
-  std::vector<Eigen::Vector2d> points = {{0.011, 0.0},  {0.505, 0.505}, {0.019, 0.005},
-                                         {-0.001, 0.0}, {0.51, 0.51},   {0.021, 0.0}};
-  ThinToVoxels(0.02, &points);
-  ASSERT_EQ(points.size(), 4u);
-  EXPECT_EQ(points[0], Eigen::Vector2d(0.011, 0.0));
-  EXPECT_EQ(points[1], Eigen::Vector2d(0.505, 0.505));
-  EXPECT_EQ(points[2], Eigen::Vector2d(-0.001, 0.0));  // the voxel left of 0
-  EXPECT_EQ(points[3], Eigen::Vector2d(0.021, 0.0));
-  EXPECT_THROW(ThinToVoxels(0.0, &points), std::invalid_argument);
-}
-
 TEST(SurfacePoints, NeedsAPositiveSpacing) {
   EXPECT_THROW(SurfacePoints(WallScan(2.0, 3), 0.0, {0.3}), std::invalid_argument);
 }

@@ -31,7 +31,6 @@ void ReferenceGrid::ResetLevels() {
   for (int l = 1; l < num_levels_; ++l) ResizeTable(&levels_[static_cast<std::size_t>(l)], cells);
   const auto tiles = static_cast<std::size_t>(tiles_x_) * static_cast<std::size_t>(tiles_y_);
   tile_ready_.assign(tiles, 0u);
-  need_.assign(tiles, 0u);
 }
 
 void ReferenceGrid::PrepareBounds(const std::vector<std::vector<Eigen::Vector2i>>& cells, int reach,
@@ -40,7 +39,7 @@ void ReferenceGrid::PrepareBounds(const std::vector<std::vector<Eigen::Vector2i>
   if (top_level < 1 || tiles_x_ == 0 || tiles_y_ == 0) return;
   // The tile of every query cell, clamped into the table: a cell outside reads only tiles
   // within reach of the edge nearest it.
-  std::vector<std::uint8_t> seed(need_.size(), 0);
+  std::vector<std::uint8_t> seed(tile_ready_.size(), 0);
   for (const auto& rotated : cells) {
     for (const Eigen::Vector2i& c : rotated) {
       const int tx = std::clamp(FloorDiv(c.x(), tile_), 0, tiles_x_ - 1);
@@ -59,12 +58,12 @@ void ReferenceGrid::PrepareBounds(const std::vector<std::vector<Eigen::Vector2i>
     }
   }
   const std::uint32_t top_bit = 1u << top_level;
-  std::fill(need_.begin(), need_.end(), 0u);
+  std::vector<std::uint32_t> need(seed.size(), 0u);
   for (int ty = 0; ty < tiles_y_; ++ty) {
     for (int tx = 0; tx < tiles_x_; ++tx) {
       if (!across[static_cast<std::size_t>(ty * tiles_x_ + tx)]) continue;
       for (int y = std::max(ty - d, 0); y <= std::min(ty + d, tiles_y_ - 1); ++y)
-        need_[static_cast<std::size_t>(y * tiles_x_ + tx)] = top_bit;
+        need[static_cast<std::size_t>(y * tiles_x_ + tx)] = top_bit;
     }
   }
   // What each wanted tile of level l reads of level l - 1 (level 0 is built everywhere). A
@@ -74,29 +73,29 @@ void ReferenceGrid::PrepareBounds(const std::vector<std::vector<Eigen::Vector2i>
     const std::uint32_t bit = 1u << l, below = 1u << (l - 1);
     for (int ty = 0; ty < tiles_y_; ++ty) {
       for (int tx = 0; tx < tiles_x_; ++tx) {
-        if (!(need_[static_cast<std::size_t>(ty * tiles_x_ + tx)] & bit)) continue;
+        if (!(need[static_cast<std::size_t>(ty * tiles_x_ + tx)] & bit)) continue;
         for (int y = ty; y <= std::min(ty + 1, tiles_y_ - 1); ++y) {
           for (int x = tx; x <= std::min(tx + 1, tiles_x_ - 1); ++x)
-            need_[static_cast<std::size_t>(y * tiles_x_ + x)] |= below;
+            need[static_cast<std::size_t>(y * tiles_x_ + x)] |= below;
         }
       }
     }
   }
-  for (int l = 1; l <= top_level; ++l) BuildTiles(l);
+  for (int l = 1; l <= top_level; ++l) BuildTiles(l, need);
 }
 
 void ReferenceGrid::PrepareAllBounds() const {
   if (num_levels_ < 2) return;
-  std::fill(need_.begin(), need_.end(), (1u << num_levels_) - 2u);
-  for (int l = 1; l < num_levels_; ++l) BuildTiles(l);
+  const std::vector<std::uint32_t> need(tile_ready_.size(), (1u << num_levels_) - 2u);
+  for (int l = 1; l < num_levels_; ++l) BuildTiles(l, need);
 }
 
-void ReferenceGrid::BuildTiles(int level) const {
+void ReferenceGrid::BuildTiles(int level, const std::vector<std::uint32_t>& need) const {
   const std::uint32_t bit = 1u << level;
   for (int ty = 0; ty < tiles_y_; ++ty) {
     for (int tx = 0; tx < tiles_x_; ++tx) {
       const auto t = static_cast<std::size_t>(ty * tiles_x_ + tx);
-      if (!(need_[t] & bit) || (tile_ready_[t] & bit)) continue;
+      if (!(need[t] & bit) || (tile_ready_[t] & bit)) continue;
       BuildTile(level, tx, ty);
       tile_ready_[t] |= bit;
     }

@@ -118,8 +118,9 @@ class ReferenceGrid {
   void Rasterize(const std::vector<Eigen::Vector2d>& points, double sigma_m);
   /// Sizes the coarse levels, none of their tiles built (reference_grid_levels.cpp).
   void ResetLevels();
-  /// Builds level `level` (>= 1) on tiles whose bit `level` is set in need_, from level - 1.
-  void BuildTiles(int level) const;
+  /// Builds level `level` (>= 1) on the tiles whose bit `level` is set in `need` (per tile),
+  /// from level - 1, unless built since the last Build.
+  void BuildTiles(int level, const std::vector<std::uint32_t>& need) const;
   void BuildTile(int level, int tx, int ty) const;
 
   double resolution_m_ = 1.0;
@@ -136,7 +137,6 @@ class ReferenceGrid {
   int tile_ = 1;                                   ///< cells per tile side: coarse_factor_
   int tiles_x_ = 0, tiles_y_ = 0;                  ///< tiles across and up the table
   mutable std::vector<std::uint32_t> tile_ready_;  ///< per tile, bit l: level l built there
-  mutable std::vector<std::uint32_t> need_;        ///< per tile, bit l: level l wanted (scratch)
 };
 
 struct MatchResult {

@@ -241,6 +241,8 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       d.Number("added_depth_m", r.detection.added_depth_m, kNonNegative);
       d.Int("min_run_beams", r.detection.min_run_beams, 1);
       d.Number("min_active_share", r.min_active_share, kUnit);
+      d.Number("compare_radius_m", r.compare_radius_m, kNonNegative);
+      d.Number("min_agreement_vouched", r.min_agreement_vouched, kUnit);
     });
     s.Enum("nfr_chords", c.pruning.nfr_chords, kNfrChords);
     s.Number("nfr_chord_ratio", c.pruning.nfr_chord_ratio, kNonNegative);

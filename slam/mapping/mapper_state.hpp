@@ -92,6 +92,8 @@ struct Mapper::State {
   std::size_t cut_beams = 0;  ///< cuts CutBeams applied, in all (a beam cut again counts again)
   /// Node id's scan as the overlap rule sees it (removal_policy.hpp), at its estimate.
   ScanFootprint Footprint(NodeId id) const;
+  /// A pruning round's view of the mapper around `current` (all but its nearby nodes).
+  void BindRoundView(NodeId current, RoundView* view) const;
 };
 
 }  // namespace lifelong::slam

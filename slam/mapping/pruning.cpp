@@ -52,12 +52,7 @@ void Mapper::State::Prune(NodeId current) {
   }
   std::sort(view.nearby.begin(), view.nearby.end());
   for (auto& [id, gain] : gains) gain = keeper.Gain(id);
-  view.current = current;
-  view.footprint = [this](NodeId id) { return Footprint(id); };
-  view.scan = [this](NodeId id) {
-    const NodeData& data = nodes.at(id);
-    return ScanAt{&data.scan, &data.cuts, values.at(id)};
-  };
+  BindRoundView(current, &view);
   std::vector<SampleRetirement> retired;
   {
     const ScopedMs timer = Stage(&StageTimes::gain_ms);
@@ -80,6 +75,25 @@ void Mapper::State::Prune(NodeId current) {
   }
   const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
   pruner->KeepEdgeBudget(&graph, values, [this] { return UnsettledNodes(); });
+}
+
+void Mapper::State::BindRoundView(NodeId current, RoundView* view) const {
+  view->current = current;
+  view->local_map_from = sequential.OldestRemembered().value_or(current);
+  view->within = [this, current](double radius_m) {
+    const Pose2& c = values.at(current);
+    std::vector<NodeId> out;
+    for (const NodeId id : graph.NodeIds()) {
+      const Pose2& X = values.at(id);
+      if (id != current && std::hypot(X.x - c.x, X.y - c.y) <= radius_m) out.push_back(id);
+    }
+    return out;
+  };
+  view->footprint = [this](NodeId id) { return Footprint(id); };
+  view->scan = [this](NodeId id) {
+    const NodeData& data = nodes.at(id);
+    return ScanAt{&data.scan, &data.cuts, values.at(id)};
+  };
 }
 
 ScanFootprint Mapper::State::Footprint(NodeId id) const {

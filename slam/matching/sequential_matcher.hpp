@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <deque>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -53,6 +54,12 @@ class SequentialMatcher {
   /// node later leaves the graph does not matter here.
   void Remember(NodeId id, std::size_t scan_index, const LaserScan& scan,
                 const std::vector<Eigen::Vector2d>& points);
+
+  /// The oldest node whose scan is in the local map (none: empty).
+  std::optional<NodeId> OldestRemembered() const {
+    if (local_.empty()) return std::nullopt;
+    return local_.front().id;
+  }
 
   /// `points` (the new scan's, robot frame) matched against the local map, placed by
   /// `scan_pose`, around X_last * delta (delta: the odometry since the last node). When the

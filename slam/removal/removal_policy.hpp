@@ -55,6 +55,15 @@ struct DpgRuleConfig {
   /// A node whose active beams (returns not retired) fall below this share of its returns
   /// goes, whatever its gain: its scan mostly shows a past state.
   double min_active_share = 0.5;
+  /// The current scan is compared with every node within this distance of it (m), not only
+  /// with the round's candidates: an older scan taken farther off (from a corridor into a
+  /// room) may have crossed what the current scan now sees standing, and its free beams
+  /// would vote the new surface out of the map. The default is the grid's max_hit_range_m,
+  /// as far as the map traces a return. 0: the round's radius only.
+  double compare_radius_m = 12.0;
+  /// Once the current scan agrees (detection.min_agreement) with a node outside the front
+  /// end's local map, the other nodes it is compared with need only this share.
+  double min_agreement_vouched = 0.0;
 };
 
 struct RemovalPolicyConfig {
@@ -88,6 +97,12 @@ struct RoundView {
   /// and the nodes no round removes (the newest, those of an unsettled loop closure). The
   /// scans of the latter still show the past a change outdates.
   std::vector<NodeId> nearby;
+  /// Every node but the current one within a distance (m) of it, ascending, whatever the
+  /// path between them.
+  std::function<std::vector<NodeId>(double)> within;
+  /// Nodes from this id on are in the front end's local map: the current scan was matched
+  /// against them, so agreeing with them says nothing of its pose against the older map.
+  NodeId local_map_from = 0;
   std::function<ScanFootprint(NodeId)> footprint;
   std::function<ScanAt(NodeId)> scan;
 };

@@ -37,8 +37,27 @@ class DpgPolicy final : public RemovalPolicy {
   void BeginRound(const std::map<NodeId, double>& gains, const RoundView& view) override {
     doomed_.clear();
     const ScanAt now = view.scan(view.current);
+    const double r = config_.dpg.compare_radius_m;
+    const std::vector<NodeId> ids = r > 0.0 && view.within ? view.within(r) : view.nearby;
     // The current node is the newest: no round has compared it yet, so none has cut it.
-    for (const NodeId id : view.nearby) Compare(id, now, gains, view);
+    std::vector<std::pair<NodeId, ScanComparison>> judged;
+    bool vouched = false;
+    for (const NodeId id : ids) {
+      judged.emplace_back(id, Judge(id, now, view, config_.dpg.detection));
+      vouched = vouched || (judged.back().second.compared && id < view.local_map_from);
+    }
+    // A scan that agrees with an older one outside the front end's local map has its pose
+    // right against the older map here: the others there are compared even where most of
+    // what they share with it changed since (a room seen through its door, its furniture
+    // moved), down to min_agreement_vouched.
+    ChangeDetectionConfig relaxed = config_.dpg.detection;
+    relaxed.min_agreement = config_.dpg.min_agreement_vouched;
+    for (auto& [id, c] : judged) {
+      if (!c.compared && vouched && relaxed.min_agreement < config_.dpg.detection.min_agreement) {
+        c = Judge(id, now, view, relaxed);
+      }
+      Apply(id, c, gains, view);
+    }
   }
 
   std::vector<SampleRetirement> TakeRetirements() override { return std::exchange(retired_, {}); }
@@ -52,16 +71,19 @@ class DpgPolicy final : public RemovalPolicy {
   }
 
  private:
-  /// Compares node id's scan with the current one: its outdated beams are retired, and it
-  /// is doomed when too few are left.
-  void Compare(NodeId id, const ScanAt& now, const std::map<NodeId, double>& gains,
-               const RoundView& view) {
+  /// Node id's scan compared with the current one.
+  static ScanComparison Judge(NodeId id, const ScanAt& now, const RoundView& view,
+                              const ChangeDetectionConfig& detection) {
     const ScanAt old = view.scan(id);
     // The older scan whole: a beam cut before still saw through a doorway, so it still
     // judges its neighbours and joins their run (a change is cut a few beams at a time,
     // from each pose that sees part of it).
-    const ScanComparison c = CompareScans(*old.scan, old.T_world_robot, *now.scan,
-                                          now.T_world_robot, config_.dpg.detection);
+    return CompareScans(*old.scan, old.T_world_robot, *now.scan, now.T_world_robot, detection);
+  }
+  /// Node id's outdated beams (by `c`) are retired, and it is doomed when too few are left.
+  void Apply(NodeId id, const ScanComparison& c, const std::map<NodeId, double>& gains,
+             const RoundView& view) {
+    const ScanAt old = view.scan(id);
     // A beam cut before is cut again only where the new verdict takes out more, by more
     // than edge_guard_m (a beam through a doorway whose far return went, then the door
     // closed).

@@ -148,6 +148,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.dpg.detection.added_depth_m, b.pruning.dpg.detection.added_depth_m);
   EXPECT_EQ(a.pruning.dpg.detection.min_run_beams, b.pruning.dpg.detection.min_run_beams);
   EXPECT_EQ(a.pruning.dpg.min_active_share, b.pruning.dpg.min_active_share);
+  EXPECT_EQ(a.pruning.dpg.compare_radius_m, b.pruning.dpg.compare_radius_m);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "slam/grid/beam_cut.hpp"
+#include "slam/grid/change_detection.hpp"
 #include "synthetic_scans.hpp"
 
 namespace lifelong::slam {
@@ -165,6 +166,81 @@ TEST(RemovalPolicy, DpgCutsTheBeamsOfANodeNoRoundRemoves) {
   EXPECT_GT(out[0].cuts.size(), 46u);  // as when it was a candidate: under 75 % left
   EXPECT_EQ(policy->Next({}, 100), std::nullopt);
   EXPECT_EQ(policy->Next({{7, 50.0}}, 100), std::nullopt);  // node 1 is not doomed
+}
+
+// With compare_radius_m, the current scan is compared with every node within that distance,
+// not only the round's: an older scan from farther off (a corridor looking into a room)
+// crossed what the current one sees standing, and is cut all the same.
+TEST(RemovalPolicy, DpgComparesEveryNodeWithinItsRadius) {
+  testing::World closed, open;
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &closed);
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &open);
+  closed.push_back({6.0, 2.0, 6.0, 4.0});
+  std::map<NodeId, LaserScan> scans{{1, testing::SimulateScan(closed, {4.0, 3.0, 0.0})},
+                                    {9, testing::SimulateScan(open, {2.5, 2.9, 0.1})}};
+  std::map<NodeId, Pose2> poses{{1, {4.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
+  std::map<NodeId, std::vector<BeamCut>> cut;
+  std::vector<double> asked;
+  RoundView view;
+  view.current = 9;  // node 1 is outside the round's radius: not nearby
+  view.within = [&](double radius_m) {
+    asked.push_back(radius_m);
+    return std::vector<NodeId>{1};
+  };
+  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
+  RemovalPolicyConfig config;
+  config.dpg.compare_radius_m = 0.0;
+  const auto off = MakeRemovalPolicy("dpg", config);
+  off->BeginRound({}, view);
+  EXPECT_TRUE(off->TakeRetirements().empty());
+  EXPECT_TRUE(asked.empty());
+  config.dpg.compare_radius_m = 12.0;
+  const auto on = MakeRemovalPolicy("dpg", config);
+  on->BeginRound({}, view);
+  const std::vector<SampleRetirement> out = on->TakeRetirements();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].node, NodeId{1});
+  EXPECT_GT(out[0].cuts.size(), 46u);
+  EXPECT_EQ(asked, std::vector<double>{12.0});
+}
+
+// Node 2 saw a partition 1 m in front of it, since taken away: most of what it shares with
+// the current scan changed, so the two agree too little to be compared. Node 1, an older
+// scan of the room as it stands, agrees with the current one: once it vouches for the current
+// pose (it lies outside the front end's local map), node 2 is compared down to
+// min_agreement_vouched, and its partition cut.
+TEST(RemovalPolicy, DpgComparesAMostlyChangedScanOnceAnOlderOneVouchesForThePose) {
+  testing::World now, then;
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &now);
+  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &then);
+  then.push_back({5.0, 0.2, 5.0, 5.8});
+  std::map<NodeId, Pose2> poses{{1, {3.0, 2.0, 0.2}}, {2, {4.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
+  std::map<NodeId, LaserScan> scans{{1, testing::SimulateScan(now, poses.at(1))},
+                                    {2, testing::SimulateScan(then, poses.at(2))},
+                                    {9, testing::SimulateScan(now, poses.at(9))}};
+  std::map<NodeId, std::vector<BeamCut>> cut;
+  RoundView view;
+  view.current = 9;
+  view.nearby = {1, 2};
+  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
+  const ScanComparison alone =
+      CompareScans(scans.at(2), poses.at(2), scans.at(9), poses.at(9), ChangeDetectionConfig{});
+  ASSERT_FALSE(alone.compared);
+  const auto cut_nodes = [&](NodeId local_map_from, double vouched) {
+    RemovalPolicyConfig config;
+    config.dpg.min_agreement_vouched = vouched;
+    view.local_map_from = local_map_from;
+    const auto policy = MakeRemovalPolicy("dpg", config);
+    policy->BeginRound({}, view);
+    std::vector<NodeId> out;
+    for (const SampleRetirement& r : policy->TakeRetirements()) {
+      if (r.cuts.size() > 50u) out.push_back(r.node);
+    }
+    return out;
+  };
+  EXPECT_EQ(cut_nodes(9, 0.0), std::vector<NodeId>{2});
+  EXPECT_TRUE(cut_nodes(1, 0.0).empty());  // node 1 is in the local map: no voucher
+  EXPECT_TRUE(cut_nodes(9, 0.6).empty());  // no lower bar than min_agreement
 }
 
 // A 10 m x 6 m room with a partition at x = 6 and a door in it (y in [2, 4]), closed or

@@ -4,9 +4,11 @@
 // different times, marks the samples of the older scans that the newer ones show to be
 // removed (or whose free space now holds an object), keeps only active samples in the map,
 // and retires a pose from the active map when its scan has too few active samples left.
-// Here, at each round the current scan is compared with every node near it, candidate or not
-// (change_detection.hpp; a node of an unsettled loop closure is no candidate, yet its scan
-// shows the past like any other):
+// Here, at each round the current scan is compared with every node within compare_radius_m,
+// candidate or not (change_detection.hpp; a node of an unsettled loop closure is no
+// candidate, yet its scan shows the past like any other). Two scans that agree too little
+// are not compared (their poses may disagree), unless an older scan outside the front end's
+// local map agrees with the current one and so vouches for its pose. Of the nodes compared:
 //   - the candidate's outdated beams are retired: the mapper takes them out of the counting
 //     grid, so the map, and every scan's information gain (seed eq. 5.11), follows the
 //     present. A scan that shows a change is no longer measured against the past it

@@ -141,22 +141,37 @@ TEST(RemovalPolicy, DpgRetiresTheOutdatedBeamsAndTheNodesThatMostlyShowThePast) 
   }
 }
 
+// Node 1 saw the door of a room closed (x = 6, y in [2, 4]); node 9, later, sees it open.
+struct DoorOpened {
+  std::map<NodeId, Pose2> poses{{1, {4.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
+  std::map<NodeId, LaserScan> scans;
+  std::map<NodeId, std::vector<BeamCut>> cut;
+
+  DoorOpened() {
+    testing::World closed, open;
+    testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &closed);
+    testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &open);
+    closed.push_back({6.0, 2.0, 6.0, 4.0});
+    scans[1] = testing::SimulateScan(closed, poses.at(1));
+    scans[9] = testing::SimulateScan(open, poses.at(9));
+  }
+  DoorOpened(const DoorOpened&) = delete;  // View() holds this
+  /// Node 9's round, with no node nearby.
+  RoundView View() {
+    RoundView view;
+    view.current = 9;
+    view.scan = [this](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
+    return view;
+  }
+};
+
 // A node no round may remove (the newest, or one of an unsettled loop closure) is no
 // candidate, yet its scan shows the past: its outdated beams are cut all the same, and it
 // never goes.
 TEST(RemovalPolicy, DpgCutsTheBeamsOfANodeNoRoundRemoves) {
-  testing::World closed, open;
-  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &closed);
-  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &open);
-  closed.push_back({6.0, 2.0, 6.0, 4.0});
-  std::map<NodeId, LaserScan> scans{{1, testing::SimulateScan(closed, {4.0, 3.0, 0.0})},
-                                    {9, testing::SimulateScan(open, {2.5, 2.9, 0.1})}};
-  std::map<NodeId, Pose2> poses{{1, {4.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
-  std::map<NodeId, std::vector<BeamCut>> cut;
-  RoundView view;
-  view.current = 9;
+  DoorOpened door;
+  RoundView view = door.View();
   view.nearby = {1};
-  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
   RemovalPolicyConfig config;
   config.dpg.min_active_share = 0.75;
   const auto policy = MakeRemovalPolicy("dpg", config);
@@ -172,22 +187,13 @@ TEST(RemovalPolicy, DpgCutsTheBeamsOfANodeNoRoundRemoves) {
 // not only the round's: an older scan from farther off (a corridor looking into a room)
 // crossed what the current one sees standing, and is cut all the same.
 TEST(RemovalPolicy, DpgComparesEveryNodeWithinItsRadius) {
-  testing::World closed, open;
-  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &closed);
-  testing::AddRectangle(0.0, 0.0, 10.0, 6.0, &open);
-  closed.push_back({6.0, 2.0, 6.0, 4.0});
-  std::map<NodeId, LaserScan> scans{{1, testing::SimulateScan(closed, {4.0, 3.0, 0.0})},
-                                    {9, testing::SimulateScan(open, {2.5, 2.9, 0.1})}};
-  std::map<NodeId, Pose2> poses{{1, {4.0, 3.0, 0.0}}, {9, {2.5, 2.9, 0.1}}};
-  std::map<NodeId, std::vector<BeamCut>> cut;
+  DoorOpened door;
+  RoundView view = door.View();  // node 1 is outside the round's radius: not nearby
   std::vector<double> asked;
-  RoundView view;
-  view.current = 9;  // node 1 is outside the round's radius: not nearby
   view.within = [&](double radius_m) {
     asked.push_back(radius_m);
     return std::vector<NodeId>{1};
   };
-  view.scan = [&](NodeId id) { return ScanAt{&scans.at(id), &cut[id], poses.at(id)}; };
   RemovalPolicyConfig config;
   config.dpg.compare_radius_m = 0.0;
   const auto off = MakeRemovalPolicy("dpg", config);

@@ -349,8 +349,7 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
       &unseen);
   // A point hidden behind a nearer return of the other scan says nothing of the poses: the
   // other scan saw something else there (a wall from another room, an object since moved).
-  const int visible = c.judged - c.hidden;
-  c.compared = visible > 0 && c.agree >= config.min_agreement * visible;
+  c.compared = Agrees(c, config.min_agreement);
   if (!c.compared) return c;
   SortUnique(&removed);
   KeepRuns(min_run, &removed);
@@ -372,6 +371,11 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   c.news.insert(c.news.end(), added_news.begin(), added_news.end());
   SortUnique(&c.news);
   return c;
+}
+
+bool Agrees(const ScanComparison& c, double min_agreement) {
+  const int visible = c.judged - c.hidden;
+  return visible > 0 && c.agree >= min_agreement * visible;
 }
 
 }  // namespace lifelong::slam

@@ -94,4 +94,8 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
                             const LaserScan& newer, const Pose2& T_world_newer,
                             const ChangeDetectionConfig& config);
 
+/// Whether the returns `c` judged agree enough at `min_agreement` (the share of those in view
+/// and not hidden) for the two scans to be compared: c.compared at that bar.
+bool Agrees(const ScanComparison& c, double min_agreement);
+
 }  // namespace lifelong::slam

@@ -42,23 +42,23 @@ class DpgPolicy final : public RemovalPolicy {
     const double r = config_.dpg.compare_radius_m;
     const std::vector<NodeId> ids = r > 0.0 && view.within ? view.within(r) : view.nearby;
     // The current node is the newest: no round has compared it yet, so none has cut it.
+    // Each node is judged once, at the lower of the two bars; which pass which is decided here.
+    const double bar = config_.dpg.detection.min_agreement;
+    ChangeDetectionConfig lower = config_.dpg.detection;
+    lower.min_agreement = std::min(bar, config_.dpg.min_agreement_vouched);
     std::vector<std::pair<NodeId, ScanComparison>> judged;
     bool vouched = false;
     for (const NodeId id : ids) {
-      judged.emplace_back(id, Judge(id, now, view, config_.dpg.detection));
-      vouched = vouched || (judged.back().second.compared && id < view.local_map_from);
+      judged.emplace_back(id, Judge(id, now, view, lower));
+      vouched = vouched || (id < view.local_map_from && Agrees(judged.back().second, bar));
     }
     // A scan that agrees with an older one outside the front end's local map has its pose
     // right against the older map here: the others there are compared even where most of
     // what they share with it changed since (a room seen through its door, its furniture
     // moved), down to min_agreement_vouched.
-    ChangeDetectionConfig relaxed = config_.dpg.detection;
-    relaxed.min_agreement = config_.dpg.min_agreement_vouched;
-    for (auto& [id, c] : judged) {
-      if (!c.compared && vouched && relaxed.min_agreement < config_.dpg.detection.min_agreement) {
-        c = Judge(id, now, view, relaxed);
-      }
-      Apply(id, c, gains, view);
+    for (const auto& [id, c] : judged) {
+      const bool compared = Agrees(c, bar) || (vouched && c.compared);
+      Apply(id, compared ? c.outdated : std::vector<BeamCut>{}, gains, view);
     }
   }
 
@@ -82,15 +82,15 @@ class DpgPolicy final : public RemovalPolicy {
     // from each pose that sees part of it).
     return CompareScans(*old.scan, old.T_world_robot, *now.scan, now.T_world_robot, detection);
   }
-  /// Node id's outdated beams (by `c`) are retired, and it is doomed when too few are left.
-  void Apply(NodeId id, const ScanComparison& c, const std::map<NodeId, double>& gains,
+  /// Node id's `outdated` beams are retired, and it is doomed when too few are left.
+  void Apply(NodeId id, const std::vector<BeamCut>& outdated, const std::map<NodeId, double>& gains,
              const RoundView& view) {
     const ScanAt old = view.scan(id);
     // A beam cut before is cut again only where the new verdict takes out more, by more
     // than edge_guard_m (a beam through a doorway whose far return went, then the door
     // closed).
     const std::vector<BeamCut> fresh =
-        Tighter(*old.cut, c.outdated, config_.dpg.detection.edge_guard_m);
+        Tighter(*old.cut, outdated, config_.dpg.detection.edge_guard_m);
     // A beam retired: its return gone. A beam an object now crosses keeps its return.
     const std::vector<BeamCut> after = MergeCuts(*old.cut, fresh);
     const auto retired = static_cast<double>(

@@ -149,6 +149,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.pruning.dpg.detection.min_run_beams, b.pruning.dpg.detection.min_run_beams);
   EXPECT_EQ(a.pruning.dpg.min_active_share, b.pruning.dpg.min_active_share);
   EXPECT_EQ(a.pruning.dpg.compare_radius_m, b.pruning.dpg.compare_radius_m);
+  EXPECT_EQ(a.pruning.dpg.min_agreement_vouched, b.pruning.dpg.min_agreement_vouched);
   EXPECT_EQ(a.grid.resolution_m, b.grid.resolution_m);
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
@@ -235,7 +236,7 @@ MapperConfig AllChanged() {
                slam::FactorMeans::kMarginalMean,
                true,
                {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5},
-               {{0.25, 0.15, 0.3, 0.2, 0.6, 5, 0.7}, 0.4}};
+               {{0.25, 0.15, 0.3, 0.2, 0.6, 5, 0.7}, 0.4, 8.0, 0.3}};
   c.grid = {0.1, 6.0, 9.5, 3};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

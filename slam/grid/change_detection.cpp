@@ -110,6 +110,15 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard,
   return Verdict::kSeenThrough;
 }
 
+/// Whether return j of `scan` lies more than hidden_m nearer than return i, hiding what lies
+/// beyond i (a doorway's jamb beside a glimpse of the room), when config takes such glimpses
+/// (min_run_occluded_beams).
+bool Occludes(const LaserScan& scan, std::size_t j, std::size_t i,
+              const ChangeDetectionConfig& config) {
+  return config.min_run_occluded_beams > 0 && scan.IsReturn(j) &&
+         scan.ranges_m[j] < scan.ranges_m[i] - std::max(config.margin_m, config.hidden_m);
+}
+
 /// Judges every return of `from` as `to` sees it; f(from_beam, to_beam, distance from
 /// to's laser) for those seen through. Counts agreement into *c. With `unseen`, the returns
 /// of `from` that lie outside `to`'s field of view (ascending).
@@ -144,9 +153,12 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     if (v == Verdict::kHidden) ++c->hidden;
     if (v != Verdict::kSeenThrough) continue;
     // The surface at the point, from its neighbours: a beam of `to` that meets it at a
-    // grazing angle passes it by a range error of (pose error) / sin(angle), no change.
-    if (i == 0 || i + 1 >= n || !from.IsReturn(i - 1) || !from.IsReturn(i + 1)) continue;
-    const Eigen::Vector2d t = end_point(i + 1) - end_point(i - 1);
+    // grazing angle passes it by a range error of (pose error) / sin(angle), no change. A
+    // neighbour on a nearer surface that hides the rest (occlusion) leaves the point itself.
+    const std::size_t lo = i > 0 && Occludes(from, i - 1, i, config) ? i : i - 1;
+    const std::size_t hi = i + 1 < n && Occludes(from, i + 1, i, config) ? i : i + 1;
+    if (i == 0 || i + 1 >= n || lo == hi || !from.IsReturn(lo) || !from.IsReturn(hi)) continue;
+    const Eigen::Vector2d t = end_point(hi) - end_point(lo);
     if (t.norm() > 4.0 * config.margin_m || t.norm() < 1e-9) continue;
     const Eigen::Vector2d origin(T_world_to.x, T_world_to.y);
     const Eigen::Vector2d u = (p - origin).normalized();
@@ -218,14 +230,23 @@ bool OneSurface(const LaserScan& scan, std::uint32_t j, double max_gap_m) {
   return gap2 <= max_gap_m * max_gap_m;
 }
 
+struct Occlusion {
+  std::size_t min_run = 0;  ///< the run a glimpse needs (0: none is taken as such)
+  double hidden_m = 0.0;    ///< how much nearer the return beyond its end must be
+};
+
 /// KeepRuns for the newer scan's added returns (ascending), where a run that reaches the
 /// edge of the older scan's field of view is cut short by it, not by the world: it counts
 /// the returns on the same surface (OneSurface) beyond that edge, which the older scan could
 /// not judge (`unseen`, ascending), toward min_run. A box seen by the older scan's outermost
-/// beams shows few of its returns inside that scan's view.
+/// beams shows few of its returns inside that scan's view. Likewise a run that the newer
+/// scan's own view cuts short, the beam beyond one of its ends returning more than
+/// occlusion.hidden_m nearer (a desk glimpsed through a doorway past its jamb), needs only
+/// occlusion.min_run returns: its length says how much the robot could see, not how wide
+/// the object is.
 void KeepRunsToTheEdge(std::size_t min_run, const LaserScan& newer,
                        const std::vector<std::uint32_t>& unseen, double max_gap_m,
-                       std::vector<std::uint32_t>* v) {
+                       Occlusion occlusion, std::vector<std::uint32_t>* v) {
   // How many returns past `from` (step -1 or +1) are unseen and on its surface.
   const auto beyond = [&](std::uint32_t from, long step) {
     std::size_t n = 0;
@@ -238,7 +259,20 @@ void KeepRunsToTheEdge(std::size_t min_run, const LaserScan& newer,
     }
     return n;
   };
+  // Whether the newer scan's own view ends beyond `from` (step -1 or +1): its next beam
+  // returns more than hidden_m nearer, so a nearer surface (a door's jamb) hides the rest.
+  const auto occluded = [&](std::uint32_t from, long step) {
+    const long j = static_cast<long>(from) + step;
+    return occlusion.min_run > 0 && j >= 0 && j < static_cast<long>(newer.ranges_m.size()) &&
+           newer.IsReturn(static_cast<std::uint32_t>(j)) &&
+           newer.ranges_m[static_cast<std::size_t>(j)] < newer.ranges_m[from] - occlusion.hidden_m;
+  };
+  const std::vector<std::uint32_t> all = *v;
   KeepRuns(min_run, v, [&](std::uint32_t first, std::uint32_t last) {
+    const auto returns = static_cast<std::size_t>(
+        std::upper_bound(all.begin(), all.end(), last) -
+        std::lower_bound(all.begin(), all.end(), first));
+    if ((occluded(first, -1) || occluded(last, +1)) && returns >= occlusion.min_run) return min_run;
     return beyond(first, -1) + beyond(last, +1);
   });
 }
@@ -358,7 +392,10 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   std::vector<std::uint32_t> added_news;
   for (const auto& a : added) added_news.push_back(a.first);
   SortUnique(&added_news);
-  KeepRunsToTheEdge(min_run, newer, unseen, 4.0 * config.margin_m, &added_news);
+  KeepRunsToTheEdge(min_run, newer, unseen, 4.0 * config.margin_m,
+                    {static_cast<std::size_t>(config.min_run_occluded_beams),
+                     std::max(config.margin_m, config.hidden_m)},
+                    &added_news);
   c.outdated = removed;
   for (const auto& [new_beam, cut] : added) {
     if (std::binary_search(added_news.begin(), added_news.end(), new_beam))

@@ -61,6 +61,11 @@ struct ChangeDetectionConfig {
   /// Outdated beams count only in runs of at least this many (a run may skip one beam): a
   /// change covers neighbouring beams, noise and pose error single ones.
   int min_run_beams = 4;
+  /// An added run that the newer scan's own view cuts short (the beam beyond one of its
+  /// ends returns more than hidden_m nearer: a doorway's jamb) needs only this many returns
+  /// (0: always min_run_beams): a desk glimpsed through a doorway shows two or three returns
+  /// per scan. Two is the least that gives the surface's direction at a return.
+  int min_run_occluded_beams = 2;
   /// The share of the returns within each other's field of view, and not hidden there behind
   /// a nearer return, that must agree (within margin_m) for the two scans to be compared at
   /// all.

@@ -240,6 +240,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
       d.Number("min_incidence_added_rad", r.detection.min_incidence_added_rad, kNonNegative);
       d.Number("added_depth_m", r.detection.added_depth_m, kNonNegative);
       d.Int("min_run_beams", r.detection.min_run_beams, 1);
+      d.Int("min_run_occluded_beams", r.detection.min_run_occluded_beams, 0);
       d.Number("min_active_share", r.min_active_share, kUnit);
       d.Number("compare_radius_m", r.compare_radius_m, kNonNegative);
       d.Number("min_agreement_vouched", r.min_agreement_vouched, kUnit);

@@ -147,6 +147,8 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
             b.pruning.dpg.detection.min_incidence_added_rad);
   EXPECT_EQ(a.pruning.dpg.detection.added_depth_m, b.pruning.dpg.detection.added_depth_m);
   EXPECT_EQ(a.pruning.dpg.detection.min_run_beams, b.pruning.dpg.detection.min_run_beams);
+  EXPECT_EQ(a.pruning.dpg.detection.min_run_occluded_beams,
+            b.pruning.dpg.detection.min_run_occluded_beams);
   EXPECT_EQ(a.pruning.dpg.min_active_share, b.pruning.dpg.min_active_share);
   EXPECT_EQ(a.pruning.dpg.compare_radius_m, b.pruning.dpg.compare_radius_m);
   EXPECT_EQ(a.pruning.dpg.min_agreement_vouched, b.pruning.dpg.min_agreement_vouched);
@@ -236,7 +238,7 @@ MapperConfig AllChanged() {
                slam::FactorMeans::kMarginalMean,
                true,
                {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5},
-               {{0.25, 0.15, 0.3, 0.2, 0.6, 5, 0.7}, 0.4, 8.0, 0.3}};
+               {{0.25, 0.15, 0.3, 0.2, 0.6, 5, 3, 0.7}, 0.4, 8.0, 0.3}};
   c.grid = {0.1, 6.0, 9.5, 3};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;

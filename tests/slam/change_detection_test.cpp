@@ -280,5 +280,46 @@ TEST(ChangeDetection, ReturnsHiddenBehindANearerObjectDoNotStopTheComparison) {
   EXPECT_GE(removed, 4);
 }
 
+// A cabinet put down in the room by its door, glimpsed from down the corridor past the
+// doorway's jamb, which leaves three beams on it: those returns form no run of four, yet a
+// nearer surface (the jamb) ends the glimpse, so it needs only min_run_occluded_beams. The
+// room's older scan from inside (its pose vouched for: min_agreement 0) has its beams
+// through the cabinet's place outdated, and no other beam; with min_run_occluded_beams 0,
+// none; unchanged, none.
+TEST(ChangeDetection, ACabinetGlimpsedPastADoorJambOutdatesTheBeamsThroughIt) {
+  World before = CorridorWithDoor(false), after = before;
+  const double x0 = 11.6, x1 = 11.9, y0 = 4.0, y1 = 4.3;
+  AddRectangle(x0, y0, x1, y1, &after);
+  const Pose2 inside(14.5, 4.5, 3.14159265358979323846), corridor(17.0, 0.5, 2.2);
+  const LaserScan older = SimulateScan(before, inside), newer = SimulateScan(after, corridor);
+  int on_cabinet = 0;
+  for (std::uint32_t b = 0; b < newer.ranges_m.size(); ++b) {
+    const double a = corridor.theta + newer.Bearing(b), r = newer.ranges_m[b];
+    const double x = corridor.x + r * std::cos(a), y = corridor.y + r * std::sin(a);
+    on_cabinet += (x > x0 - 0.01 && x < x1 + 0.01 && y > y0 - 0.01 && y < y1 + 0.01) ? 1 : 0;
+  }
+  ASSERT_GE(on_cabinet, 1);
+  ASSERT_LE(on_cabinet, 3);
+  ChangeDetectionConfig vouched;
+  vouched.min_agreement = 0.0;
+  const ScanComparison c = CompareScans(older, inside, newer, corridor, vouched);
+  ASSERT_TRUE(c.compared);
+  ASSERT_FALSE(c.outdated.empty());
+  for (const BeamCut& cut : c.outdated) {  // each crosses the desk's place before its return
+    const double a = inside.theta + older.Bearing(cut.beam);
+    const double t = (x1 - inside.x) / std::cos(a), y = inside.y + t * std::sin(a);
+    EXPECT_GT(y, y0 - 0.4) << "beam " << cut.beam;
+    EXPECT_LT(y, y1 + 0.4) << "beam " << cut.beam;
+    EXPECT_LT(cut.free_to_m, older.ranges_m[cut.beam]);
+  }
+  vouched.min_run_occluded_beams = 0;
+  EXPECT_TRUE(CompareScans(older, inside, newer, corridor, vouched).outdated.empty());
+  // Unchanged, nothing is.
+  vouched.min_run_occluded_beams = 2;
+  const ScanComparison none =
+      CompareScans(SimulateScan(after, inside), inside, newer, corridor, vouched);
+  EXPECT_TRUE(none.outdated.empty()) << none.outdated.size();
+}
+
 }  // namespace
 }  // namespace lifelong::slam

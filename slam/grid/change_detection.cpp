@@ -9,8 +9,13 @@
 
 #include <Eigen/Core>
 
+#include "slam/grid/change_runs.hpp"
+
 namespace lifelong::slam {
 namespace {
+
+using change_runs::KeepRuns;
+using change_runs::KeepRunsToTheEdge;
 
 constexpr double kTwoPi = 6.283185307179586;
 
@@ -195,86 +200,6 @@ void SortUnique(std::vector<BeamCut>* v) {
     }
   }
   v->resize(n);
-}
-
-std::uint32_t BeamOf(std::uint32_t b) { return b; }
-std::uint32_t BeamOf(const BeamCut& c) { return c.beam; }
-
-/// Keeps the beams (ascending) that lie in runs of at least min_run beams, a run allowing
-/// gaps of one beam: a change covers neighbouring beams, noise single ones. A run from beam
-/// `first` to beam `last` counts extra(first, last) more beams toward min_run.
-template <typename T, typename Extra>
-void KeepRuns(std::size_t min_run, std::vector<T>* v, Extra&& extra) {
-  std::vector<T> kept;
-  std::size_t start = 0;
-  for (std::size_t i = 1; i <= v->size(); ++i) {
-    if (i < v->size() && BeamOf((*v)[i]) - BeamOf((*v)[i - 1]) <= 2) continue;
-    const std::size_t n = i - start + extra(BeamOf((*v)[start]), BeamOf((*v)[i - 1]));
-    if (n >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
-    start = i;
-  }
-  *v = std::move(kept);
-}
-
-template <typename T>
-void KeepRuns(std::size_t min_run, std::vector<T>* v) {
-  KeepRuns(min_run, v, [](std::uint32_t, std::uint32_t) { return std::size_t{0}; });
-}
-
-/// Whether returns j and j + 1 of `scan` lie on one surface: both returns, at most max_gap_m
-/// apart.
-bool OneSurface(const LaserScan& scan, std::uint32_t j, double max_gap_m) {
-  if (j + 1 >= scan.ranges_m.size() || !scan.IsReturn(j) || !scan.IsReturn(j + 1)) return false;
-  const double a = scan.ranges_m[j], b = scan.ranges_m[j + 1];
-  const double gap2 = a * a + b * b - 2.0 * a * b * std::cos(scan.angle_increment_rad);
-  return gap2 <= max_gap_m * max_gap_m;
-}
-
-struct Occlusion {
-  std::size_t min_run = 0;  ///< the run a glimpse needs (0: none is taken as such)
-  double hidden_m = 0.0;    ///< how much nearer the return beyond its end must be
-};
-
-/// KeepRuns for the newer scan's added returns (ascending), where a run that reaches the
-/// edge of the older scan's field of view is cut short by it, not by the world: it counts
-/// the returns on the same surface (OneSurface) beyond that edge, which the older scan could
-/// not judge (`unseen`, ascending), toward min_run. A box seen by the older scan's outermost
-/// beams shows few of its returns inside that scan's view. Likewise a run that the newer
-/// scan's own view cuts short, the beam beyond one of its ends returning more than
-/// occlusion.hidden_m nearer (a desk glimpsed through a doorway past its jamb), needs only
-/// occlusion.min_run returns: its length says how much the robot could see, not how wide
-/// the object is.
-void KeepRunsToTheEdge(std::size_t min_run, const LaserScan& newer,
-                       const std::vector<std::uint32_t>& unseen, double max_gap_m,
-                       Occlusion occlusion, std::vector<std::uint32_t>* v) {
-  // How many returns past `from` (step -1 or +1) are unseen and on its surface.
-  const auto beyond = [&](std::uint32_t from, long step) {
-    std::size_t n = 0;
-    for (long j = static_cast<long>(from) + step;
-         j >= 0 && j < static_cast<long>(newer.ranges_m.size()); j += step) {
-      const auto b = static_cast<std::uint32_t>(j);
-      if (!std::binary_search(unseen.begin(), unseen.end(), b)) break;
-      if (!OneSurface(newer, static_cast<std::uint32_t>(std::min(j, j - step)), max_gap_m)) break;
-      ++n;
-    }
-    return n;
-  };
-  // Whether the newer scan's own view ends beyond `from` (step -1 or +1): its next beam
-  // returns more than hidden_m nearer, so a nearer surface (a door's jamb) hides the rest.
-  const auto occluded = [&](std::uint32_t from, long step) {
-    const long j = static_cast<long>(from) + step;
-    return occlusion.min_run > 0 && j >= 0 && j < static_cast<long>(newer.ranges_m.size()) &&
-           newer.IsReturn(static_cast<std::uint32_t>(j)) &&
-           newer.ranges_m[static_cast<std::size_t>(j)] < newer.ranges_m[from] - occlusion.hidden_m;
-  };
-  const std::vector<std::uint32_t> all = *v;
-  KeepRuns(min_run, v, [&](std::uint32_t first, std::uint32_t last) {
-    const auto returns = static_cast<std::size_t>(
-        std::upper_bound(all.begin(), all.end(), last) -
-        std::lower_bound(all.begin(), all.end(), first));
-    if ((occluded(first, -1) || occluded(last, +1)) && returns >= occlusion.min_run) return min_run;
-    return beyond(first, -1) + beyond(last, +1);
-  });
 }
 
 /// The older beam cut where it passed a surface now standing at distance_m along it: free up

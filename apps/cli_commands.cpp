@@ -157,6 +157,11 @@ CLI::App* AddScore(CLI::App& app, ScoreArgs* a) {
       ->required();
   score->add_option("--map", a->maps, "its map, PGM + YAML (map_server): one per system");
   score->add_option("--name", a->names, "its name (default: the file's stem)");
+  score
+      ->add_option("--scenario", a->scenario,
+                   "the scenario that made a simulated --truth log: also change_recall and "
+                   "stale_seen_cells")
+      ->check(NotADirectory());
   score->add_option("-o,--out", a->out, "output directory")->required()->check(NonEmpty());
   return score;
 }

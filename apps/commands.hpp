@@ -48,6 +48,7 @@ struct SweepArgs {
 /// three repeat, one per system (eval/experiment/score.hpp).
 struct ScoreArgs {
   std::string truth, out;
+  std::string scenario;  ///< the scenario that made a simulated --truth log: change_recall
   std::vector<std::string> trajectories, maps, names;
   std::string command_line;
 };

@@ -58,7 +58,7 @@ std::vector<eval::ScoredSystem> ReadSystems(const ScoreArgs& a) {
 
 int Score(const ScoreArgs& a) {
   const auto start = std::chrono::steady_clock::now();
-  const eval::ScoreTruth truth = eval::LoadScoreTruth(a.truth);
+  const eval::ScoreTruth truth = eval::LoadScoreTruth(a.truth, a.scenario);
   const std::vector<eval::ScoredSystem> systems = ReadSystems(a);
   eval::StagedOutput staged(a.out);
   eval::RunSummary summary;

@@ -1,14 +1,21 @@
 #include "eval/experiment/score.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 
+#include "eval/metrics/change_recall.hpp"
 #include "eval/metrics/trajectory_reference.hpp"
 #include "eval/metrics/truth_metrics.hpp"
 #include "eval/truth/scan_cells.hpp"
+#include "eval/truth/truth_raster.hpp"
 #include "eval/truth/world_state.hpp"
 #include "io/carmen_log.hpp"
 #include "io/tum.hpp"
 #include "sensor/input_error.hpp"
+#include "sim/scenario.hpp"
 #include "slam/grid/grid_map.hpp"
 
 namespace lifelong::eval {
@@ -30,7 +37,9 @@ std::string SimulatedStem(const std::string& log) {
 
 }  // namespace
 
-ScoreTruth LoadScoreTruth(const std::string& path) {
+namespace {
+
+ScoreTruth LoadTruthFiles(const std::string& path) {
   ScoreTruth t;
   t.source = path;
   if (fs::is_directory(path)) {
@@ -68,6 +77,51 @@ ScoreTruth LoadScoreTruth(const std::string& path) {
   return t;
 }
 
+bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b) {
+  const auto near = [](const Segment& p, const Segment& q) {
+    return std::abs(p.x0 - q.x0) < 1e-6 && std::abs(p.y0 - q.y0) < 1e-6 &&
+           std::abs(p.x1 - q.x1) < 1e-6 && std::abs(p.y1 - q.y1) < 1e-6;
+  };
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), near);
+}
+
+// The scenario's world, checked against the log's truth files: the surfaces gone by the run's
+// end (its last scan; or up to a second later, where the simulation ended) must be those of
+// LOG.truth.gone.tsv.
+void AddScenarioWorld(const std::string& scenario_path, ScoreTruth* t) {
+  if (t->kind != "simulated log") {
+    throw InputError(scenario_path, 0, "--scenario",
+                     "needs a simulated log as --truth (its scans), not a " + t->kind);
+  }
+  const sim::Scenario scenario = sim::LoadScenario(scenario_path);
+  t->stream = io::ReadCarmenLog(t->source).observations;
+  if (t->stream.empty() || !std::all_of(t->stream.begin(), t->stream.end(), [](const auto& o) {
+        return o.T_world_robot_true.has_value();
+      })) {
+    throw InputError(t->source, 0, "--truth", "a simulated log whose scans lack TRUEPOS");
+  }
+  const double last = t->stream.back().stamp_s;
+  for (const double end_s : {last, last + 1.0}) {
+    const GroundTruth then = TruthOf(scenario.world, end_s);
+    if (SameSegments(then.gone, t->walls->gone) && SameSegments(then.walls, t->walls->walls)) {
+      t->walls->world = then.world;
+      t->walls->end_s = end_s;
+      return;
+    }
+  }
+  throw InputError(scenario_path, 0, "--scenario",
+                   "its world's walls, doors and boxes at the run's end are not those of " +
+                       t->source + "'s truth files: the scenario of another log?");
+}
+
+}  // namespace
+
+ScoreTruth LoadScoreTruth(const std::string& path, const std::string& scenario) {
+  ScoreTruth t = LoadTruthFiles(path);
+  if (!scenario.empty()) AddScenarioWorld(scenario, &t);
+  return t;
+}
+
 namespace {
 
 // scan_cells of the system on a corrected log: its pose at each scan it covers, against the
@@ -99,9 +153,17 @@ SystemScore ScoreSystem(const ScoreTruth& truth, const ScoredSystem& system) {
   }
   SystemScore out;
   out.summary.reference_matched = static_cast<std::int64_t>(pairs.estimate.size());
-  const GroundTruth* walls = truth.walls ? &*truth.walls : nullptr;
+  std::optional<GroundTruth> walls = truth.walls;
   const OccupancyGrid* map = system.map ? &*system.map : nullptr;
-  const Pose2 T = ScoreAgainstTruth(pairs.estimate, pairs.reference, walls, map, &out.summary);
+  if (walls && map) {  // rasterized once, for blur and for stale_seen_cells
+    walls->raster = std::make_shared<const TruthRaster>(*walls, pairs.reference, map->resolution_m);
+  }
+  const Pose2 T = ScoreAgainstTruth(pairs.estimate, pairs.reference, walls ? &*walls : nullptr,
+                                    map, &out.summary);
+  if (walls && walls->world && map) {
+    out.summary.change = ComputeChangeRecall(*walls->world, walls->end_s, truth.stream, *map, T,
+                                             SIZE_MAX, walls->raster.get());
+  }
   ScoreScanCells(truth, system, &out.summary);
   for (const Pose2& p : pairs.estimate) out.aligned.push_back(T * p);
   out.truth = pairs.reference;

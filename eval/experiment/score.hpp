@@ -25,10 +25,15 @@ struct ScoreTruth {
   std::optional<GroundTruth> walls;     ///< the true walls (simulated truth only)
   /// A corrected log's scans (scan_cells: the system's map of them against the reference's).
   std::vector<Observation> scans;
+  /// A simulated log's scans with their true poses, given its scenario (walls->world set):
+  /// what the robot saw of each changing object (change_recall).
+  std::vector<Observation> stream;
 };
 
-/// Throws InputError naming the path when it is none of the four.
-ScoreTruth LoadScoreTruth(const std::string& path);
+/// Throws InputError naming the path when it is none of the four. With `scenario` (a
+/// simulated log's only), the world's doors and boxes too, for change_recall; InputError
+/// naming the scenario when its world's changes are not those of the log's truth files.
+ScoreTruth LoadScoreTruth(const std::string& path, const std::string& scenario = "");
 
 struct ScoredSystem {
   std::string name;
@@ -42,7 +47,8 @@ struct SystemScore {
   std::vector<Pose2> truth;    ///< their true poses
 };
 
-/// The system's figures against the truth; on a corrected log also scan_cells at the default
+/// The system's figures against the truth; with a scenario's world and a map also change_recall
+/// and stale_seen_cells, as `run` scores a mode; on a corrected log also scan_cells at the default
 /// grid (its scans at the system's poses, interpolated at their stamps or taken scan by scan
 /// when it has one pose a scan, against the same scans at the log's poses). Throws InputError
 /// naming the system when none of its poses pairs with the truth.

@@ -158,8 +158,8 @@ SystemScore ScoreSystem(const ScoreTruth& truth, const ScoredSystem& system) {
   if (walls && map) {  // rasterized once, for blur and for stale_seen_cells
     walls->raster = std::make_shared<const TruthRaster>(*walls, pairs.reference, map->resolution_m);
   }
-  const Pose2 T = ScoreAgainstTruth(pairs.estimate, pairs.reference, walls ? &*walls : nullptr,
-                                    map, &out.summary);
+  const Pose2 T = ScoreAgainstTruth(pairs.estimate, pairs.reference, walls ? &*walls : nullptr, map,
+                                    &out.summary);
   if (walls && walls->world && map) {
     out.summary.change = ComputeChangeRecall(*walls->world, walls->end_s, truth.stream, *map, T,
                                              SIZE_MAX, walls->raster.get());

@@ -202,11 +202,54 @@ TEST(ScoreCli, BadInputIsRefusedNamingIt) {
   EXPECT_NE(r.output.find("names two systems"), std::string::npos) << r.output;
   // Another clock: nothing pairs.
   const fs::path late = WritePoses("late.txt", {{1e6, 0, 0, 0}, {1e6 + 1, 1, 0, 0}});
+  const fs::path none = Fresh("w");
   r = Lifelong("score --truth " + log.string() + " --trajectory " + late.string() + " -o " +
-               Fresh("w").string());
+               none.string());
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("pairs with the truth"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(Fresh("w")));
+  EXPECT_FALSE(fs::exists(none));  // nothing written
+}
+
+// With the scenario that made a simulated log, a mode's own map and trajectory scored on the
+// log give the run's change_recall, and each object's verdict and shares, to the digit the
+// 8-bit PGM keeps. The scenario of another world, or one given with a run's directory as the
+// truth, is refused naming it.
+TEST(ScoreCli, TheScenarioOfASimulatedLogGivesTheRunsChangeRecall) {
+  const std::string scenario = kSource + "/scenarios/changing_corridor_10min.yaml";
+  const fs::path log = Fresh("changing.clf"), run = Fresh("changing_run");
+  Result r = Lifelong("simulate " + scenario + " -o " + log.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = Lifelong("run " + scenario + " --modes pruned-dpg -o " + run.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string system = " --trajectory " + (run / "pruned-dpg" / "trajectory.tum").string() +
+                             " --map " + (run / "pruned-dpg" / "map.yaml").string() + " --name d";
+  const fs::path out = Fresh("changing_scored");
+  r = Lifelong("score --truth " + log.string() + " --scenario " + scenario + system + " -o " +
+               out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto a = nlohmann::json::parse(Read(run / "summary.json"))["modes"]["pruned-dpg"];
+  const auto b = nlohmann::json::parse(Read(out / "summary.json"))["modes"]["d"];
+  ASSERT_TRUE(b.contains("change_recall")) << b;
+  EXPECT_EQ(b["change_recall"], a["change_recall"]);
+  EXPECT_EQ(b["change_recall_seen"], a["change_recall_seen"]);
+  ASSERT_EQ(b["changes"].size(), a["changes"].size());
+  for (const auto& [name, object] : a["changes"].items()) {
+    EXPECT_EQ(b["changes"][name]["shows_present"], object["shows_present"]) << name;
+    EXPECT_EQ(b["changes"][name]["since_seen_s"], object["since_seen_s"]) << name;
+  }
+  EXPECT_TRUE(b.contains("stale_seen_cells")) << b;
+
+  const fs::path other = Fresh("other");
+  r = Lifelong("score --truth " + log.string() + " --scenario " + kSource +
+               "/scenarios/corridor_3.yaml" + system + " -o " + other.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("corridor_3.yaml"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("not those of"), std::string::npos) << r.output;
+  r = Lifelong("score --truth " + run.string() + " --scenario " + scenario + system + " -o " +
+               Fresh("run_truth").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("needs a simulated log"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(other));  // nothing written
 }
 
 }  // namespace

@@ -160,9 +160,10 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     // The surface at the point, from its neighbours: a beam of `to` that meets it at a
     // grazing angle passes it by a range error of (pose error) / sin(angle), no change. A
     // neighbour on a nearer surface that hides the rest (occlusion) leaves the point itself.
-    const std::size_t lo = i > 0 && Occludes(from, i - 1, i, config) ? i : i - 1;
-    const std::size_t hi = i + 1 < n && Occludes(from, i + 1, i, config) ? i : i + 1;
-    if (i == 0 || i + 1 >= n || lo == hi || !from.IsReturn(lo) || !from.IsReturn(hi)) continue;
+    if (i == 0 || i + 1 >= n) continue;
+    const std::size_t lo = Occludes(from, i - 1, i, config) ? i : i - 1;
+    const std::size_t hi = Occludes(from, i + 1, i, config) ? i : i + 1;
+    if (lo == hi || !from.IsReturn(lo) || !from.IsReturn(hi)) continue;
     const Eigen::Vector2d t = end_point(hi) - end_point(lo);
     if (t.norm() > 4.0 * config.margin_m || t.norm() < 1e-9) continue;
     const Eigen::Vector2d origin(T_world_to.x, T_world_to.y);

@@ -14,8 +14,8 @@
 // corner, an object's edge or a grazing wall, hit by one beam and missed by its neighbour or
 // moved along the beam by a small pose error, is no change. An added object counts only
 // when the newer returns form that run (or, where the newer scan's own view ends at a nearer
-// surface, a doorway's jamb, min_run_occluded_beams of them); then each older beam through one of them is
-// outdated on its own (min_incidence_added_rad; passing the point by margin_m plus half a
+// surface, a doorway's jamb, min_run_occluded_beams of them); then each older beam through one of
+// them is outdated on its own (min_incidence_added_rad; passing the point by margin_m plus half a
 // beam's bearing error; the older scan's first and last beams too), for a beam that grazes
 // a doorway from afar passes many of the door's returns while its neighbours hit the wall;
 // and so is each older beam that crosses the newer surface between a return of the run and

@@ -9,9 +9,11 @@
 
 namespace lifelong::eval {
 
-/// The colour of a mode by name: fixed for the known modes (standard, pruned,
-/// pruned-exact, pruned-naive, pruned-glc, pruned-nfr); any other name gets one of a
-/// fallback list chosen by a hash of the name (FNV-1a), so it is stable across runs too.
+/// The colour of a mode by name: fixed for the named modes (standard, pruned, pruned-exact,
+/// pruned-naive, pruned-glc, pruned-nfr, pruned-overlap, pruned-dpg); POLICY+SPARSIFIER takes
+/// its policy's colour (pruned's, pruned-overlap's or pruned-dpg's) darker or lighter by
+/// sparsifier; any other name gets one of a fallback list chosen by a hash of the name
+/// (FNV-1a), so it is stable across runs too.
 render::Rgb ModeColour(const std::string& mode);
 
 /// The same colour as "#rrggbb" (gnuplot `lc rgb`, HTML).

@@ -115,13 +115,10 @@ Verdict Judge(const LaserScan& scan, const Seen& p, double margin, double guard,
   return Verdict::kSeenThrough;
 }
 
-/// Whether return j of `scan` lies more than hidden_m nearer than return i, hiding what lies
-/// beyond i (a doorway's jamb beside a glimpse of the room), when config takes such glimpses
-/// (min_run_occluded_beams).
-bool Occludes(const LaserScan& scan, std::size_t j, std::size_t i,
-              const ChangeDetectionConfig& config) {
-  return config.min_run_occluded_beams > 0 && scan.IsReturn(j) &&
-         scan.ranges_m[j] < scan.ranges_m[i] - std::max(config.margin_m, config.hidden_m);
+/// How far behind the other scan's return a return is hidden from it (hidden_m; a value under
+/// margin_m acts as margin_m).
+double HiddenM(const ChangeDetectionConfig& config) {
+  return std::max(config.margin_m, config.hidden_m);
 }
 
 /// Judges every return of `from` as `to` sees it; f(from_beam, to_beam, distance from
@@ -143,6 +140,7 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     return p;
   };
   const double min_sin = std::sin(min_incidence_rad);
+  const double hidden = HiddenM(config);
   for (std::size_t i = 0; i < n; ++i) {
     if (!from.IsReturn(i)) continue;
     const Eigen::Vector2d p = end_point(i);
@@ -151,8 +149,7 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
       if (unseen && s.distance_m >= 1e-3) unseen->push_back(static_cast<std::uint32_t>(i));
       continue;
     }
-    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m,
-                            std::max(config.margin_m, config.hidden_m), alone);
+    const Verdict v = Judge(to, s, config.margin_m, config.edge_guard_m, hidden, alone);
     ++c->judged;
     if (v == Verdict::kAgree) ++c->agree;
     if (v == Verdict::kHidden) ++c->hidden;
@@ -161,8 +158,9 @@ void Judge(const LaserScan& from, const Pose2& T_world_from, const LaserScan& to
     // grazing angle passes it by a range error of (pose error) / sin(angle), no change. A
     // neighbour on a nearer surface that hides the rest (occlusion) leaves the point itself.
     if (i == 0 || i + 1 >= n) continue;
-    const std::size_t lo = Occludes(from, i - 1, i, config) ? i : i - 1;
-    const std::size_t hi = Occludes(from, i + 1, i, config) ? i : i + 1;
+    const bool glimpses = config.min_run_occluded_beams > 0;
+    const std::size_t lo = glimpses && change_runs::Occludes(from, i - 1, i, hidden) ? i : i - 1;
+    const std::size_t hi = glimpses && change_runs::Occludes(from, i + 1, i, hidden) ? i : i + 1;
     if (lo == hi || !from.IsReturn(lo) || !from.IsReturn(hi)) continue;
     const Eigen::Vector2d t = end_point(hi) - end_point(lo);
     if (t.norm() > 4.0 * config.margin_m || t.norm() < 1e-9) continue;
@@ -319,8 +317,7 @@ ScanComparison CompareScans(const LaserScan& older, const Pose2& T_world_older,
   for (const auto& a : added) added_news.push_back(a.first);
   SortUnique(&added_news);
   KeepRunsToTheEdge(min_run, newer, unseen, 4.0 * config.margin_m,
-                    {static_cast<std::size_t>(config.min_run_occluded_beams),
-                     std::max(config.margin_m, config.hidden_m)},
+                    {static_cast<std::size_t>(config.min_run_occluded_beams), HiddenM(config)},
                     &added_news);
   c.outdated = removed;
   for (const auto& [new_beam, cut] : added) {

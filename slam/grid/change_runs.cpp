@@ -33,19 +33,16 @@ void KeepRunsToTheEdge(std::size_t min_run, const LaserScan& newer,
     }
     return n;
   };
-  // Whether the newer scan's own view ends beyond `from` (step -1 or +1): its next beam
-  // returns more than hidden_m nearer, so a nearer surface (a door's jamb) hides the rest.
+  // The newer scan's own view ends beyond `from` on the side of `step` (Occludes).
   const auto occluded = [&](std::uint32_t from, long step) {
     const long j = static_cast<long>(from) + step;
-    return occlusion.min_run > 0 && j >= 0 && j < static_cast<long>(newer.ranges_m.size()) &&
-           newer.IsReturn(static_cast<std::uint32_t>(j)) &&
-           newer.ranges_m[static_cast<std::size_t>(j)] < newer.ranges_m[from] - occlusion.hidden_m;
+    return j >= 0 && Occludes(newer, static_cast<std::size_t>(j), from, occlusion.hidden_m);
   };
-  const std::vector<std::uint32_t> all = *v;
-  KeepRuns(min_run, v, [&](std::uint32_t first, std::uint32_t last) {
-    const auto returns = static_cast<std::size_t>(std::upper_bound(all.begin(), all.end(), last) -
-                                                  std::lower_bound(all.begin(), all.end(), first));
-    if ((occluded(first, -1) || occluded(last, +1)) && returns >= occlusion.min_run) return min_run;
+  KeepRuns(min_run, v, [&](std::uint32_t first, std::uint32_t last, std::size_t count) {
+    if (occlusion.min_run > 0 && count >= occlusion.min_run &&
+        (occluded(first, -1) || occluded(last, +1))) {
+      return min_run;
+    }
     return beyond(first, -1) + beyond(last, +1);
   });
 }

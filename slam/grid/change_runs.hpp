@@ -17,15 +17,16 @@ inline std::uint32_t BeamOf(std::uint32_t b) { return b; }
 inline std::uint32_t BeamOf(const BeamCut& c) { return c.beam; }
 
 /// Keeps the beams (ascending) that lie in runs of at least min_run beams, a run allowing
-/// gaps of one beam: a change covers neighbouring beams, noise single ones. A run from beam
-/// `first` to beam `last` counts extra(first, last) more beams toward min_run.
+/// gaps of one beam: a change covers neighbouring beams, noise single ones. A run of `count`
+/// beams from beam `first` to beam `last` counts extra(first, last, count) more toward min_run.
 template <typename T, typename Extra>
 void KeepRuns(std::size_t min_run, std::vector<T>* v, Extra&& extra) {
   std::vector<T> kept;
   std::size_t start = 0;
   for (std::size_t i = 1; i <= v->size(); ++i) {
     if (i < v->size() && BeamOf((*v)[i]) - BeamOf((*v)[i - 1]) <= 2) continue;
-    const std::size_t n = i - start + extra(BeamOf((*v)[start]), BeamOf((*v)[i - 1]));
+    const std::size_t count = i - start;
+    const std::size_t n = count + extra(BeamOf((*v)[start]), BeamOf((*v)[i - 1]), count);
     if (n >= min_run) kept.insert(kept.end(), v->begin() + start, v->begin() + i);
     start = i;
   }
@@ -34,7 +35,14 @@ void KeepRuns(std::size_t min_run, std::vector<T>* v, Extra&& extra) {
 
 template <typename T>
 void KeepRuns(std::size_t min_run, std::vector<T>* v) {
-  KeepRuns(min_run, v, [](std::uint32_t, std::uint32_t) { return std::size_t{0}; });
+  KeepRuns(min_run, v, [](std::uint32_t, std::uint32_t, std::size_t) { return std::size_t{0}; });
+}
+
+/// Whether return j of `scan` lies more than hidden_m nearer than return i: a nearer surface
+/// (a doorway's jamb) hides what lies beyond i on j's side.
+inline bool Occludes(const LaserScan& scan, std::size_t j, std::size_t i, double hidden_m) {
+  return j < scan.ranges_m.size() && scan.IsReturn(j) &&
+         scan.ranges_m[j] < scan.ranges_m[i] - hidden_m;
 }
 
 /// When a run that the newer scan's own view cuts short is taken as whole.

@@ -93,6 +93,11 @@ void AddScenarioWorld(const std::string& scenario_path, ScoreTruth* t) {
     throw InputError(scenario_path, 0, "--scenario",
                      "needs a simulated log as --truth (its scans), not a " + t->kind);
   }
+  if (!t->walls) {
+    throw InputError(t->source, 0, "--truth",
+                     "no " + SimulatedStem(t->source) +
+                         ".truth.walls.tsv beside it: --scenario checks its world against it");
+  }
   const sim::Scenario scenario = sim::LoadScenario(scenario_path);
   t->stream = io::ReadCarmenLog(t->source).observations;
   if (t->stream.empty() || !std::all_of(t->stream.begin(), t->stream.end(), [](const auto& o) {

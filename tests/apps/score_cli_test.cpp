@@ -250,6 +250,15 @@ TEST(ScoreCli, TheScenarioOfASimulatedLogGivesTheRunsChangeRecall) {
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("needs a simulated log"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(other));  // nothing written
+  // A simulated log without its walls file: refused, not read past.
+  const fs::path bare = Fresh("bare.clf");
+  fs::copy_file(log, bare);
+  fs::copy_file(fs::path(log).replace_extension(".truth.tum"),
+                fs::path(bare).replace_extension(".truth.tum"));
+  r = Lifelong("score --truth " + bare.string() + " --scenario " + scenario + system + " -o " +
+               Fresh("bare").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("truth.walls.tsv"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -75,6 +75,12 @@ struct GridMapConfig {
   /// every "no return" beam clears up to max_free_range_m (before 2026-12-02), so a dropout
   /// draws free space through the wall.
   int max_dropout_beams = 2;
+  /// A cell one of a scan's returns fell in takes none of that scan's misses: a scan does not
+  /// contradict itself within a cell. A face seen at a grazing angle holds the returns of
+  /// some beams and is crossed by their neighbours on their way to returns a little farther
+  /// along it; counted, those misses outvote the face's few hits. false: every traversed
+  /// cell before a beam's own end counts a miss (before 2026-12-06).
+  bool hits_mask_own_misses = false;
 };
 
 /// Binary entropy in bits of a cell with these counts (1 bit when unknown).

@@ -255,6 +255,7 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("max_free_range_m", c.grid.max_free_range_m, kNonNegative);
     s.Number("max_hit_range_m", c.grid.max_hit_range_m, kPositive);
     s.Int("max_dropout_beams", c.grid.max_dropout_beams, 0);
+    s.Bool("hits_mask_own_misses", c.grid.hits_mask_own_misses);
   });
   v.Section("optimizer", [&](auto& s) { VisitOptimizer(s, c.optimizer); });
   v.Section("map_update", [&](auto& s) {

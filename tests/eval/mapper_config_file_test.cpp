@@ -156,6 +156,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.grid.max_free_range_m, b.grid.max_free_range_m);
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
   EXPECT_EQ(a.grid.max_dropout_beams, b.grid.max_dropout_beams);
+  EXPECT_EQ(a.grid.hits_mask_own_misses, b.grid.hits_mask_own_misses);
   ExpectSameOptimizer(a.optimizer, b.optimizer);
   EXPECT_EQ(a.map_move_epsilon_m, b.map_move_epsilon_m);
   EXPECT_EQ(a.map_move_epsilon_rad, b.map_move_epsilon_rad);
@@ -239,7 +240,7 @@ MapperConfig AllChanged() {
                true,
                {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5},
                {{0.25, 0.15, 0.3, 0.2, 0.6, 5, 3, 0.7}, 0.4, 8.0, 0.3}};
-  c.grid = {0.1, 6.0, 9.5, 3};
+  c.grid = {0.1, 6.0, 9.5, 3, true};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;
   o.max_iterations = 25;

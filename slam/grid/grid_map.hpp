@@ -78,8 +78,10 @@ struct GridMapConfig {
   /// A cell one of a scan's returns fell in takes none of that scan's misses: a scan does not
   /// contradict itself within a cell. A face seen at a grazing angle holds the returns of
   /// some beams and is crossed by their neighbours on their way to returns a little farther
-  /// along it; counted, those misses outvote the face's few hits. false: every traversed
-  /// cell before a beam's own end counts a miss (before 2026-12-06).
+  /// along it; counted, those misses outvote the face's few hits. OctoMap's scan insertion
+  /// prefers a scan's occupied cells over its free ones the same way (Hornung et al. 2013,
+  /// OccupancyOcTreeBase::computeUpdate). false: every traversed cell before a beam's own
+  /// end counts a miss (before 2026-12-06).
   bool hits_mask_own_misses = false;
 };
 

@@ -115,6 +115,7 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Number("weak_max_ambiguity", c.weak_max_ambiguity, kUnit);
   v.Number("lost_window_m", c.lost_window_m, Range{0.0, 50.0, true, "in (0, 50] m"});
   v.Number("recovery_window_m", c.recovery_window_m, Range{0.0, 50.0, false, "in [0, 50] m"});
+  v.Bool("recover_past_odometry", c.recover_past_odometry);
 }
 
 template <class V>

@@ -65,6 +65,13 @@ struct IncrementalConfig {
   /// It catches an odometry step wrong by more than the matcher's window: freiburg-079's
   /// odometry reads every reversing step as forward, twice the step (0.5-0.7 m) off. 0: off.
   double recovery_window_m = 1.5;
+  /// A recovered match closer to its rival than weak_max_ambiguity is still taken when the
+  /// first search, around the odometry's guess, scored below that rival: the odometry is then
+  /// the least likely of the three places the step could go, and refusing the match hands the
+  /// step to it. On freiburg-079 a recovered match at 0.93 (ambiguity 0.705, rival 0.65)
+  /// against the odometry's 0.45 went to the odometry and bent the map by a metre
+  /// (docs/results.md "Large real logs"). false: the odometry takes it (before 2026-12-06).
+  bool recover_past_odometry = false;
 };
 
 /// The weak-match rule above: true when `match` (ok) is to be refused.

@@ -55,7 +55,7 @@ SequentialMatch SequentialMatcher::Match(const ScanPoseFn& scan_pose, const Pose
     // The local map again (its scans' surfaces are held): the first search cropped its copy,
     // and keeping one uncropped would cost every step a copy for the rare one that recovers.
     const MatchResult second = Search(points, guess, wide, LocalMap(scan_pose));
-    if (Recovers(second)) {
+    if (Recovers(second, match.score)) {
       match = second;
       out.recovered = true;
     }
@@ -85,9 +85,11 @@ MatchResult SequentialMatcher::Search(const std::vector<Eigen::Vector2d>& points
   return ::lifelong::slam::Match(grid_, points, guess, mc);
 }
 
-bool SequentialMatcher::Recovers(const MatchResult& match) const {
-  return match.ok && match.score >= config_.weak_score &&
-         match.ambiguity <= config_.weak_max_ambiguity;
+bool SequentialMatcher::Recovers(const MatchResult& match, double guess_score) const {
+  if (!match.ok || match.score < config_.weak_score) return false;
+  if (match.ambiguity <= config_.weak_max_ambiguity) return true;
+  // Ambiguous: refused only for an odometry guess that scored at least as well as the rival.
+  return config_.recover_past_odometry && guess_score < match.ambiguity * match.score;
 }
 
 std::vector<Eigen::Vector2d> SequentialMatcher::LocalMap(const ScanPoseFn& scan_pose) const {

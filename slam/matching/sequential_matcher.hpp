@@ -80,8 +80,9 @@ class SequentialMatcher {
   /// The match over `mc`'s window around `guess` (reference: the local map, uncropped).
   MatchResult Search(const std::vector<Eigen::Vector2d>& points, const Pose2& guess,
                      const MatcherConfig& mc, std::vector<Eigen::Vector2d> reference);
-  /// A match strong and distinct enough to take from the recovery search.
-  bool Recovers(const MatchResult& match) const;
+  /// A match strong and distinct enough to take from the recovery search; `guess_score`: the
+  /// first search's best score around the odometry's guess (0 when it found nothing).
+  bool Recovers(const MatchResult& match, double guess_score) const;
 
   IncrementalConfig config_;
   ReferenceGrid grid_;           ///< the matcher's table, rebuilt for each match

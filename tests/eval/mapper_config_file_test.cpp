@@ -119,6 +119,7 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.weak_max_ambiguity, ib.weak_max_ambiguity);
   EXPECT_EQ(ia.lost_window_m, ib.lost_window_m);
   EXPECT_EQ(ia.recovery_window_m, ib.recovery_window_m);
+  EXPECT_EQ(ia.recover_past_odometry, ib.recover_past_odometry);
   ExpectSameLoops(a.loops, b.loops);
   EXPECT_EQ(a.pruning.mode.name, b.pruning.mode.name);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
@@ -196,6 +197,7 @@ MapperConfig AllChanged() {
   c.incremental.weak_max_ambiguity = 0.65;
   c.incremental.lost_window_m = 1.5;
   c.incremental.recovery_window_m = 2.5;
+  c.incremental.recover_past_odometry = true;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;

@@ -167,6 +167,24 @@ TEST(SequentialMatching, AStepBeyondTheWindowIsFoundByTheRecoverySearch) {
   EXPECT_NEAR(kept.T_world_robot.x, 0.6, 1e-9);  // the odometry's wrong step, forward
 }
 
+// A recovered match refused as close to its rival (here every rival is too close:
+// weak_max_ambiguity 0) goes to the odometry, unless the odometry's own search scored below
+// the rival (recover_past_odometry): then the odometry is the least likely place for the step.
+TEST(SequentialMatching, ARecoveredMatchBeatsAnOdometryThatScoredBelowItsRival) {
+  MapperConfig config;
+  config.incremental.weak_max_ambiguity = 0.0;
+  StepStats stats;
+  const StampedPose refused = MapThroughReversal(config, &stats);
+  EXPECT_FALSE(stats.incremental_match_recovered);
+  EXPECT_NEAR(refused.T_world_robot.x, 0.6, 1e-9);  // the odometry's wrong step
+
+  config.incremental.recover_past_odometry = true;
+  const StampedPose taken = MapThroughReversal(config, &stats);
+  EXPECT_TRUE(stats.incremental_match_recovered);
+  EXPECT_NEAR(taken.T_world_robot.x, -0.6, 0.05);
+  EXPECT_NEAR(taken.T_world_robot.y, 0.0, 0.05);
+}
+
 // In a featureless corridor the wider search is ambiguous along it: nothing is recovered, and
 // the odometry keeps the step.
 TEST(SequentialMatching, TheRecoverySearchTakesNoAmbiguousMatch) {
@@ -177,6 +195,12 @@ TEST(SequentialMatching, TheRecoverySearchTakesNoAmbiguousMatch) {
                                       Pose2(-0.6, 1.0, 0.0), Pose2(0.6, 1.0, 0.0), &last);
   EXPECT_FALSE(stats.incremental_match_recovered);
   EXPECT_NEAR(last.T_world_robot.x, 0.6, 0.05);  // the odometry's step, in the first pose's frame
+  // The odometry's guess scores as well as anywhere along the corridor: still not recovered.
+  config.incremental.recover_past_odometry = true;
+  const StepStats again = MapTwoScans(config, testing::CorridorWorld(), Pose2(0.0, 1.0, 0.0),
+                                      Pose2(-0.6, 1.0, 0.0), Pose2(0.6, 1.0, 0.0), &last);
+  EXPECT_FALSE(again.incremental_match_recovered);
+  EXPECT_NEAR(last.T_world_robot.x, 0.6, 0.05);
 }
 
 }  // namespace

@@ -71,7 +71,7 @@ struct IncrementalConfig {
   /// step to it. On freiburg-079 a recovered match at 0.93 (ambiguity 0.705, rival 0.65)
   /// against the odometry's 0.45 went to the odometry and bent the map by a metre
   /// (docs/results.md "Large real logs"). false: the odometry takes it (before 2026-12-06).
-  bool recover_past_odometry = false;
+  bool recover_past_odometry = true;
 };
 
 /// The weak-match rule above: true when `match` (ok) is to be refused.

@@ -98,12 +98,7 @@ void ExpectSameOptimizer(const slam::OptimizerParams& a, const slam::OptimizerPa
   EXPECT_EQ(a.linear_solver, b.linear_solver);
 }
 
-/// Field-by-field equality of two configs (exact: the file format must round-trip doubles).
-void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
-  EXPECT_EQ(a.keyframes.min_translation_m, b.keyframes.min_translation_m);
-  EXPECT_EQ(a.keyframes.min_rotation_rad, b.keyframes.min_rotation_rad);
-  const slam::IncrementalConfig& ia = a.incremental;
-  const slam::IncrementalConfig& ib = b.incremental;
+void ExpectSameIncremental(const slam::IncrementalConfig& ia, const slam::IncrementalConfig& ib) {
   EXPECT_EQ(ia.local_map_nodes, ib.local_map_nodes);
   EXPECT_EQ(ia.point_spacing_m, ib.point_spacing_m);
   EXPECT_EQ(ia.surfaces.gap_m, ib.surfaces.gap_m);
@@ -120,6 +115,13 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(ia.lost_window_m, ib.lost_window_m);
   EXPECT_EQ(ia.recovery_window_m, ib.recovery_window_m);
   EXPECT_EQ(ia.recover_past_odometry, ib.recover_past_odometry);
+}
+
+/// Field-by-field equality of two configs (exact: the file format must round-trip doubles).
+void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
+  EXPECT_EQ(a.keyframes.min_translation_m, b.keyframes.min_translation_m);
+  EXPECT_EQ(a.keyframes.min_rotation_rad, b.keyframes.min_rotation_rad);
+  ExpectSameIncremental(a.incremental, b.incremental);
   ExpectSameLoops(a.loops, b.loops);
   EXPECT_EQ(a.pruning.mode.name, b.pruning.mode.name);
   EXPECT_EQ(a.pruning.gain_threshold_bits, b.pruning.gain_threshold_bits);
@@ -197,7 +199,7 @@ MapperConfig AllChanged() {
   c.incremental.weak_max_ambiguity = 0.65;
   c.incremental.lost_window_m = 1.5;
   c.incremental.recovery_window_m = 2.5;
-  c.incremental.recover_past_odometry = true;
+  c.incremental.recover_past_odometry = false;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;

@@ -173,6 +173,7 @@ TEST(SequentialMatching, AStepBeyondTheWindowIsFoundByTheRecoverySearch) {
 TEST(SequentialMatching, ARecoveredMatchBeatsAnOdometryThatScoredBelowItsRival) {
   MapperConfig config;
   config.incremental.weak_max_ambiguity = 0.0;
+  config.incremental.recover_past_odometry = false;
   StepStats stats;
   const StampedPose refused = MapThroughReversal(config, &stats);
   EXPECT_FALSE(stats.incremental_match_recovered);

@@ -41,7 +41,7 @@ struct Beam {
 
 // Accumulate for a large bounding box: every traversed cell listed, sorted by (y, x) and
 // summed.
-std::vector<CellUpdate> AccumulateSorted(const std::vector<Beam>& beams, bool mask) {
+std::vector<CellUpdate> AccumulateSorted(const std::vector<Beam>& beams) {
   std::vector<CellUpdate> out;
   for (const Beam& b : beams) {
     Bresenham(b.start, b.end, [&](int x, int y) {
@@ -62,18 +62,13 @@ std::vector<CellUpdate> AccumulateSorted(const std::vector<Beam>& beams, bool ma
     }
   }
   out.resize(n);
-  if (mask) {
-    for (CellUpdate& u : out) u.delta.misses = u.delta.hits > 0 ? 0u : u.delta.misses;
-  }
   return out;
 }
 // Sums the beams' increments per cell, each cell once, ordered by (y, x). When the scan's
 // bounding box is small, counts go into a dense scratch box kept per thread (a fresh one
 // costs more in page faults and zeroing than the scan itself); each row is read back over
 // the span of columns its beams touched, and zeroed for the next call. A sort otherwise.
-// With `mask`, a cell the scan hit keeps none of its misses (hits_mask_own_misses).
-std::vector<CellUpdate> Accumulate(const std::vector<Beam>& beams, CellIndex lo, CellIndex hi,
-                                   bool mask) {
+std::vector<CellUpdate> Accumulate(const std::vector<Beam>& beams, CellIndex lo, CellIndex hi) {
   constexpr std::int64_t kMaxDenseCells = std::int64_t{1} << 21;
   const std::int64_t w = hi.x - lo.x + 1, h = hi.y - lo.y + 1;
   std::vector<CellUpdate> out;
@@ -103,7 +98,6 @@ std::vector<CellUpdate> Accumulate(const std::vector<Beam>& beams, CellIndex lo,
         for (int bx = row_first[by]; bx <= row_last[by]; ++bx) {
           CellCounts& c = row[bx];
           if (c.hits == 0 && c.misses == 0) continue;
-          if (mask && c.hits > 0) c.misses = 0;
           if (keep) out.push_back({{lo.x + bx, lo.y + static_cast<int>(by)}, c});
           c = CellCounts{};
         }
@@ -118,7 +112,7 @@ std::vector<CellUpdate> Accumulate(const std::vector<Beam>& beams, CellIndex lo,
     drain(true);
     return out;
   }
-  return AccumulateSorted(beams, mask);
+  return AccumulateSorted(beams);
 }
 
 }  // namespace
@@ -197,7 +191,13 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2
     if (free_to > 0.0) add(origin, free_to, false);
     if (cut->Resumes() && cut->resume_m < range) add(at(cut->resume_m), range, hit);
   }
-  return Accumulate(beams, lo, hi, config_.hits_mask_own_misses);
+  std::vector<CellUpdate> out = Accumulate(beams, lo, hi);
+  if (config_.hits_mask_own_misses) {  // a cell the scan hit keeps none of its misses
+    for (CellUpdate& u : out) {
+      if (u.delta.hits > 0) u.delta.misses = 0;
+    }
+  }
+  return out;
 }
 
 }  // namespace lifelong::slam

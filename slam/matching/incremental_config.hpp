@@ -61,7 +61,8 @@ struct IncrementalConfig {
   /// A step whose match fails, or is refused as weak and not distinct, is searched again this
   /// far in x and y around the odometry guess (the same heading window). The match is taken
   /// only when it is neither weak nor close to a rival (score >= weak_score, ambiguity <=
-  /// weak_max_ambiguity): it departs from the odometry by more than the first window allows.
+  /// weak_max_ambiguity; but see recover_past_odometry): it departs from the odometry by more
+  /// than the first window allows.
   /// It catches an odometry step wrong by more than the matcher's window: freiburg-079's
   /// odometry reads every reversing step as forward, twice the step (0.5-0.7 m) off. 0: off.
   double recovery_window_m = 1.5;

@@ -78,20 +78,12 @@ class Searcher {
   /// accept(e): a fine pose may win; reach(n, level): the block may hold such a pose.
   template <typename Accept, typename Reach>
   Eval Search(Accept accept, Reach reach, Eval best) {
-    std::vector<Node> top;
-    const int side = 1 << l_.top_level;
-    for (int k = -l_.K; k <= l_.K; ++k) {
-      for (int i = -l_.W; i <= l_.W; i += side) {
-        for (int j = -l_.W; j <= l_.W; j += side) {
-          if (reach(Node{k, i, j, 0.0f}, l_.top_level))
-            top.push_back(MakeNode(k, i, j, l_.top_level));
-        }
-      }
-    }
-    SortByBound(&top);
-    for (const Node& n : top) {
+    // The blocks in descending order of bound: once one is no better than the best, none
+    // after it is. Skipping the unreachable ones visits the others in the order a stable
+    // sort of the reachable ones alone would give.
+    for (const Node& n : TopLevel()) {
       if (n.bound <= best.score) break;
-      Descend(n, l_.top_level, accept, reach, &best);
+      if (reach(n, l_.top_level)) Descend(n, l_.top_level, accept, reach, &best);
     }
     return best;
   }
@@ -100,6 +92,21 @@ class Searcher {
   int bound_evaluations() const { return bound_evaluations_; }
 
  private:
+  /// Every top-level block with its bound, stable-sorted by bound, descending: computed by
+  /// the first search and read again by the next (the rival's), whose bounds are the same.
+  const std::vector<Node>& TopLevel() {
+    if (!top_ready_) {
+      const int side = 1 << l_.top_level;
+      for (int k = -l_.K; k <= l_.K; ++k) {
+        for (int i = -l_.W; i <= l_.W; i += side) {
+          for (int j = -l_.W; j <= l_.W; j += side) top_.push_back(MakeNode(k, i, j, l_.top_level));
+        }
+      }
+      SortByBound(&top_);
+      top_ready_ = true;
+    }
+    return top_;
+  }
   Node MakeNode(int k, int i, int j, int level) {
     ++bound_evaluations_;
     float sum = 0.0f;
@@ -165,6 +172,8 @@ class Searcher {
   Lattice l_;
   std::unordered_map<std::int64_t, std::size_t> index_;  // (k, i, j) -> evals_
   std::vector<Eval> evals_;
+  std::vector<Node> top_;  // TopLevel()'s blocks
+  bool top_ready_ = false;
   int bound_evaluations_ = 0;
 };
 

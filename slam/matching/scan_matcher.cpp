@@ -94,8 +94,9 @@ class Searcher {
  private:
   /// Every top-level block with its bound, stable-sorted by bound, descending: computed by
   /// the first search and read again by the next (the rival's), whose bounds are the same.
+  /// The lattice holds at least one block, so an empty list is one not yet computed.
   const std::vector<Node>& TopLevel() {
-    if (!top_ready_) {
+    if (top_.empty()) {
       const int side = 1 << l_.top_level;
       for (int k = -l_.K; k <= l_.K; ++k) {
         for (int i = -l_.W; i <= l_.W; i += side) {
@@ -103,7 +104,6 @@ class Searcher {
         }
       }
       SortByBound(&top_);
-      top_ready_ = true;
     }
     return top_;
   }
@@ -173,7 +173,6 @@ class Searcher {
   std::unordered_map<std::int64_t, std::size_t> index_;  // (k, i, j) -> evals_
   std::vector<Eval> evals_;
   std::vector<Node> top_;  // TopLevel()'s blocks
-  bool top_ready_ = false;
   int bound_evaluations_ = 0;
 };
 

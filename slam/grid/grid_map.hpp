@@ -80,9 +80,10 @@ struct GridMapConfig {
   /// some beams and is crossed by their neighbours on their way to returns a little farther
   /// along it; counted, those misses outvote the face's few hits. OctoMap's scan insertion
   /// prefers a scan's occupied cells over its free ones the same way (Hornung et al. 2013,
-  /// OccupancyOcTreeBase::computeUpdate). false: every traversed cell before a beam's own
-  /// end counts a miss (before 2026-12-06).
-  bool hits_mask_own_misses = false;
+  /// OccupancyOcTreeBase::computeUpdate). On by default since 2026-12-06; false: every
+  /// traversed cell before a beam's own end counts a miss, as before
+  /// (docs/results.md "Changing worlds (issue #35)").
+  bool hits_mask_own_misses = true;
 };
 
 /// Binary entropy in bits of a cell with these counts (1 bit when unknown).

@@ -244,7 +244,7 @@ MapperConfig AllChanged() {
                true,
                {0.2, 0.8, 0.2, 0.4, 0.1, 0.01, 5},
                {{0.25, 0.15, 0.3, 0.2, 0.6, 5, 3, 0.7}, 0.4, 8.0, 0.3}};
-  c.grid = {0.1, 6.0, 9.5, 3, true};
+  c.grid = {0.1, 6.0, 9.5, 3, false};
   slam::OptimizerParams& o = c.optimizer;
   o.method = slam::OptimizerMethod::kGaussNewton;
   o.max_iterations = 25;

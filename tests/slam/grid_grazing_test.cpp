@@ -40,6 +40,7 @@ TEST(GridGrazingTest, AScanDoesNotMissTheCellsItsOwnReturnsFellIn) {
   const Grazing g;
   GridMapConfig config;
   config.max_hit_range_m = 30.0;
+  config.hits_mask_own_misses = false;
   GridMap counted(config);
   counted.AddScan(g.scan, g.pose);
   const WallCells before = FarWall(counted);
@@ -74,6 +75,7 @@ TEST(GridGrazingTest, AFaceSeenHeadOnIsTracedAsBefore) {
   const Pose2 pose{0.0, 0.02, 0.0};
   const LaserScan scan = testing::SimulateScan(world, pose, 31, 0.5, 30.0);
   GridMapConfig config;
+  config.hits_mask_own_misses = false;
   const std::vector<CellUpdate> counted = GridMap(config).TouchedCells(scan, pose);
   config.hits_mask_own_misses = true;
   const std::vector<CellUpdate> masked = GridMap(config).TouchedCells(scan, pose);

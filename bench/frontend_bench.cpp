@@ -218,5 +218,22 @@ void BM_MatchLoopClosure(benchmark::State& state) {
 }
 BENCHMARK(BM_MatchLoopClosure)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
 
+// A refused loop search, the common case on a long log: the room's scan against an older
+// node's, guessed 3 m off, so that the true pose lies outside the +-2 m window and the best
+// inside it overlaps only in part; at the loop closer's min_score (0.6). Argument 1: the
+// search stops at min_score (MatcherConfig::cut_below_min_score, the loop closer's default),
+// 0: it searches on to the best pose.
+void BM_MatchLoopClosureRefused(benchmark::State& state) {
+  const Scene s;
+  MatcherConfig config;
+  config.linear_window_m = 2.0;
+  config.angular_window_rad = 30.0 * kDeg;
+  config.min_score = 0.6;
+  config.cut_below_min_score = state.range(0) != 0;
+  const ReferenceGrid ref(PointsInReference({s.Local()[1]}, 0.03), config);
+  RunMatch(state, ref, s, s.truth * Pose2(3.0, -0.7, 20.0 * kDeg), config);
+}
+BENCHMARK(BM_MatchLoopClosureRefused)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace lifelong::slam

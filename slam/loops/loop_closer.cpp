@@ -209,7 +209,7 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
     return std::nullopt;
   }
   grid_.Build(reference, mc);
-  const MatchResult match = Match(grid_, points, guess, mc);
+  const MatchResult match = Match(grid_, points, guess, Cutting(mc));
   measured->score = match.score;
   measured->ambiguity = match.ambiguity;
   if (!match.ok || match.score < lc.min_score) {
@@ -280,8 +280,15 @@ MatchResult LoopCloser::RefineAgainstNode(const LoopClosingView& view, NodeId ol
   CropToSearch(points, submap_match.T_ref_cur, mc, &reference);
   if (static_cast<int>(reference.size()) < lc.min_reference_points / 2) return submap_match;
   grid_.Build(reference, mc);
-  const MatchResult pair = Match(grid_, points, submap_match.T_ref_cur, mc);
+  const MatchResult pair = Match(grid_, points, submap_match.T_ref_cur, Cutting(mc));
   return pair.ok && pair.score >= lc.min_score ? pair : submap_match;
+}
+
+MatcherConfig LoopCloser::Cutting(MatcherConfig mc) const {
+  // Nothing below loops.min_score is accepted, so the search need not look below it.
+  mc.min_score = std::max(mc.min_score, config_.min_score);
+  mc.cut_below_min_score = !config_.measure_low_scores;
+  return mc;
 }
 
 bool LoopCloser::LocallyUnique(const MatchResult& match,

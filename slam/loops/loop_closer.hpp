@@ -83,6 +83,9 @@ class LoopCloser {
                                          const std::set<NodeId>& submap, NodeId current,
                                          const Pose2& guess, const MatcherConfig& mc,
                                          MatchRefusal* why, MatchMeasure* measured);
+  /// `mc` as the loop searches run it: nothing below loops.min_score passes, and unless
+  /// loops.measure_low_scores the search stops there (MatcherConfig::cut_below_min_score).
+  MatcherConfig Cutting(MatcherConfig mc) const;
   /// The match's correction of the current pose lies inside the consistency gate
   /// (loops.consistency_chi2) of `covariance` plus the match's own.
   bool Plausible(const LoopClosingView& view, const MatchResult& match, NodeId current,
@@ -117,7 +120,8 @@ class LoopCloser {
                                             const PlaceDescriptor& place) const;
   /// Each candidate matched around the descriptor's heading; those that match and are
   /// plausible where the covariance projection reaches them. *why: the last refusal;
-  /// attempt->old and ->measured: the best-scoring candidate's, refused or not.
+  /// attempt->old and ->measured: the best-scoring candidate's, refused or not (old: the most
+  /// similar place when no score was measured).
   std::vector<PlaceCandidate> MatchCandidates(const LoopClosingView& view, NodeId current,
                                               const std::vector<PlaceCandidate>& candidates,
                                               const MatcherConfig& mc, MatchRefusal* why,

@@ -105,6 +105,8 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
     const MatcherConfig& mc, MatchRefusal* why, LoopAttempt* attempt) {
   const double k2 = config_.global.plausible_sigmas * config_.global.plausible_sigmas;
   std::vector<PlaceCandidate> matched;
+  // The most similar place, unless one is measured (a search cut at min_score measures none).
+  if (!candidates.empty()) attempt->old = candidates.front().id;
   for (const PlaceCandidate& p : candidates) {
     // The current scan placed at the candidate, turned by the descriptors' heading (and moved
     // back from the query's shifted origin), against the candidate and its graph neighbours.

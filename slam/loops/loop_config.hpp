@@ -98,6 +98,13 @@ struct LoopClosingConfig {
   double refine_window_rad = 0.05;
   double consistency_chi2 = 16.27;  ///< 99.9 % gate (3 dof) of the correction
   int min_reference_points = 60;    ///< submap points the search can reach, fewer: no match
+  /// A search that finds no pose above min_score still finds its best pose, for the score
+  /// column of loop_attempts.csv. false: the branch and bound never opens a block that
+  /// cannot beat min_score (MatcherConfig::cut_below_min_score), so a refused search costs a
+  /// fraction and its score is left empty. One that finds a pose at min_score or above is
+  /// searched again in full, so every closure, and the trajectory, is the same either way.
+  /// Before 2026-12-06: always measured.
+  bool measure_low_scores = false;
   MatcherConfig matcher = LoopMatcherDefaults();  ///< windows are set per attempt
   double optimize_edge_chi2 = 9.0;  ///< optimize at once when the new edge's chi2 exceeds
   int optimize_every = 10;          ///< ...and at least every this many closures

@@ -179,6 +179,7 @@ void VisitLoops(V& v, slam::LoopClosingConfig& c) {
   v.Number("refine_window_rad", c.refine_window_rad, kWindowRad);
   v.Number("consistency_chi2", c.consistency_chi2, kPositive);
   v.Int("min_reference_points", c.min_reference_points, 0);
+  v.Bool("measure_low_scores", c.measure_low_scores);
   v.Bool("surfaces", c.surfaces);
   v.Bool("surface_lines", c.surface_lines);
   v.Section("matcher", [&](auto& s) { VisitMatcher(s, c.matcher, false); });

@@ -89,6 +89,12 @@ class Searcher {
   }
   const Eval& Evaluate(int k, int i, int j);
   const std::vector<Eval>& evals() const { return evals_; }
+  /// Forgets the poses scored (not the top-level bounds): a search after this scores them in
+  /// its own order.
+  void ForgetEvaluations() {
+    index_.clear();
+    evals_.clear();
+  }
   int bound_evaluations() const { return bound_evaluations_; }
 
  private:
@@ -332,9 +338,26 @@ MatchResult Match(const ReferenceGrid& ref, const std::vector<Eigen::Vector2d>& 
       RotatedCells(ref, points_in_cur, T_ref_cur_guess, l);
   ref.PrepareBounds(cells, l.W, l.top_level);
   Searcher s(ref, std::move(cells), l);
+  // When cutting, a first branch and bound starts a little below min_score: the bounds are
+  // float sums, which may fall short of a pose's double score by their rounding (some 1e-5
+  // over a few hundred points), and a pose at min_score must still be found. Where it finds
+  // nothing, that is the answer. Where it finds a pose, the full search follows from a clean
+  // slate, scoring the poses in its own order, so its result (the covariance's sums too) is
+  // the full search's to the bit.
+  constexpr double kBoundSlack = 1e-4;
+  const auto anything = [](const Eval&) { return true; };
+  const auto anywhere = [](const Node&, int) { return true; };
+  if (config.cut_below_min_score &&
+      !(s.Search(anything, anywhere, Eval{0, 0, 0, config.min_score - kBoundSlack, 0.0}).score >=
+        config.min_score)) {
+    result.score = result.ambiguity = std::numeric_limits<double>::quiet_NaN();
+    result.evaluations = static_cast<int>(s.evals().size());
+    result.bound_evaluations = s.bound_evaluations();
+    return result;
+  }
+  s.ForgetEvaluations();
   // Branch and bound for the best pose, then for the best distinct competitor.
-  const Eval best = s.Search([](const Eval&) { return true; },
-                             [](const Node&, int) { return true; }, Eval{0, 0, 0, -1.0, 0.0});
+  const Eval best = s.Search(anything, anywhere, Eval{0, 0, 0, -1.0, 0.0});
   const Eval rival =
       s.Search([&](const Eval& e) { return Distinct(e, best, l, config); },
                [&](const Node& n, int level) { return MayBeDistinct(n, level, best, l, config); },

@@ -43,6 +43,14 @@ struct MatcherConfig {
   /// Refine the lattice winner off the lattice (scan_refiner.hpp): within one translation
   /// cell and one angular step, by damped ascent on the bicubically interpolated field.
   bool refine = true;
+  /// A first branch and bound starts from min_score rather than from nothing, as
+  /// Cartographer's fast matcher starts from its minimum score (Hess et al. 2016, §V-C,
+  /// Algorithm 3): a block whose bound does not beat min_score is never opened. Where it finds
+  /// no pose, the match is not ok and its score unknown (NaN), at a fraction of the cost;
+  /// where it finds one, the full search follows, and the result is the full search's to the
+  /// bit (pose, score, ambiguity, covariance). false: every search is the full one. Set by
+  /// the loop closer (loops.measure_low_scores), not by a config file.
+  bool cut_below_min_score = false;
 };
 
 /// What one search with this config allocates whatever the scan: the lookup tables over the
@@ -140,14 +148,16 @@ class ReferenceGrid {
 };
 
 struct MatchResult {
-  Pose2 T_ref_cur;     ///< best pose of the current frame in the reference
-  double score = 0.0;  ///< mean likelihood of the query points, 0..1
+  Pose2 T_ref_cur;  ///< best pose of the current frame in the reference
+  /// Mean likelihood of the query points, 0..1; NaN when cut_below_min_score found no pose
+  /// at min_score or above.
+  double score = 0.0;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();   ///< (x, y, theta)
   Eigen::Matrix3d information = Eigen::Matrix3d::Identity();  ///< covariance^-1
   bool ok = false;                                            ///< score >= min_score
-  double ambiguity = 0.0;     ///< best distinct competitor's score / score; 0 if none
-  Pose2 T_ref_rival;          ///< that competitor's pose (lattice), when ambiguity > 0
-  int evaluations = 0;        ///< fine poses scored
+  double ambiguity = 0.0;  ///< best distinct competitor's score / score; 0 if none (NaN as score)
+  Pose2 T_ref_rival;       ///< that competitor's pose (lattice), when ambiguity > 0
+  int evaluations = 0;     ///< fine poses scored
   int bound_evaluations = 0;  ///< coarser bounds computed
 };
 

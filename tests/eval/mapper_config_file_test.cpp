@@ -43,6 +43,7 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(a.min_reference_points, b.min_reference_points);
   EXPECT_EQ(a.surfaces, b.surfaces);
   EXPECT_EQ(a.surface_lines, b.surface_lines);
+  EXPECT_EQ(a.measure_low_scores, b.measure_low_scores);
   ExpectSameMatcher(a.matcher, b.matcher);
   EXPECT_EQ(a.optimize_edge_chi2, b.optimize_edge_chi2);
   EXPECT_EQ(a.optimize_every, b.optimize_every);
@@ -224,6 +225,7 @@ MapperConfig AllChanged() {
   l.min_reference_points = 40;
   l.surfaces = false;
   l.surface_lines = false;
+  l.measure_low_scores = true;
   ChangeMatcher(&l.matcher, false);  // its windows are set per attempt, not in the file
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;

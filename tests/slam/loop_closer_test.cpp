@@ -96,10 +96,12 @@ TEST(LoopCloser, ClosesTheReturnOntoTheStartAndCorrectsItsOffset) {
 
 TEST(LoopCloser, ARefusedAttemptKeepsItsScoreAndCandidate) {
   // Above any score a match can reach: refused as low_score, and the attempt still says which
-  // node it was matched against and how well, for loop_attempts.csv.
+  // node it was matched against and, with measure_low_scores, how well, for
+  // loop_attempts.csv.
   const Chain chain(Pose2(0.1, 0.05, 0.0));
   LoopClosingConfig lc = Immediate();
   lc.min_score = 1.5;
+  lc.measure_low_scores = true;
   LoopCloser closer(lc, IncrementalConfig{});
   std::vector<LoopHypothesis> accepted;
   const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
@@ -111,6 +113,24 @@ TEST(LoopCloser, ARefusedAttemptKeepsItsScoreAndCandidate) {
   EXPECT_GT(attempt->measured.score, 0.5);  // the right place, refused only by the threshold
   EXPECT_LT(attempt->measured.score, 1.5);
   EXPECT_FALSE(std::isnan(attempt->measured.ambiguity));
+  EXPECT_TRUE(accepted.empty());
+}
+
+TEST(LoopCloser, ARefusedAttemptLeavesItsScoreUnmeasuredByDefault) {
+  // The search stops at min_score (MatcherConfig::cut_below_min_score): the same refusal and
+  // candidate, no score.
+  const Chain chain(Pose2(0.1, 0.05, 0.0));
+  LoopClosingConfig lc = Immediate();
+  lc.min_score = 1.5;
+  ASSERT_FALSE(lc.measure_low_scores);
+  LoopCloser closer(lc, IncrementalConfig{});
+  std::vector<LoopHypothesis> accepted;
+  const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
+  ASSERT_TRUE(attempt.has_value());
+  ASSERT_TRUE(attempt->refused.has_value());
+  EXPECT_EQ(*attempt->refused, MatchRefusal::kLowScore);
+  EXPECT_GE(attempt->old, 0);
+  EXPECT_TRUE(std::isnan(attempt->measured.score));
   EXPECT_TRUE(accepted.empty());
 }
 

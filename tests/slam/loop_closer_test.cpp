@@ -94,44 +94,41 @@ TEST(LoopCloser, ClosesTheReturnOntoTheStartAndCorrectsItsOffset) {
   EXPECT_EQ(closer.stats().proposed, 1);
 }
 
-TEST(LoopCloser, ARefusedAttemptKeepsItsScoreAndCandidate) {
-  // Above any score a match can reach: refused as low_score, and the attempt still says which
-  // node it was matched against and, with measure_low_scores, how well, for
-  // loop_attempts.csv.
+// A search with min_score above any score a match can reach: refused as low_score, the
+// attempt still naming the node it was matched against, for loop_attempts.csv.
+LoopAttempt RefusedAttempt(bool measure_low_scores) {
   const Chain chain(Pose2(0.1, 0.05, 0.0));
   LoopClosingConfig lc = Immediate();
   lc.min_score = 1.5;
-  lc.measure_low_scores = true;
+  lc.measure_low_scores = measure_low_scores;
   LoopCloser closer(lc, IncrementalConfig{});
   std::vector<LoopHypothesis> accepted;
   const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
-  ASSERT_TRUE(attempt.has_value());
-  ASSERT_TRUE(attempt->refused.has_value());
-  EXPECT_EQ(*attempt->refused, MatchRefusal::kLowScore);
-  EXPECT_FALSE(attempt->proposed);
-  EXPECT_GE(attempt->old, 0);
-  EXPECT_GT(attempt->measured.score, 0.5);  // the right place, refused only by the threshold
-  EXPECT_LT(attempt->measured.score, 1.5);
-  EXPECT_FALSE(std::isnan(attempt->measured.ambiguity));
   EXPECT_TRUE(accepted.empty());
+  EXPECT_TRUE(attempt.has_value());
+  return attempt.value_or(LoopAttempt{});
+}
+
+TEST(LoopCloser, ARefusedAttemptKeepsItsScoreAndCandidateWhenMeasured) {
+  const LoopAttempt attempt = RefusedAttempt(true);
+  ASSERT_TRUE(attempt.refused.has_value());
+  EXPECT_EQ(*attempt.refused, MatchRefusal::kLowScore);
+  EXPECT_FALSE(attempt.proposed);
+  EXPECT_GE(attempt.old, 0);
+  EXPECT_GT(attempt.measured.score, 0.5);  // the right place, refused only by the threshold
+  EXPECT_LT(attempt.measured.score, 1.5);
+  EXPECT_FALSE(std::isnan(attempt.measured.ambiguity));
 }
 
 TEST(LoopCloser, ARefusedAttemptLeavesItsScoreUnmeasuredByDefault) {
   // The search stops at min_score (MatcherConfig::cut_below_min_score): the same refusal and
   // candidate, no score.
-  const Chain chain(Pose2(0.1, 0.05, 0.0));
-  LoopClosingConfig lc = Immediate();
-  lc.min_score = 1.5;
-  ASSERT_FALSE(lc.measure_low_scores);
-  LoopCloser closer(lc, IncrementalConfig{});
-  std::vector<LoopHypothesis> accepted;
-  const auto attempt = closer.SearchLocal(chain.View(), 12, 0, &accepted);
-  ASSERT_TRUE(attempt.has_value());
-  ASSERT_TRUE(attempt->refused.has_value());
-  EXPECT_EQ(*attempt->refused, MatchRefusal::kLowScore);
-  EXPECT_GE(attempt->old, 0);
-  EXPECT_TRUE(std::isnan(attempt->measured.score));
-  EXPECT_TRUE(accepted.empty());
+  ASSERT_FALSE(LoopClosingConfig{}.measure_low_scores);
+  const LoopAttempt attempt = RefusedAttempt(false);
+  ASSERT_TRUE(attempt.refused.has_value());
+  EXPECT_EQ(*attempt.refused, MatchRefusal::kLowScore);
+  EXPECT_GE(attempt.old, 0);
+  EXPECT_TRUE(std::isnan(attempt.measured.score));
 }
 
 TEST(LoopCloser, NoCandidateNoAttempt) {

@@ -10,7 +10,8 @@
 namespace lifelong::slam {
 
 /// What one submap match measured, whether it passed or not; NaN when no match ran (too few
-/// reference points).
+/// reference points) or when it stopped at loops.min_score without a pose there
+/// (loops.measure_low_scores false, MatcherConfig::cut_below_min_score).
 struct MatchMeasure {
   /// The points' mean likelihood on the reference at the best pose (scan_matcher.hpp).
   double score = std::numeric_limits<double>::quiet_NaN();

@@ -135,34 +135,6 @@ void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summ
   io::WriteFileAtomically((fs::path(config_.out_dir) / name_ / "loops.csv").string(), text);
 }
 
-std::vector<LoopCurvePoint> ModeRunner::LoopCurve(const LoopClosureResult& truth) const {
-  std::vector<std::pair<double, bool>> closures;  // (current node's time, correct)
-  const auto& loops = mapper_->loop_closures();
-  for (std::size_t k = 0; k < loops.size() && k < truth.correct_each.size(); ++k) {
-    closures.emplace_back(loops[k].stamp_current_s, truth.correct_each[k]);
-  }
-  std::sort(closures.begin(), closures.end());
-  std::vector<LoopCurvePoint> curve;
-  LoopCurvePoint p;
-  int correct = 0, recalled = 0;
-  std::size_t next = 0;
-  for (std::size_t n = 0; n < timeline_.size(); ++n) {
-    p.t_s = timeline_[n].t_s;
-    for (; next < closures.size() && closures[next].first <= p.t_s; ++next) {
-      ++p.accepted;
-      correct += closures[next].second ? 1 : 0;
-    }
-    if (n < truth.revisit_each.size() && truth.revisit_each[n]) {
-      ++p.revisits;
-      recalled += truth.recalled_each[n] ? 1 : 0;
-    }
-    p.precision = p.accepted > 0 ? static_cast<double>(correct) / p.accepted : 0.0;
-    p.recall = p.revisits > 0 ? static_cast<double>(recalled) / p.revisits : 0.0;
-    curve.push_back(p);
-  }
-  return curve;
-}
-
 Pose2 ModeRunner::TruthMetrics(const std::vector<Observation>& stream, const GroundTruth& truth,
                                const std::vector<Pose2>& estimate, const OccupancyGrid& grid,
                                ModeSummary* summary) {
@@ -200,7 +172,7 @@ void ModeRunner::ScoreLoops(const std::vector<Pose2>& true_nodes, ModeSummary* s
   if (lcr.accepted > 0) summary->loop_precision = lcr.precision;
   if (lcr.revisit_nodes > 0) summary->loop_recall = lcr.recall;
   WriteLoopsCsv(lcr, summary);
-  loop_curve_ = LoopCurve(lcr);
+  loop_curve_ = LoopCurve(timeline_, lcr);
 }
 
 std::optional<std::vector<Pose2>> ModeRunner::ReferenceAtObservations(

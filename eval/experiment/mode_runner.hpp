@@ -45,8 +45,6 @@ class ModeRunner {
 
   /// Writes <mode>/loops.csv (one row per accepted closure, with its truth when known)
   /// and the precision over the last hour of runs longer than one.
-  /// Cumulative loop precision and recall per observation, from the closures' truth.
-  std::vector<LoopCurvePoint> LoopCurve(const LoopClosureResult& truth) const;
   void WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const;
   /// The timeline's and the graph's figures, the peak memory, and the marginalizations' KL
   /// divergences (appended to *kld).

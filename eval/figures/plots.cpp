@@ -320,18 +320,33 @@ bool KldFigure(const std::map<std::string, std::vector<double>>& kl_per_mode,
   return true;
 }
 
+/// Whether the curves can be drawn against time: in every one the stamps never go back and
+/// end later than they start. (A log whose scans share one stamp is drawn by observation.)
+bool StampsAdvance(const std::map<std::string, std::vector<LoopCurvePoint>>& curves) {
+  for (const auto& [mode, curve] : curves) {
+    if (curve.size() < 2) continue;
+    if (!(curve.back().t_s > curve.front().t_s)) return false;
+    for (std::size_t i = 1; i < curve.size(); ++i) {
+      if (curve[i].t_s < curve[i - 1].t_s) return false;
+    }
+  }
+  return true;
+}
+
 bool LoopFigure(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
                 const std::string& out_dir, std::vector<Figure>* figures, PlotResult* r) {
-  const auto column = [](int col) {
-    return [col](const std::string& c, const std::string& file, const std::string& t) {
-      return file + " using 1:" + std::to_string(col) + " with lines lw 2 lc rgb " + c + " title " +
-             t;
+  const bool by_time = StampsAdvance(curves);
+  const std::string x = by_time ? "1" : "6";
+  const auto column = [x](int col) {
+    return [x, col](const std::string& c, const std::string& file, const std::string& t) {
+      return file + " using " + x + ":" + std::to_string(col) + " with lines lw 2 lc rgb " + c +
+             " title " + t;
     };
   };
   // Fixed y ranges (shares): a mode, or a whole run, without closures has no defined
   // point, which gnuplot's autoscale refuses ("all points y value undefined").
   Figure f{"loop_closing",
-           "robot time [s]",
+           by_time ? "robot time [s]" : "observation",
            {{"loop-closure precision, cumulative", false, column(2), "[0:1.05]", ""},
             {"loop-closure recall, cumulative", false, column(3), "[0:1.05]", ""}},
            {},
@@ -348,11 +363,11 @@ bool LoopFigure(const std::map<std::string, std::vector<LoopCurvePoint>>& curves
   for (const auto& [mode, curve] : curves) {
     const fs::path p = fs::path(out_dir) / "plot_data" / ("loops_" + SafeName(mode) + ".dat");
     std::ostringstream out;
-    out << "# t_s precision recall accepted revisits (NaN: not yet defined)\n";
+    out << "# t_s precision recall accepted revisits obs (NaN: not yet defined)\n";
     for (const LoopCurvePoint& q : curve) {
       out << q.t_s << ' ' << (q.accepted > 0 ? std::to_string(q.precision) : "NaN") << ' '
           << (q.revisits > 0 ? std::to_string(q.recall) : "NaN") << ' ' << q.accepted << ' '
-          << q.revisits << '\n';
+          << q.revisits << ' ' << q.obs << '\n';
     }
     if (!WritePlotFile(p, out.str(), r)) return false;
     f.files[mode] = p.string();

@@ -229,4 +229,30 @@ LoopClosureResult ComputeLoopClosureStats(const std::vector<LoopClosure>& closur
   return r;
 }
 
+std::vector<LoopCurvePoint> LoopCurve(const std::vector<TimelineRow>& timeline,
+                                      const LoopClosureResult& truth) {
+  const std::vector<bool>& correct_each = truth.correct_each;
+  std::vector<LoopCurvePoint> curve;
+  LoopCurvePoint p;
+  int correct = 0, recalled = 0;
+  for (std::size_t n = 0; n < timeline.size(); ++n) {
+    p.t_s = timeline[n].t_s;
+    p.obs = timeline[n].obs;
+    const std::size_t accepted = std::min(
+        static_cast<std::size_t>(std::max(timeline[n].loop_closures, 0)), correct_each.size());
+    for (auto k = static_cast<std::size_t>(p.accepted); k < accepted; ++k) {
+      ++p.accepted;
+      correct += correct_each[k] ? 1 : 0;
+    }
+    if (n < truth.revisit_each.size() && truth.revisit_each[n]) {
+      ++p.revisits;
+      recalled += truth.recalled_each[n] ? 1 : 0;
+    }
+    p.precision = p.accepted > 0 ? static_cast<double>(correct) / p.accepted : 0.0;
+    p.recall = p.revisits > 0 ? static_cast<double>(recalled) / p.revisits : 0.0;
+    curve.push_back(p);
+  }
+  return curve;
+}
+
 }  // namespace lifelong::eval

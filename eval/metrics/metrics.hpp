@@ -16,6 +16,8 @@
 #include "types/relation.hpp"
 #include "types/stamped_pose.hpp"
 
+#include "eval/metrics/types.hpp"
+
 namespace lifelong::eval {
 
 /// q-quantile (q in [0, 1]) with linear interpolation between order statistics (as
@@ -115,5 +117,12 @@ struct LoopClosureResult {
 LoopClosureResult ComputeLoopClosureStats(const std::vector<LoopClosure>& closures,
                                           const std::vector<Pose2>& true_nodes,
                                           const LoopClosureConfig& config = {});
+
+/// Cumulative loop precision and recall at each observation of a run's timeline, from the
+/// truth of its closures (`truth.correct_each`, in the order the mapper accepted them) and
+/// of its nodes (one per row). A closure counts from the row whose `loop_closures` first
+/// includes it, that is from the observation that accepted it, whatever the stamps.
+std::vector<LoopCurvePoint> LoopCurve(const std::vector<TimelineRow>& timeline,
+                                      const LoopClosureResult& truth);
 
 }  // namespace lifelong::eval

@@ -9,17 +9,18 @@
 
 namespace lifelong::eval {
 
-/// One row of `<mode>/timeline.csv` (DESIGN.md output contract), one per observation.
-/// Loop closing against the truth up to a moment of the run: cumulative precision of the
-/// closures accepted so far (by their current node's time) and recall of the revisits so far.
+/// Loop closing against the truth up to an observation of the run: cumulative precision of
+/// the closures accepted so far and recall of the revisits so far.
 struct LoopCurvePoint {
-  double t_s = 0.0;
+  double t_s = 0.0;        ///< s, the observation's stamp
   double precision = 0.0;  ///< meaningful once accepted > 0
   double recall = 0.0;     ///< meaningful once revisits > 0
   int accepted = 0;
   int revisits = 0;
+  int obs = 0;  ///< the observation, 0-based (the x axis when stamps do not advance)
 };
 
+/// One row of `<mode>/timeline.csv` (DESIGN.md output contract), one per observation.
 struct TimelineRow {
   int obs = 0;                  ///< observation index, 0-based
   double t_s = 0.0;             ///< s, stamp of the observation

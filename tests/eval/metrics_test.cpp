@@ -170,5 +170,34 @@ TEST(LoopClosureTest, OutOfRangeNodeThrows) {
   EXPECT_THROW(ComputeLoopClosureStats({{0, 500, Pose2()}}, TwoPasses()), std::invalid_argument);
 }
 
+// The curve counts a closure from the observation that accepted it (the timeline's
+// cumulative count), not by stamp: a log whose scans share one stamp once counted all its
+// closures, wrong ones included, at the first observation.
+TEST(LoopCurveTest, ClosuresCountFromTheObservationThatAcceptedThem) {
+  std::vector<TimelineRow> timeline(5);
+  const int closures_so_far[] = {0, 1, 1, 3, 3};
+  for (int n = 0; n < 5; ++n) {
+    timeline[static_cast<std::size_t>(n)].obs = n;
+    timeline[static_cast<std::size_t>(n)].t_s = 7.0;  // one stamp for every scan
+    timeline[static_cast<std::size_t>(n)].loop_closures = closures_so_far[n];
+  }
+  LoopClosureResult truth;
+  truth.correct_each = {true, false, true};
+  truth.revisit_each = {false, false, true, true, false};
+  truth.recalled_each = {false, false, true, false, false};
+  const std::vector<LoopCurvePoint> curve = LoopCurve(timeline, truth);
+  ASSERT_EQ(curve.size(), 5u);
+  const int accepted[] = {0, 1, 1, 3, 3}, revisits[] = {0, 0, 1, 2, 2};
+  for (std::size_t n = 0; n < 5; ++n) {
+    EXPECT_EQ(curve[n].obs, static_cast<int>(n));
+    EXPECT_EQ(curve[n].accepted, accepted[n]) << n;
+    EXPECT_EQ(curve[n].revisits, revisits[n]) << n;
+  }
+  EXPECT_DOUBLE_EQ(curve[1].precision, 1.0);
+  EXPECT_DOUBLE_EQ(curve[3].precision, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(curve[2].recall, 1.0);
+  EXPECT_DOUBLE_EQ(curve[4].recall, 0.5);
+}
+
 }  // namespace
 }  // namespace lifelong::eval

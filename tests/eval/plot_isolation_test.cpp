@@ -89,6 +89,30 @@ TEST(PlotIsolationTest, OnlyTheModeWithoutClosuresIsMarked) {
   EXPECT_EQ(script.find("'no closures' at"), std::string::npos) << script;
 }
 
+// The loop chart is drawn against time when the stamps advance, else against the observation
+// (the campus log's scans share one stamp: its chart was one vertical line at t = 0).
+TEST(PlotIsolationTest, TheLoopChartFollowsObservationsWhenStampsDoNotAdvance) {
+  if (!GnuplotAvailable("gnuplot")) GTEST_SKIP() << "gnuplot not installed";
+  for (const bool one_stamp : {false, true}) {
+    const fs::path dir = FreshDir("lifelong_plot_one_stamp");
+    std::vector<LoopCurvePoint> curve;
+    for (int i = 0; i < 20; ++i) {
+      curve.push_back({one_stamp ? 0.0 : 1.0 * i, 1.0, 0.5, i / 2, i / 3, i});
+    }
+    const PlotResult r = PlotRun({}, {}, {{"pruned", curve}}, dir.string());
+    EXPECT_TRUE(r.ok) << r.error;
+    EXPECT_FALSE(cv::imread((dir / "loop_closing.png").string()).empty());
+    const std::string script = Read(dir / "plot_data" / "loop_closing.gp");
+    EXPECT_EQ(script.find("using 6:2") != std::string::npos, one_stamp) << script;
+    EXPECT_EQ(script.find("using 1:2") != std::string::npos, !one_stamp) << script;
+    EXPECT_EQ(script.find("'observation'") != std::string::npos, one_stamp) << script;
+    const std::string data = Read(dir / "plot_data" / "loops_pruned.dat");
+    const std::string last =
+        std::string(one_stamp ? "\n0 " : "\n19 ") + "1.000000 0.500000 9 6 19\n";
+    EXPECT_NE(data.find(last), std::string::npos) << data;
+  }
+}
+
 // A figure whose data cannot be drawn (an empty KL series: "x range is invalid") is the
 // only one lost; it is named, with a log that holds gnuplot's complaint, and no PNG of it
 // (not even a temporary one) is left.

@@ -174,6 +174,13 @@ std::int64_t GainIndex::Untrack(NodeId id) {
   return scan.gain;
 }
 
+std::vector<NodeId> GainIndex::Ids() const {
+  std::vector<NodeId> ids;
+  ids.reserve(slots_.size());
+  for (const auto& [id, slot] : slots_) ids.push_back(id);
+  return ids;
+}
+
 std::int64_t GainIndex::Gain(NodeId id) const {
   const auto it = slots_.find(id);
   if (it == slots_.end()) {

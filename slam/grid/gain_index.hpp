@@ -54,6 +54,8 @@ class GainIndex {
  public:
   bool Tracks(NodeId id) const { return slots_.count(id) != 0; }
   std::size_t size() const { return slots_.size(); }
+  /// The tracked scans' nodes, in no particular order.
+  std::vector<NodeId> Ids() const;
   /// Starts tracking a scan in the map, whose increment list is `cells` and whose gain is
   /// `gain` quanta now. Throws std::logic_error when it is tracked already.
   void Track(NodeId id, const std::vector<CellUpdate>& cells, std::int64_t gain);

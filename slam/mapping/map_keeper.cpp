@@ -1,5 +1,6 @@
 #include "slam/mapping/map_keeper.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -24,16 +25,47 @@ void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const 
     grid_.MoveScan(scan, from, to);
     return;
   }
-  Retrace(id, scan, to, cuts);
+  if (gains_.Tracks(id)) {
+    // The cells at the old pose come from the gain index, which holds them anyway.
+    const std::vector<CellUpdate>& old_cells = Untrack(id);
+    const std::vector<CellUpdate> cells = grid_.TouchedCells(scan, to, cuts);
+    MoveCells(old_cells, cells);
+    Track(id, cells);
+    return;
+  }
+  // Far from the robot: moved as the standard mode moves it, the tracked gains updated.
+  Change(grid_.TouchedCells(scan, from, cuts), false);
+  Change(grid_.TouchedCells(scan, to, cuts), true);
 }
 
 void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
-                        const std::vector<BeamCut>& cuts) {
-  // The cells at the old pose come from the gain index, which holds them anyway.
+                        const std::vector<BeamCut>& old_cuts, const std::vector<BeamCut>& cuts) {
+  Watch(id, scan, T, old_cuts);
   const std::vector<CellUpdate>& from = Untrack(id);
   const std::vector<CellUpdate> to = grid_.TouchedCells(scan, T, cuts);
   MoveCells(from, to);
   Track(id, to);
+}
+
+void MapKeeper::TrackOnly(const std::vector<NodeId>& near, const NodeStore& nodes) {
+  if (!track_gains_) return;
+  const ScopedMs timer = GainTimer();
+  std::vector<NodeId> keep = near;
+  std::sort(keep.begin(), keep.end());
+  for (const NodeId id : gains_.Ids()) {
+    if (!std::binary_search(keep.begin(), keep.end(), id)) gains_.Untrack(id);
+  }
+  for (const NodeId id : near) {
+    const NodeData& data = nodes.at(id);
+    Watch(id, data.scan, data.T_world_map, data.cuts);
+  }
+}
+
+void MapKeeper::Watch(NodeId id, const LaserScan& scan, const Pose2& T,
+                      const std::vector<BeamCut>& cuts) {
+  if (gains_.Tracks(id)) return;
+  const std::vector<CellUpdate> cells = grid_.TouchedCells(scan, T, cuts);
+  gains_.Track(id, cells, grid_.QuantizedGain(cells));
 }
 
 void MapKeeper::Follow(const Values& values, double epsilon_m, double epsilon_rad,
@@ -48,7 +80,14 @@ void MapKeeper::Follow(const Values& values, double epsilon_m, double epsilon_ra
   }
 }
 
-void MapKeeper::Remove(NodeId id) { Change(Untrack(id), false); }
+void MapKeeper::Remove(NodeId id, const LaserScan& scan, const Pose2& T,
+                       const std::vector<BeamCut>& cuts) {
+  if (gains_.Tracks(id)) {
+    Change(Untrack(id), false);
+  } else {
+    Change(grid_.TouchedCells(scan, T, cuts), false);
+  }
+}
 
 double MapKeeper::Gain(NodeId id) const {
   return static_cast<double>(gains_.Gain(id)) * kEntropyQuantumBits;

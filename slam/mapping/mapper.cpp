@@ -137,6 +137,7 @@ double Mapper::MaxGainCacheError() const {
   double worst = 0.0;
   if (!state_->pruner) return worst;
   for (const auto& [id, data] : state_->nodes) {
+    if (!state_->keeper.Tracks(id)) continue;
     const double fresh = state_->keeper.FreshGain(data.scan, data.T_world_map, data.cuts);
     worst = std::max(worst, std::abs(fresh - state_->keeper.Gain(id)));
   }

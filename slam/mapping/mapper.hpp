@@ -63,10 +63,10 @@ class Mapper {
   /// Cuts the removal policy applied in the map (mode pruned-dpg, BeamCut), in all; a beam
   /// cut again counts again.
   std::size_t cut_beams() const;
-  /// Self-check of the pruned modes' remembered information gains: the largest difference
-  /// (bits) between a remembered gain that would be reused (valid, and no pending map change
-  /// overlaps its scan) and the gain computed afresh from the map now. 0 when the
-  /// bookkeeping is right (or nothing is remembered).
+  /// Self-check of the pruned modes' tracked information gains (MapKeeper: the nodes of the
+  /// last pruning round's neighbourhood and those added since): the largest difference (bits)
+  /// between a tracked gain and the gain computed afresh from the map now. 0 when the
+  /// bookkeeping is right (or nothing is tracked).
   double MaxGainCacheError() const;
 
   /// Called after every AddObservation that took an observation (keyframe).

@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/backend/optimizer_problem.hpp"
@@ -44,7 +45,14 @@ void Mapper::State::Prune(NodeId current) {
   const Pose2& X_cur = values.at(current);
   std::map<NodeId, double> gains;
   RoundView view;
-  for (const auto& [id, length] : ExpandByPathLength(graph, values, current, 3.0 * pc.radius_m)) {
+  const std::map<NodeId, double> reached =
+      ExpandByPathLength(graph, values, current, 3.0 * pc.radius_m);
+  // The map keeps the gains of the nodes this expansion reaches, a margin around the
+  // candidates below, and forgets the others' (recomputed when the robot returns).
+  std::vector<NodeId> near;
+  for (const auto& [id, length] : reached) near.push_back(id);
+  keeper.TrackOnly(near, nodes);
+  for (const auto& [id, length] : reached) {
     const Pose2& X = values.at(id);
     if (id == current || std::hypot(X.x - X_cur.x, X.y - X_cur.y) > pc.radius_m) continue;
     view.nearby.push_back(id);
@@ -110,8 +118,9 @@ ScanFootprint Mapper::State::Footprint(NodeId id) const {
 
 void Mapper::State::CutBeams(NodeId id, const std::vector<BeamCut>& cuts) {
   NodeData& data = nodes.at(id);
-  data.cuts = MergeCuts(data.cuts, cuts);
-  keeper.Retrace(id, data.scan, data.T_world_map, data.cuts);
+  std::vector<BeamCut> merged = MergeCuts(data.cuts, cuts);
+  keeper.Retrace(id, data.scan, data.T_world_map, data.cuts, merged);
+  data.cuts = std::move(merged);
   cut_beams += cuts.size();
 }
 
@@ -130,7 +139,8 @@ void Mapper::State::RemoveNode(NodeId id, double gain_bits) {
     }
   }
   scans.Handover(id, heir, Between(values.at(heir), X));
-  keeper.Remove(id);
+  const NodeData& data = nodes.at(id);
+  keeper.Remove(id, data.scan, data.T_world_map, data.cuts);
   pruner->Remove(&graph, id, replacement, gain_bits);
   nodes.erase(id);
   values.erase(id);

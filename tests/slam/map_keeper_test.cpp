@@ -1,0 +1,119 @@
+// MapKeeper tracks the gains of the scans near the robot only (TrackOnly): a scan outside is
+// moved, cut and removed without its gain, the tracked gains stay exact through it, and its
+// gain comes back equal to a fresh computation when it is tracked again.
+#include "slam/mapping/map_keeper.hpp"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/slam/synthetic_scans.hpp"
+
+namespace lifelong::slam {
+namespace {
+
+// The room scanned from six poses, every scan tracked (as after Add).
+struct Room {
+  testing::World world = testing::RoomWorld();
+  NodeStore nodes;
+  MapKeeper keeper{GridMapConfig{}, true, GainTiming{[] { return nullptr; }, nullptr}};
+  std::vector<CellIndex> seen;  ///< every cell a scan was ever rendered in
+
+  void Saw(const NodeData& data) {
+    for (const CellUpdate& u : keeper.grid().TouchedCells(data.scan, data.T_world_map, data.cuts))
+      seen.push_back(u.cell);
+  }
+
+  Room() {
+    const Pose2 poses[] = {{1.5, 2.0, 0.0}, {2.5, 3.3, 0.4}, {3.5, 2.0, -0.3},
+                           {4.8, 3.0, 2.0}, {6.0, 2.2, 3.0}, {7.0, 1.0, 1.5}};
+    NodeId id = 0;
+    for (const Pose2& pose : poses) {
+      NodeData& data = nodes[id];
+      data.T_world_map = pose;
+      data.scan = testing::SimulateScan(world, pose);
+      keeper.Add(id++, data.scan, pose);
+      Saw(data);
+    }
+  }
+  void Move(NodeId id, const Pose2& to) {
+    NodeData& data = nodes.at(id);
+    keeper.Move(id, data.scan, data.T_world_map, to, data.cuts);
+    data.T_world_map = to;
+    Saw(data);
+  }
+  // The largest difference between a tracked gain and its fresh computation (bits).
+  double WorstGainError() const {
+    double worst = 0.0;
+    for (const auto& [id, data] : nodes) {
+      if (!keeper.Tracks(id)) continue;
+      const double fresh = keeper.FreshGain(data.scan, data.T_world_map, data.cuts);
+      worst = std::max(worst, std::abs(fresh - keeper.Gain(id)));
+    }
+    return worst;
+  }
+  // Whether the keeper's grid holds exactly the nodes' scans as they are rendered now, in
+  // every cell a scan was ever rendered in.
+  bool GridHoldsTheNodes() {
+    GridMap fresh;
+    for (const auto& [id, data] : nodes) {
+      fresh.Add(fresh.TouchedCells(data.scan, data.T_world_map, data.cuts));
+      Saw(data);
+    }
+    for (const CellIndex c : seen) {
+      const CellCounts a = fresh.Counts(c), b = keeper.grid().Counts(c);
+      if (a.hits != b.hits || a.misses != b.misses || fresh.Lists(c) != keeper.grid().Lists(c))
+        return false;
+    }
+    return true;
+  }
+};
+
+TEST(MapKeeper, TracksOnlyTheNodesAskedFor) {
+  Room room;
+  for (NodeId id = 0; id < 6; ++id) EXPECT_TRUE(room.keeper.Tracks(id));
+  room.keeper.TrackOnly({1, 2}, room.nodes);
+  for (NodeId id = 0; id < 6; ++id) EXPECT_EQ(room.keeper.Tracks(id), id == 1 || id == 2) << id;
+  EXPECT_THROW(room.keeper.Gain(0), std::logic_error);
+  EXPECT_LT(room.WorstGainError(), 1e-9);
+}
+
+// Untracked scans move and leave; the tracked gains follow, and an untracked scan's gain is
+// exact again once tracked.
+TEST(MapKeeper, TrackedGainsStayExactWhileUntrackedScansMoveAndLeave) {
+  Room room;
+  room.keeper.TrackOnly({1, 2, 3}, room.nodes);
+  room.Move(0, {1.6, 2.1, 0.05});  // untracked, overlaps the tracked ones
+  room.Move(2, {3.45, 2.05, -0.28});
+  room.Move(4, {5.9, 2.3, 3.05});
+  EXPECT_LT(room.WorstGainError(), 1e-9);
+  EXPECT_TRUE(room.GridHoldsTheNodes());
+  const NodeData& gone = room.nodes.at(5);
+  room.keeper.Remove(5, gone.scan, gone.T_world_map, gone.cuts);
+  room.nodes.erase(5);
+  EXPECT_TRUE(room.GridHoldsTheNodes());
+  EXPECT_LT(room.WorstGainError(), 1e-9);
+  room.keeper.TrackOnly({0, 4}, room.nodes);
+  EXPECT_TRUE(room.keeper.Tracks(0) && room.keeper.Tracks(4) && !room.keeper.Tracks(1));
+  EXPECT_LT(room.WorstGainError(), 1e-9);
+}
+
+// A scan cut while untracked is retraced from the cells its old cuts left.
+TEST(MapKeeper, AnUntrackedScanIsCutFromItsOldCuts) {
+  Room room;
+  NodeData& data = room.nodes.at(3);
+  const std::vector<BeamCut> first{{10, 0.5f, 0.0f}, {40, 1.0f, 0.0f}};
+  room.keeper.Retrace(3, data.scan, data.T_world_map, data.cuts, first);
+  data.cuts = first;
+  room.keeper.TrackOnly({0, 1}, room.nodes);
+  ASSERT_FALSE(room.keeper.Tracks(3));
+  const std::vector<BeamCut> more = MergeCuts(first, {{90, 0.8f, 0.0f}});
+  room.keeper.Retrace(3, data.scan, data.T_world_map, data.cuts, more);
+  data.cuts = more;
+  EXPECT_TRUE(room.keeper.Tracks(3));
+  EXPECT_TRUE(room.GridHoldsTheNodes());
+  EXPECT_LT(room.WorstGainError(), 1e-9);
+}
+
+}  // namespace
+}  // namespace lifelong::slam

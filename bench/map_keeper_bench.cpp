@@ -42,7 +42,7 @@ void BM_MapKeeperMove(benchmark::State& state) {
     keeper.Add(id, data.scan, data.T_world_map);
     if (id != 4) others.push_back(id);
   }
-  if (state.range(0) == 2) keeper.TrackOnly(others, nodes);
+  if (state.range(0) == 2) keeper.TrackOnly(others, others, nodes);
   const NodeData& moving = nodes.at(4);
   const Pose2 from = moving.T_world_map, to(from.x + 0.04, from.y - 0.03, from.theta + 0.004);
   for (auto _ : state) {

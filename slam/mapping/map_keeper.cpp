@@ -47,15 +47,17 @@ void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
   Track(id, to);
 }
 
-void MapKeeper::TrackOnly(const std::vector<NodeId>& near, const NodeStore& nodes) {
+void MapKeeper::TrackOnly(const std::vector<NodeId>& wanted, const std::vector<NodeId>& kept,
+                          const NodeStore& nodes) {
   if (!track_gains_) return;
   const ScopedMs timer = GainTimer();
-  std::vector<NodeId> keep = near;
+  std::vector<NodeId> keep = kept;
+  keep.insert(keep.end(), wanted.begin(), wanted.end());
   std::sort(keep.begin(), keep.end());
   for (const NodeId id : gains_.Ids()) {
     if (!std::binary_search(keep.begin(), keep.end(), id)) gains_.Untrack(id);
   }
-  for (const NodeId id : near) {
+  for (const NodeId id : wanted) {
     const NodeData& data = nodes.at(id);
     Watch(id, data.scan, data.T_world_map, data.cuts);
   }

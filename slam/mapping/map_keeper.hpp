@@ -50,10 +50,11 @@ class MapKeeper {
   /// follow, and its own gain is tracked.
   void Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
                const std::vector<BeamCut>& old_cuts, const std::vector<BeamCut>& cuts);
-  /// With gains: tracks the gains of the nodes `near` (of `nodes`, each rendered at its
-  /// T_world_map) and of no other node. The pruning round asks for the gains of nodes in its
-  /// neighbourhood only.
-  void TrackOnly(const std::vector<NodeId>& near, const NodeStore& nodes);
+  /// With gains: tracks the gains of the nodes `wanted` (of `nodes`, each rendered at its
+  /// T_world_map), keeps tracking those of `kept` that are, and stops tracking every other.
+  /// The pruning round asks for the gains of the nodes within its radius only.
+  void TrackOnly(const std::vector<NodeId>& wanted, const std::vector<NodeId>& kept,
+                 const NodeStore& nodes);
   /// Whether node id's gain is tracked (Gain answers for it).
   bool Tracks(NodeId id) const { return gains_.Tracks(id); }
   /// The map follows the estimate: every node whose pose in `values` moved more than

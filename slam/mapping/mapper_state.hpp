@@ -84,6 +84,9 @@ struct Mapper::State {
   void Optimize();
   void SyncMap();
   void Prune(NodeId current);
+  /// The gains the map tracks for a pruning round at X_cur, whose candidates are `nearby`
+  /// (MapKeeper::TrackOnly).
+  void TrackGainsAround(const Pose2& X_cur, const std::vector<NodeId>& nearby);
   void RemoveNode(NodeId id, double gain_bits);
   /// Traces beams of node id's scan cut in the map from now on (a policy found them
   /// outdated, SampleRetirement; a beam cut again is cut by the two cuts merged, Merge);

@@ -47,11 +47,6 @@ void Mapper::State::Prune(NodeId current) {
   RoundView view;
   const std::map<NodeId, double> reached =
       ExpandByPathLength(graph, values, current, 3.0 * pc.radius_m);
-  // The map keeps the gains of the nodes this expansion reaches, a margin around the
-  // candidates below, and forgets the others' (recomputed when the robot returns).
-  std::vector<NodeId> near;
-  for (const auto& [id, length] : reached) near.push_back(id);
-  keeper.TrackOnly(near, nodes);
   for (const auto& [id, length] : reached) {
     const Pose2& X = values.at(id);
     if (id == current || std::hypot(X.x - X_cur.x, X.y - X_cur.y) > pc.radius_m) continue;
@@ -59,6 +54,7 @@ void Mapper::State::Prune(NodeId current) {
     if (!protected_ids.count(id)) gains[id] = 0.0;
   }
   std::sort(view.nearby.begin(), view.nearby.end());
+  TrackGainsAround(X_cur, view.nearby);
   for (auto& [id, gain] : gains) gain = keeper.Gain(id);
   BindRoundView(current, &view);
   std::vector<SampleRetirement> retired;
@@ -83,6 +79,19 @@ void Mapper::State::Prune(NodeId current) {
   }
   const ScopedMs timer = Stage(&StageTimes::marginalize_ms);
   pruner->KeepEdgeBudget(&graph, values, [this] { return UnsettledNodes(); });
+}
+
+void Mapper::State::TrackGainsAround(const Pose2& X_cur, const std::vector<NodeId>& nearby) {
+  // The map tracks the gains of the nodes within the radius and keeps tracking those within
+  // three radii, a margin that spares the nodes of a building the robot walks around a fresh
+  // trace at each return; it forgets the others' and computes them afresh when the robot
+  // comes back (a campus's far streets).
+  std::vector<NodeId> kept;
+  const double margin_m = 3.0 * config.pruning.radius_m;
+  for (const auto& [id, X] : values) {
+    if (std::hypot(X.x - X_cur.x, X.y - X_cur.y) <= margin_m) kept.push_back(id);
+  }
+  keeper.TrackOnly(nearby, kept, nodes);
 }
 
 void Mapper::State::BindRoundView(NodeId current, RoundView* view) const {

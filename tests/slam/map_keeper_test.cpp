@@ -72,9 +72,13 @@ struct Room {
 TEST(MapKeeper, TracksOnlyTheNodesAskedFor) {
   Room room;
   for (NodeId id = 0; id < 6; ++id) EXPECT_TRUE(room.keeper.Tracks(id));
-  room.keeper.TrackOnly({1, 2}, room.nodes);
+  room.keeper.TrackOnly({1, 2}, {}, room.nodes);
   for (NodeId id = 0; id < 6; ++id) EXPECT_EQ(room.keeper.Tracks(id), id == 1 || id == 2) << id;
   EXPECT_THROW(room.keeper.Gain(0), std::logic_error);
+  EXPECT_LT(room.WorstGainError(), 1e-9);
+  // Kept: tracked on if tracked, not started.
+  room.keeper.TrackOnly({3}, {0, 1}, room.nodes);
+  for (NodeId id = 0; id < 6; ++id) EXPECT_EQ(room.keeper.Tracks(id), id == 1 || id == 3) << id;
   EXPECT_LT(room.WorstGainError(), 1e-9);
 }
 
@@ -82,7 +86,7 @@ TEST(MapKeeper, TracksOnlyTheNodesAskedFor) {
 // exact again once tracked.
 TEST(MapKeeper, TrackedGainsStayExactWhileUntrackedScansMoveAndLeave) {
   Room room;
-  room.keeper.TrackOnly({1, 2, 3}, room.nodes);
+  room.keeper.TrackOnly({1, 2, 3}, {}, room.nodes);
   room.Move(0, {1.6, 2.1, 0.05});  // untracked, overlaps the tracked ones
   room.Move(2, {3.45, 2.05, -0.28});
   room.Move(4, {5.9, 2.3, 3.05});
@@ -93,7 +97,7 @@ TEST(MapKeeper, TrackedGainsStayExactWhileUntrackedScansMoveAndLeave) {
   room.nodes.erase(5);
   EXPECT_TRUE(room.GridHoldsTheNodes());
   EXPECT_LT(room.WorstGainError(), 1e-9);
-  room.keeper.TrackOnly({0, 4}, room.nodes);
+  room.keeper.TrackOnly({0, 4}, {}, room.nodes);
   EXPECT_TRUE(room.keeper.Tracks(0) && room.keeper.Tracks(4) && !room.keeper.Tracks(1));
   EXPECT_LT(room.WorstGainError(), 1e-9);
 }
@@ -105,7 +109,7 @@ TEST(MapKeeper, AnUntrackedScanIsCutFromItsOldCuts) {
   const std::vector<BeamCut> first{{10, 0.5f, 0.0f}, {40, 1.0f, 0.0f}};
   room.keeper.Retrace(3, data.scan, data.T_world_map, data.cuts, first);
   data.cuts = first;
-  room.keeper.TrackOnly({0, 1}, room.nodes);
+  room.keeper.TrackOnly({0, 1}, {}, room.nodes);
   ASSERT_FALSE(room.keeper.Tracks(3));
   const std::vector<BeamCut> more = MergeCuts(first, {{90, 0.8f, 0.0f}});
   room.keeper.Retrace(3, data.scan, data.T_world_map, data.cuts, more);

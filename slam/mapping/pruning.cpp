@@ -83,11 +83,11 @@ void Mapper::State::Prune(NodeId current) {
 
 void Mapper::State::TrackGainsAround(const Pose2& X_cur, const std::vector<NodeId>& nearby) {
   // The map tracks the gains of the nodes within the radius and keeps tracking those within
-  // three radii, a margin that spares the nodes of a building the robot walks around a fresh
+  // five radii, a margin that spares the nodes of a building the robot walks around a fresh
   // trace at each return; it forgets the others' and computes them afresh when the robot
   // comes back (a campus's far streets).
   std::vector<NodeId> kept;
-  const double margin_m = 3.0 * config.pruning.radius_m;
+  const double margin_m = 5.0 * config.pruning.radius_m;
   for (const auto& [id, X] : values) {
     if (std::hypot(X.x - X_cur.x, X.y - X_cur.y) <= margin_m) kept.push_back(id);
   }

@@ -18,6 +18,7 @@ run_bench frontend_bench 'BM_GridAddRemoveScan|BM_InformationGain|BM_GainIndex|B
 run_bench marginalization_bench 'BM_Marginalize(Exact|ChowLiu)/(6|20)$'
 run_bench backend_bench 'BM_Optimize/(intel|input_M3500)$'
 run_bench sim_bench 'BM_RayCastOfficeScan361'
+run_bench map_keeper_bench 'BM_MapKeeperMove'
 start=$(date +%s.%N)
 build/apps/lifelong run scenarios/corridor_3.yaml -o "$out/corridor_3" > "$out/run.log" 2>&1 \
   || echo "ci-bench: lifelong run failed (see $out/run.log)"

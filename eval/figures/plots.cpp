@@ -12,6 +12,7 @@
 #include "eval/common/gnuplot_run.hpp"
 #include "eval/common/mode_order.hpp"
 #include "eval/figures/mode_colors.hpp"
+#include "eval/metrics/metrics.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -320,22 +321,10 @@ bool KldFigure(const std::map<std::string, std::vector<double>>& kl_per_mode,
   return true;
 }
 
-/// Whether the curves can be drawn against time: in every one the stamps never go back and
-/// end later than they start. (A log whose scans share one stamp is drawn by observation.)
-bool StampsAdvance(const std::map<std::string, std::vector<LoopCurvePoint>>& curves) {
-  for (const auto& [mode, curve] : curves) {
-    if (curve.size() < 2) continue;
-    if (!(curve.back().t_s > curve.front().t_s)) return false;
-    for (std::size_t i = 1; i < curve.size(); ++i) {
-      if (curve[i].t_s < curve[i - 1].t_s) return false;
-    }
-  }
-  return true;
-}
-
 bool LoopFigure(const std::map<std::string, std::vector<LoopCurvePoint>>& curves,
                 const std::string& out_dir, std::vector<Figure>* figures, PlotResult* r) {
-  const bool by_time = StampsAdvance(curves);
+  bool by_time = true;  // unless a mode's stamps do not advance (then by observation)
+  for (const auto& [mode, curve] : curves) by_time = by_time && StampsAdvance(curve);
   const std::string x = by_time ? "1" : "6";
   const auto column = [x](int col) {
     return [x, col](const std::string& c, const std::string& file, const std::string& t) {

@@ -255,4 +255,13 @@ std::vector<LoopCurvePoint> LoopCurve(const std::vector<TimelineRow>& timeline,
   return curve;
 }
 
+bool StampsAdvance(const std::vector<LoopCurvePoint>& curve) {
+  if (curve.size() < 2) return true;
+  if (!(curve.back().t_s > curve.front().t_s)) return false;
+  for (std::size_t i = 1; i < curve.size(); ++i) {
+    if (curve[i].t_s < curve[i - 1].t_s) return false;
+  }
+  return true;
+}
+
 }  // namespace lifelong::eval

@@ -125,4 +125,8 @@ LoopClosureResult ComputeLoopClosureStats(const std::vector<LoopClosure>& closur
 std::vector<LoopCurvePoint> LoopCurve(const std::vector<TimelineRow>& timeline,
                                       const LoopClosureResult& truth);
 
+/// Whether a curve can be drawn against time: its stamps never go back and end later than
+/// they start (a log whose scans share one stamp's cannot). A curve of under two points can.
+bool StampsAdvance(const std::vector<LoopCurvePoint>& curve);
+
 }  // namespace lifelong::eval

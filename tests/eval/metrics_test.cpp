@@ -199,5 +199,18 @@ TEST(LoopCurveTest, ClosuresCountFromTheObservationThatAcceptedThem) {
   EXPECT_DOUBLE_EQ(curve[4].recall, 0.5);
 }
 
+TEST(LoopCurveTest, StampsAdvanceUnlessTheyRepeatOrGoBack) {
+  const auto at = [](std::vector<double> stamps) {
+    std::vector<LoopCurvePoint> curve;
+    for (double t : stamps) curve.push_back({t, 0.0, 0.0, 0, 0, 0});
+    return curve;
+  };
+  EXPECT_TRUE(StampsAdvance(at({})));
+  EXPECT_TRUE(StampsAdvance(at({3.0})));
+  EXPECT_TRUE(StampsAdvance(at({1.0, 1.0, 2.0})));
+  EXPECT_FALSE(StampsAdvance(at({4.0, 4.0, 4.0})));
+  EXPECT_FALSE(StampsAdvance(at({1.0, 3.0, 2.0, 5.0})));
+}
+
 }  // namespace
 }  // namespace lifelong::eval

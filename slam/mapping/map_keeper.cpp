@@ -26,11 +26,7 @@ void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const 
     return;
   }
   if (gains_.Tracks(id)) {
-    // The cells at the old pose come from the gain index, which holds them anyway.
-    const std::vector<CellUpdate>& old_cells = Untrack(id);
-    const std::vector<CellUpdate> cells = grid_.TouchedCells(scan, to, cuts);
-    MoveCells(old_cells, cells);
-    Track(id, cells);
+    Rerender(id, scan, to, cuts);
     return;
   }
   // Far from the robot: moved as the standard mode moves it, the tracked gains updated.
@@ -41,6 +37,12 @@ void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const 
 void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
                         const std::vector<BeamCut>& old_cuts, const std::vector<BeamCut>& cuts) {
   Watch(id, scan, T, old_cuts);
+  Rerender(id, scan, T, cuts);
+}
+
+void MapKeeper::Rerender(NodeId id, const LaserScan& scan, const Pose2& T,
+                         const std::vector<BeamCut>& cuts) {
+  // The cells where it is rendered now come from the gain index, which holds them anyway.
   const std::vector<CellUpdate>& from = Untrack(id);
   const std::vector<CellUpdate> to = grid_.TouchedCells(scan, T, cuts);
   MoveCells(from, to);

@@ -73,6 +73,8 @@ class MapKeeper {
 
  private:
   const std::vector<CellUpdate>& Untrack(NodeId id);
+  /// A tracked scan rendered at T with `cuts` instead of where the index holds it.
+  void Rerender(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts);
   /// Starts tracking node id's scan as rendered at T with `cuts` (a no-op when tracked).
   void Watch(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts);
   void Change(const std::vector<CellUpdate>& cells, bool add);

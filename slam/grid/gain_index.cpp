@@ -148,6 +148,7 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
     }
     chunks_[chunk.key].push_back({chunk.bits, at, slot, width});
     scan.keys.push_back(chunk.key);
+    tracked_box_.Extend(chunk::XOf(chunk.key), chunk::YOf(chunk.key));
   }
   slots_.emplace(id, slot);
 }
@@ -170,6 +171,7 @@ std::int64_t GainIndex::Untrack(NodeId id) {
   }
   slots_.erase(it);
   free_slots_.push_back(slot);
+  ++left_since_box_;
   std::vector<std::uint8_t>().swap(scan.deltas);
   return scan.gain;
 }
@@ -215,8 +217,7 @@ void GainIndex::Cells(NodeId id, std::vector<CellUpdate>* cells) const {
     const std::vector<Piece>& pieces = chunks_.at(key);
     const Piece& piece = *std::find_if(pieces.begin(), pieces.end(),
                                        [slot](const Piece& p) { return p.slot == slot; });
-    bands.push_back({static_cast<int>(static_cast<std::uint32_t>(key >> 32)),
-                     static_cast<int>(static_cast<std::uint32_t>(key)), &piece, 0});
+    bands.push_back({chunk::XOf(key), chunk::YOf(key), &piece, 0});
   }
   for (std::size_t first = 0; first < bands.size();) {
     std::size_t last = first;  // the chunks of one chunk row: [first, last)
@@ -251,17 +252,52 @@ std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells,
   return gain;
 }
 
+const chunk::Box& GainIndex::TrackedBox() const {
+  // Recomputed after as many scans left as are tracked: a pass over the chunks per that many
+  // Untracks, each of which visited its own chunks anyway.
+  if (left_since_box_ > 0 && left_since_box_ >= slots_.size()) {
+    tracked_box_ = {};
+    for (const auto& entry : chunks_)
+      tracked_box_.Extend(chunk::XOf(entry.first), chunk::YOf(entry.first));
+    left_since_box_ = 0;
+  }
+  return tracked_box_;
+}
+
 template <typename List>
 bool GainIndex::Reaches(const List& cells) const {
   if (cells.empty() || chunks_.empty()) return false;
-  // The list is ordered by row: its first and last cells bound y.
-  int x0 = cells.front().cell.x, x1 = x0;
-  for (const auto& u : cells) {
-    x0 = std::min(x0, u.cell.x);
-    x1 = std::max(x1, u.cell.x);
+  // Only the list's rows within the tracked scans' box can meet a chunk of theirs: the list
+  // is ordered by row, so they are one stretch of it, and only its columns are looked at.
+  const chunk::Box& tracked = TrackedBox();
+  const int y0 = std::max(cells.front().cell.y, tracked.min_y * chunk::kSide);
+  const int y1 = std::min(cells.back().cell.y, tracked.max_y * chunk::kSide + chunk::kMask);
+  if (y1 < y0) return false;
+  const auto first = std::partition_point(cells.begin(), cells.end(),
+                                          [y0](const auto& u) { return u.cell.y < y0; });
+  const auto last =
+      std::partition_point(first, cells.end(), [y1](const auto& u) { return u.cell.y <= y1; });
+  if (first == last) return false;
+  int x0 = first->cell.x, x1 = x0;
+  for (auto u = first; u != last; ++u) {
+    x0 = std::min(x0, u->cell.x);
+    x1 = std::max(x1, u->cell.x);
   }
-  for (int cy = chunk::Of(cells.front().cell.y); cy <= chunk::Of(cells.back().cell.y); ++cy) {
-    for (int cx = chunk::Of(x0); cx <= chunk::Of(x1); ++cx) {
+  const int cx0 = std::max(chunk::Of(x0), tracked.min_x);
+  const int cx1 = std::min(chunk::Of(x1), tracked.max_x);
+  const int cy0 = chunk::Of(y0), cy1 = chunk::Of(y1);
+  if (cx1 < cx0) return false;
+  // Of the overlap's chunks and the tracked chunks, whichever are fewer are looked through.
+  const auto overlap =
+      static_cast<std::size_t>(cx1 - cx0 + 1) * static_cast<std::size_t>(cy1 - cy0 + 1);
+  if (overlap > chunks_.size()) {
+    return std::any_of(chunks_.begin(), chunks_.end(), [&](const auto& entry) {
+      const int cx = chunk::XOf(entry.first), cy = chunk::YOf(entry.first);
+      return cx0 <= cx && cx <= cx1 && cy0 <= cy && cy <= cy1;
+    });
+  }
+  for (int cy = cy0; cy <= cy1; ++cy) {
+    for (int cx = cx0; cx <= cx1; ++cx) {
       if (chunks_.count(Key(cx, cy))) return true;
     }
   }

@@ -134,6 +134,13 @@ class GainIndex {
   /// Whether a change of these cells (ordered by row) lies in a chunk of a tracked scan.
   template <typename List>
   bool Reaches(const List& cells) const;
+  /// A bound on the chunks of the tracked scans. It grows as scans are tracked and is
+  /// recomputed only after as many scans left as are tracked, so it may be wider than their
+  /// hull. It tells a change far from the robot (a loop closure moves scans across a campus,
+  /// 80 m beams) apart without a lookup per chunk of the change's box.
+  const chunk::Box& TrackedBox() const;
+  mutable chunk::Box tracked_box_;
+  mutable std::size_t left_since_box_ = 0;  ///< Untracks since tracked_box_ was recomputed
   /// Keeps a changed cell, one where a gain can change, for ApplyRelevant.
   void Keep(CellIndex cell, const CellState& before, const CellState& after);
   /// Updates the tracked gains for the cells kept.

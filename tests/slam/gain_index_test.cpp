@@ -3,6 +3,7 @@
 // the cells of pure counts.
 #include "slam/grid/gain_index.hpp"
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -204,6 +205,57 @@ TEST(GainIndex, TheGainOfAnAddedScanComesFromTheStatesItLeft) {
   EXPECT_EQ(GainOfAdded(lists[0], f.after), f.map.QuantizedGain(lists[0]));
 }
 
+// Scans at places 60 m apart, tracked and untracked as the robot comes and goes, and changes
+// that span two places at once (a list whose box holds far more chunks than are tracked):
+// the index tells a change far from every tracked scan apart by a bound on their chunks, and
+// no gain may go stale however that bound was grown or recomputed.
+TEST(GainIndex, GainsStayExactAsTrackedScansComeAndGoFarApart) {
+  Fixture f;
+  const testing::World room = testing::RoomWorld();
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> x(0.5, 7.5), y(0.5, 4.5), theta(-3.1, 3.1);
+  const std::vector<Pose2> places{{0, 0, 0}, {60, 0, 0}, {0, 60, 0}, {-60, 60, 0}};
+  std::vector<std::vector<CellUpdate>> lists;
+  for (int i = 0; i < 24; ++i) {
+    const Pose2 pose(x(rng), y(rng), theta(rng));
+    lists.push_back(f.map.TouchedCells(testing::SimulateScan(room, pose),
+                                       places[static_cast<std::size_t>(i) % places.size()] * pose));
+  }
+  for (int i = 0; i < 6; ++i) {  // a list of two places' scans
+    std::vector<CellUpdate> both = lists[static_cast<std::size_t>(2 * i)];
+    const auto& other = lists[static_cast<std::size_t>(2 * i + 1)];
+    both.insert(both.end(), other.begin(), other.end());
+    std::sort(both.begin(), both.end(),
+              [](const CellUpdate& a, const CellUpdate& b) { return RowOrder(a.cell, b.cell); });
+    lists.push_back(std::move(both));
+  }
+  std::vector<bool> in_map(lists.size(), false);
+  int checked = 0;
+  for (int step = 0; step < 400; ++step) {
+    const auto id = static_cast<NodeId>(rng() % lists.size());
+    const auto i = static_cast<std::size_t>(id);
+    if (f.index.Tracks(id)) {
+      f.index.Untrack(id);
+      if (rng() % 2 == 0) continue;  // it stays in the map, untracked
+    }
+    if (in_map[i] && rng() % 3 == 0) {
+      f.index.Track(id, lists[i], f.map.QuantizedGain(lists[i]));
+      continue;
+    }
+    f.Change(lists[i], !in_map[i]);
+    in_map[i] = !in_map[i];
+    if (in_map[i] && rng() % 2 == 0) {
+      f.index.Track(id, lists[i], f.map.QuantizedGain(lists[i]));
+    }
+    for (NodeId n = 0; n < static_cast<NodeId>(lists.size()); ++n) {
+      if (!f.index.Tracks(n)) continue;
+      ASSERT_EQ(f.index.Gain(n), f.map.QuantizedGain(lists[n])) << "node " << n << " step " << step;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 500);
+}
+
 TEST(GainIndex, TrackingTwiceOrUntrackingAStrangerIsALogicError) {
   Fixture f;
   const auto lists = RandomLists(f.map, 1, 3);
@@ -228,6 +280,22 @@ TEST(GainIndex, ASoleObserverLeftBehindGainsTheCell) {
   f.Change(b, false);
   EXPECT_EQ(f.index.Gain(1), f.map.QuantizedGain(a));
   EXPECT_EQ(f.index.Gain(1), QuantizedEntropy({0, 0}));
+}
+
+// A change meets the tracked chunk at the edge of its box, whichever way the index looks:
+// through the chunks of the change's box (two scans tracked close together) or through the
+// tracked chunks (two tracked far apart, so that their box holds far more chunks than they).
+TEST(GainIndex, AChangeReachesATrackedChunkAtTheEdgeOfItsBox) {
+  for (const int far : {40, 4000}) {
+    Fixture f;
+    const std::vector<CellUpdate> a{{{3, 3}, {0, 1}}}, c{{{far, far}, {0, 1}}};
+    const std::vector<CellUpdate> b{{{3, 3}, {0, 2}}, {{far / 2, far / 2}, {1, 0}}};
+    for (const auto* list : {&a, &b, &c}) f.Change(*list, true);
+    f.index.Track(1, a, f.map.QuantizedGain(a));
+    f.index.Track(2, c, f.map.QuantizedGain(c));
+    f.Change(b, false);
+    EXPECT_EQ(f.index.Gain(1), QuantizedEntropy({0, 0})) << "far " << far;
+  }
 }
 
 TEST(ChunkedCells, GroupsByChunkInBitOrderAndRefusesAnUnorderedList) {

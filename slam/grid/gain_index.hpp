@@ -136,8 +136,8 @@ class GainIndex {
   bool Reaches(const List& cells) const;
   /// A bound on the chunks of the tracked scans. It grows as scans are tracked and is
   /// recomputed only after as many scans left as are tracked, so it may be wider than their
-  /// hull. It tells a change far from the robot (a loop closure moves scans across a campus,
-  /// 80 m beams) apart without a lookup per chunk of the change's box.
+  /// hull. A change far from the robot (a loop closure moves scans across a campus) is told
+  /// apart by the rows it spans, without a pass over its cells.
   const chunk::Box& TrackedBox() const;
   mutable chunk::Box tracked_box_;
   mutable std::size_t left_since_box_ = 0;  ///< Untracks since tracked_box_ was recomputed

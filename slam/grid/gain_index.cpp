@@ -265,43 +265,18 @@ const chunk::Box& GainIndex::TrackedBox() const {
 }
 
 template <typename List>
-bool GainIndex::Reaches(const List& cells) const {
-  if (cells.empty() || chunks_.empty()) return false;
-  // Only the list's rows within the tracked scans' box can meet a chunk of theirs: the list
-  // is ordered by row, so they are one stretch of it, and only its columns are looked at.
-  const chunk::Box& tracked = TrackedBox();
-  const int y0 = std::max(cells.front().cell.y, tracked.min_y * chunk::kSide);
-  const int y1 = std::min(cells.back().cell.y, tracked.max_y * chunk::kSide + chunk::kMask);
-  if (y1 < y0) return false;
+GainIndex::Stretch GainIndex::InTrackedBox(const List& cells) const {
+  if (cells.empty() || chunks_.empty()) return {};
+  // The list is ordered by row: the rows within the box are one stretch of it.
+  const chunk::Box& box = TrackedBox();
+  const int y0 = box.min_y * chunk::kSide, y1 = box.max_y * chunk::kSide + chunk::kMask;
   const auto first = std::partition_point(cells.begin(), cells.end(),
                                           [y0](const auto& u) { return u.cell.y < y0; });
   const auto last =
       std::partition_point(first, cells.end(), [y1](const auto& u) { return u.cell.y <= y1; });
-  if (first == last) return false;
-  int x0 = first->cell.x, x1 = x0;
-  for (auto u = first; u != last; ++u) {
-    x0 = std::min(x0, u->cell.x);
-    x1 = std::max(x1, u->cell.x);
-  }
-  const int cx0 = std::max(chunk::Of(x0), tracked.min_x);
-  const int cx1 = std::min(chunk::Of(x1), tracked.max_x);
-  const int cy0 = chunk::Of(y0), cy1 = chunk::Of(y1);
-  if (cx1 < cx0) return false;
-  // Of the overlap's chunks and the tracked chunks, whichever are fewer are looked through.
-  const auto overlap =
-      static_cast<std::size_t>(cx1 - cx0 + 1) * static_cast<std::size_t>(cy1 - cy0 + 1);
-  if (overlap > chunks_.size()) {
-    return std::any_of(chunks_.begin(), chunks_.end(), [&](const auto& entry) {
-      const int cx = chunk::XOf(entry.first), cy = chunk::YOf(entry.first);
-      return cx0 <= cx && cx <= cx1 && cy0 <= cy && cy <= cy1;
-    });
-  }
-  for (int cy = cy0; cy <= cy1; ++cy) {
-    for (int cx = cx0; cx <= cx1; ++cx) {
-      if (chunks_.count(Key(cx, cy))) return true;
-    }
-  }
-  return false;
+  return {static_cast<std::size_t>(first - cells.begin()),
+          static_cast<std::size_t>(last - cells.begin()), box.min_x * chunk::kSide,
+          box.max_x * chunk::kSide + chunk::kMask};
 }
 
 void GainIndex::Keep(CellIndex cell, const CellState& before, const CellState& after) {
@@ -315,11 +290,14 @@ void GainIndex::Apply(const std::vector<CellUpdate>& cells, const std::vector<Ce
   if (after.size() != cells.size()) {
     throw std::logic_error("GainIndex::Apply: one state per cell expected");
   }
-  if (!Reaches(cells)) return;
-  // Only the cells where a gain can change, before or after, are looked up.
+  // Only the cells within the tracked scans' box where a gain can change, before or after,
+  // are looked up: most changes far from the robot (a loop closure moves scans across a
+  // campus) hold none.
   relevant_.clear();
   relevant_states_.clear();
-  for (std::size_t i = 0; i < cells.size(); ++i) {
+  const Stretch in = InTrackedBox(cells);
+  for (std::size_t i = in.first; i < in.last; ++i) {
+    if (!in.Holds(cells[i].cell)) continue;
     const CellCounts d = cells[i].delta;
     const CellState& a = after[i];
     const std::uint32_t touches = Touches(d) ? 1 : 0;
@@ -327,17 +305,18 @@ void GainIndex::Apply(const std::vector<CellUpdate>& cells, const std::vector<Ce
                            added ? a.lists - touches : a.lists + touches};
     if (!NoGainCanChange(before, a)) Keep(cells[i].cell, before, a);
   }
-  ApplyRelevant();
+  if (!relevant_.empty()) ApplyRelevant();
 }
 
 void GainIndex::Apply(const std::vector<CellChange>& changes) {
-  if (!Reaches(changes)) return;
   relevant_.clear();
   relevant_states_.clear();
-  for (const CellChange& c : changes) {
-    if (!NoGainCanChange(c.before, c.after)) Keep(c.cell, c.before, c.after);
+  const Stretch in = InTrackedBox(changes);
+  for (std::size_t i = in.first; i < in.last; ++i) {
+    const CellChange& c = changes[i];
+    if (in.Holds(c.cell) && !NoGainCanChange(c.before, c.after)) Keep(c.cell, c.before, c.after);
   }
-  ApplyRelevant();
+  if (!relevant_.empty()) ApplyRelevant();
 }
 
 // (Cloned for CPUs with and without the POPCNT instruction: the rank of a bit in a piece

@@ -69,8 +69,8 @@ class GainIndex {
   void Cells(NodeId id, std::vector<CellUpdate>* cells) const;
   /// Updates the tracked gains for a change of the map: `cells` were just added to it (or
   /// removed from it), leaving the counts `after` (GridMap::Add, Remove). The scan changed
-  /// must not be tracked. A change far from every tracked scan costs one pass over its
-  /// cells.
+  /// must not be tracked. A change costs a search of its rows and a pass over those within
+  /// a bound on the tracked scans' chunks (TrackedBox), so one far from them costs little.
   void Apply(const std::vector<CellUpdate>& cells, const std::vector<CellState>& after, bool added);
   /// Same, for cells whose states changed as listed (GridMap::Move), ordered by (y, x).
   void Apply(const std::vector<CellChange>& changes);
@@ -131,13 +131,18 @@ class GainIndex {
   std::unordered_map<NodeId, std::uint32_t> slots_;
   std::vector<Scan> scans_;                ///< by slot
   std::vector<std::uint32_t> free_slots_;  ///< of untracked scans, for reuse
-  /// Whether a change of these cells (ordered by row) lies in a chunk of a tracked scan.
+  /// The cells of a list (ordered by row) that a tracked scan's chunk may hold: the stretch
+  /// [first, last) of the rows within TrackedBox(), and of those the cells it Holds.
+  struct Stretch {
+    std::size_t first = 0, last = 0;
+    int x0 = 0, x1 = -1;  ///< the box's columns, in cells
+    bool Holds(CellIndex c) const { return x0 <= c.x && c.x <= x1; }
+  };
   template <typename List>
-  bool Reaches(const List& cells) const;
+  Stretch InTrackedBox(const List& cells) const;
   /// A bound on the chunks of the tracked scans. It grows as scans are tracked and is
   /// recomputed only after as many scans left as are tracked, so it may be wider than their
-  /// hull. A change far from the robot (a loop closure moves scans across a campus) is told
-  /// apart by the rows it spans, without a pass over its cells.
+  /// hull.
   const chunk::Box& TrackedBox() const;
   mutable chunk::Box tracked_box_;
   mutable std::size_t left_since_box_ = 0;  ///< Untracks since tracked_box_ was recomputed

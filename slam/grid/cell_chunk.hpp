@@ -28,21 +28,11 @@ inline int XOf(std::uint64_t key) {
 }
 inline int YOf(std::uint64_t key) { return static_cast<int>(static_cast<std::uint32_t>(key)); }
 
-/// An inclusive box of chunk coordinates, empty until extended.
-struct Box {
-  int min_x = 0, min_y = 0, max_x = -1, max_y = -1;
-  bool empty() const { return max_x < min_x; }
-  void Extend(int x, int y) {
-    if (empty()) {
-      *this = {x, y, x, y};
-      return;
-    }
-    min_x = x < min_x ? x : min_x;
-    min_y = y < min_y ? y : min_y;
-    max_x = x > max_x ? x : max_x;
-    max_y = y > max_y ? y : max_y;
-  }
-};
+/// The first and last cells of the chunk a key was made of.
+inline CellIndex FirstCell(std::uint64_t key) { return {XOf(key) * kSide, YOf(key) * kSide}; }
+inline CellIndex LastCell(std::uint64_t key) {
+  return {XOf(key) * kSide + kMask, YOf(key) * kSide + kMask};
+}
 
 /// The place of a cell within its chunk, row-major: (y mod 32) * 32 + x mod 32.
 inline int Offset(CellIndex c) { return ((c.y & kMask) << kBits) | (c.x & kMask); }

@@ -148,7 +148,7 @@ void GainIndex::Track(NodeId id, const std::vector<CellUpdate>& cells, std::int6
     }
     chunks_[chunk.key].push_back({chunk.bits, at, slot, width});
     scan.keys.push_back(chunk.key);
-    tracked_box_.Extend(chunk::XOf(chunk.key), chunk::YOf(chunk.key));
+    tracked_box_.Extend(chunk::FirstCell(chunk.key), chunk::LastCell(chunk.key));
   }
   slots_.emplace(id, slot);
 }
@@ -252,13 +252,13 @@ std::int64_t GainOfAdded(const std::vector<CellUpdate>& cells,
   return gain;
 }
 
-const chunk::Box& GainIndex::TrackedBox() const {
+const CellBounds& GainIndex::TrackedBox() const {
   // Recomputed after as many scans left as are tracked: a pass over the chunks per that many
   // Untracks, each of which visited its own chunks anyway.
   if (left_since_box_ > 0 && left_since_box_ >= slots_.size()) {
     tracked_box_ = {};
     for (const auto& entry : chunks_)
-      tracked_box_.Extend(chunk::XOf(entry.first), chunk::YOf(entry.first));
+      tracked_box_.Extend(chunk::FirstCell(entry.first), chunk::LastCell(entry.first));
     left_since_box_ = 0;
   }
   return tracked_box_;
@@ -268,15 +268,14 @@ template <typename List>
 GainIndex::Stretch GainIndex::InTrackedBox(const List& cells) const {
   if (cells.empty() || chunks_.empty()) return {};
   // The list is ordered by row: the rows within the box are one stretch of it.
-  const chunk::Box& box = TrackedBox();
-  const int y0 = box.min_y * chunk::kSide, y1 = box.max_y * chunk::kSide + chunk::kMask;
+  const CellBounds& box = TrackedBox();
+  const int y0 = box.min.y, y1 = box.max.y;
   const auto first = std::partition_point(cells.begin(), cells.end(),
                                           [y0](const auto& u) { return u.cell.y < y0; });
   const auto last =
       std::partition_point(first, cells.end(), [y1](const auto& u) { return u.cell.y <= y1; });
   return {static_cast<std::size_t>(first - cells.begin()),
-          static_cast<std::size_t>(last - cells.begin()), box.min_x * chunk::kSide,
-          box.max_x * chunk::kSide + chunk::kMask};
+          static_cast<std::size_t>(last - cells.begin()), box.min.x, box.max.x};
 }
 
 void GainIndex::Keep(CellIndex cell, const CellState& before, const CellState& after) {

@@ -135,7 +135,7 @@ class GainIndex {
   /// [first, last) of the rows within TrackedBox(), and of those the cells it Holds.
   struct Stretch {
     std::size_t first = 0, last = 0;
-    int x0 = 0, x1 = -1;  ///< the box's columns, in cells
+    int x0 = 0, x1 = -1;  ///< the box's columns
     bool Holds(CellIndex c) const { return x0 <= c.x && c.x <= x1; }
   };
   template <typename List>
@@ -143,8 +143,8 @@ class GainIndex {
   /// A bound on the chunks of the tracked scans. It grows as scans are tracked and is
   /// recomputed only after as many scans left as are tracked, so it may be wider than their
   /// hull.
-  const chunk::Box& TrackedBox() const;
-  mutable chunk::Box tracked_box_;
+  const CellBounds& TrackedBox() const;
+  mutable CellBounds tracked_box_;
   mutable std::size_t left_since_box_ = 0;  ///< Untracks since tracked_box_ was recomputed
   /// Keeps a changed cell, one where a gain can change, for ApplyRelevant.
   void Keep(CellIndex cell, const CellState& before, const CellState& after);

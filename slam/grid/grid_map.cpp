@@ -68,11 +68,7 @@ GridMap::Cell* GridMap::FindOrCreate(CellIndex c, Cursor* cursor) {
       chunk = std::make_unique<Chunk>();
       const CellIndex lo{Of(c.x) * kChunkSide, Of(c.y) * kChunkSide};
       const CellIndex hi{lo.x + kChunkSide - 1, lo.y + kChunkSide - 1};
-      extent_ = extent_.empty
-                    ? CellBounds{lo, hi, false}
-                    : CellBounds{{std::min(extent_.min.x, lo.x), std::min(extent_.min.y, lo.y)},
-                                 {std::max(extent_.max.x, hi.x), std::max(extent_.max.y, hi.y)},
-                                 false};
+      extent_.Extend(lo, hi);
     }
     cursor->valid[slot] = true;
     cursor->keys[slot] = key;
@@ -184,8 +180,8 @@ bool GridMap::IsKnown(CellIndex c) const {
 
 void GridMap::ForEachKnownCell(const std::function<void(CellIndex, CellCounts)>& f) const {
   for (const auto& [key, chunk] : chunks_) {
-    const int base_x = static_cast<int>(static_cast<std::uint32_t>(key >> 32)) * kChunkSide;
-    const int base_y = static_cast<int>(static_cast<std::uint32_t>(key)) * kChunkSide;
+    const int base_x = chunk::XOf(key) * kChunkSide;
+    const int base_y = chunk::YOf(key) * kChunkSide;
     for (int i = 0; i < kChunkSide * kChunkSide; ++i) {
       const CellCounts& c = chunk->cells[static_cast<std::size_t>(i)].counts;
       if (c.hits == 0 && c.misses == 0) continue;
@@ -196,14 +192,7 @@ void GridMap::ForEachKnownCell(const std::function<void(CellIndex, CellCounts)>&
 
 CellBounds GridMap::Bounds() const {
   CellBounds b;
-  ForEachKnownCell([&b](CellIndex c, CellCounts) {
-    if (b.empty) {
-      b = {c, c, false};
-      return;
-    }
-    b.min = {std::min(b.min.x, c.x), std::min(b.min.y, c.y)};
-    b.max = {std::max(b.max.x, c.x), std::max(b.max.y, c.y)};
-  });
+  ForEachKnownCell([&b](CellIndex c, CellCounts) { b.Extend(c, c); });
   return b;
 }
 

@@ -63,6 +63,15 @@ struct CellBounds {
   CellIndex min;
   CellIndex max;
   bool empty = true;
+  /// Grows the box to hold the box [lo, hi].
+  void Extend(CellIndex lo, CellIndex hi) {
+    if (empty) {
+      *this = {lo, hi, false};
+      return;
+    }
+    min = {lo.x < min.x ? lo.x : min.x, lo.y < min.y ? lo.y : min.y};
+    max = {hi.x > max.x ? hi.x : max.x, hi.y > max.y ? hi.y : max.y};
+  }
 };
 
 struct GridMapConfig {

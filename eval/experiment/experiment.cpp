@@ -52,7 +52,7 @@ void AddVideoFrame(FrameSink* sink, const Observation& obs, const std::optional<
   for (const auto& r : runners) {
     const slam::Mapper& m = r->mapper();
     const Pose2 estimate = m.LastScanPose().T_world_robot;
-    panels.push_back(MakePanel(r->name(), ToOccupancyGrid(m.map()), m.graph(), m.values(), estimate,
+    panels.push_back(MakePanel(r->name(), ToOccupancyGrid(m), m.graph(), m.values(), estimate,
                                m.observations()));
   }
   const std::vector<Segment> walls = truth ? truth->walls : std::vector<Segment>{};
@@ -87,10 +87,10 @@ std::vector<std::string> WriteTruth(const std::vector<Observation>& stream,
 
 }  // namespace
 
-OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
+OccupancyGrid ToOccupancyGrid(const slam::Mapper& mapper) {
   OccupancyGrid grid;
-  grid.resolution_m = map.resolution_m();
-  const slam::CellBounds b = map.Bounds();
+  grid.resolution_m = mapper.map().resolution_m();
+  const slam::CellBounds b = mapper.map().Bounds();
   if (b.empty) return grid;
   grid.width = b.max.x - b.min.x + 1;
   grid.height = b.max.y - b.min.y + 1;
@@ -98,11 +98,8 @@ OccupancyGrid ToOccupancyGrid(const slam::GridMap& map) {
   grid.origin_y_m = b.min.y * grid.resolution_m;
   grid.p_occ.assign(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height),
                     OccupancyGrid::kUnknown);
-  map.ForEachKnownCell([&](slam::CellIndex c, slam::CellCounts counts) {
-    const double total = static_cast<double>(counts.hits) + static_cast<double>(counts.misses);
-    if (total > 0.0) {
-      grid.At(c.x - b.min.x, c.y - b.min.y) = static_cast<float>(counts.hits / total);
-    }
+  mapper.ForEachPresentCell([&](slam::CellIndex c, double p) {
+    grid.At(c.x - b.min.x, c.y - b.min.y) = static_cast<float>(p);
   });
   return grid;
 }

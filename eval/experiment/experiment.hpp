@@ -17,6 +17,7 @@
 #include "sensor/observation.hpp"
 #include "sim/world.hpp"
 #include "slam/grid/grid_map.hpp"
+#include "slam/mapping/mapper.hpp"
 #include "slam/mapping/mapper_config.hpp"
 #include "types/occupancy_grid.hpp"
 #include "types/relation.hpp"
@@ -59,8 +60,9 @@ struct ExperimentConfig {
   FrameSinkOpener open_video;
 };
 
-/// The mapper's counting grid as an OccupancyGrid (p = hits / (hits + misses)).
-OccupancyGrid ToOccupancyGrid(const slam::GridMap& map);
+/// The mapper's map as an OccupancyGrid: the counting grid's p = hits / (hits + misses), as
+/// the world most likely stands at the latest scan (Mapper::ForEachPresentCell).
+OccupancyGrid ToOccupancyGrid(const slam::Mapper& mapper);
 
 /// What the report of a run of RunExperiment needs to know of it; `frame` is the run's
 /// (MakeRunMapFrame).

@@ -207,7 +207,7 @@ void ModeRunner::ScorePresentAt(const std::vector<Observation>& stream, std::siz
       estimate.push_back(trajectory[k].T_world_robot);
       true_poses.push_back(*stream[k].T_world_robot_true);
     }
-    const OccupancyGrid grid = ToOccupancyGrid(mapper_->map());
+    const OccupancyGrid grid = ToOccupancyGrid(*mapper_);
     GroundTruth then = TruthOf(*truth->world, t);
     // One raster of the world as it stood then, for the map's figures and its stale cells.
     then.raster = std::make_shared<const TruthRaster>(then, true_poses, grid.resolution_m);
@@ -316,7 +316,7 @@ ModeSummary ModeRunner::Finish(const std::vector<Observation>& stream,
   };
   io::WriteTum(out("trajectory.tum"), trajectory);
   io::WriteG2o(out("graph.g2o"), m.graph().Factors(), m.values());
-  const OccupancyGrid grid = ToOccupancyGrid(m.map());
+  const OccupancyGrid grid = ToOccupancyGrid(m);
   const io::MapFilePaths map_files = io::WritePgmMap(out("map.pgm"), grid);
   written_.push_back(name_ + "/" + fs::path(map_files.yaml).filename().string());
   const EntropyResult entropy = ComputeMapEntropy(grid);

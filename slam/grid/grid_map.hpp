@@ -93,6 +93,15 @@ struct GridMapConfig {
   /// traversed cell before a beam's own end counts a miss, as before
   /// (docs/results.md "Changing worlds (issue #35)").
   bool hits_mask_own_misses = true;
+  /// s, the map as output (ForEachPresentCell, present_view.hpp): in the pruned modes, a cell
+  /// a cut beam changed relaxes from what it shows toward its long-run occupancy with this
+  /// time constant since it was last observed (and a CellLedger is kept for it). 0: the map
+  /// is output as it shows. The mapper's grid, gains and matching do not read it.
+  double present_timescale_s = 0.0;
+  /// >= 1, the shape k of how long a changed cell keeps the state it was last seen in
+  /// (present_view.hpp): it keeps it until t_seen + dt with probability exp(-(dt / tau)^k).
+  /// 1: a Markov chain (no memory); above 1, a cell just seen is unlikely to change at once.
+  double present_shape = 1.0;
 };
 
 /// Binary entropy in bits of a cell with these counts (1 bit when unknown).

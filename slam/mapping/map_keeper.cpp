@@ -7,7 +7,9 @@
 namespace lifelong::slam {
 
 MapKeeper::MapKeeper(const GridMapConfig& grid, bool track_gains, GainTiming timing)
-    : grid_(grid), track_gains_(track_gains), timing_(std::move(timing)) {}
+    : grid_(grid), track_gains_(track_gains), timing_(std::move(timing)) {
+  if (track_gains_ && grid.present_timescale_s > 0.0) ledger_ = std::make_unique<CellLedger>();
+}
 
 void MapKeeper::Add(NodeId id, const LaserScan& scan, const Pose2& T) {
   if (!track_gains_) {
@@ -15,6 +17,7 @@ void MapKeeper::Add(NodeId id, const LaserScan& scan, const Pose2& T) {
     return;
   }
   const std::vector<CellUpdate> added = grid_.TouchedCells(scan, T);
+  if (ledger_) ledger_->Observe(added, scan.stamp_s);
   Change(added, true);
   Track(id, added);
 }
@@ -37,14 +40,15 @@ void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const 
 void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
                         const std::vector<BeamCut>& old_cuts, const std::vector<BeamCut>& cuts) {
   Watch(id, scan, T, old_cuts);
-  Rerender(id, scan, T, cuts);
+  Rerender(id, scan, T, cuts, true);
 }
 
 void MapKeeper::Rerender(NodeId id, const LaserScan& scan, const Pose2& T,
-                         const std::vector<BeamCut>& cuts) {
+                         const std::vector<BeamCut>& cuts, bool recut) {
   // The cells where it is rendered now come from the gain index, which holds them anyway.
   const std::vector<CellUpdate>& from = Untrack(id);
   const std::vector<CellUpdate> to = grid_.TouchedCells(scan, T, cuts);
+  if (recut && ledger_) ledger_->Recut(from, to);
   MoveCells(from, to);
   Track(id, to);
 }
@@ -86,10 +90,14 @@ void MapKeeper::Follow(const Values& values, double epsilon_m, double epsilon_ra
 
 void MapKeeper::Remove(NodeId id, const LaserScan& scan, const Pose2& T,
                        const std::vector<BeamCut>& cuts) {
+  const auto leave = [this](const std::vector<CellUpdate>& cells) {
+    if (ledger_) ledger_->Archive(cells);
+    Change(cells, false);
+  };
   if (gains_.Tracks(id)) {
-    Change(Untrack(id), false);
+    leave(Untrack(id));
   } else {
-    Change(grid_.TouchedCells(scan, T, cuts), false);
+    leave(grid_.TouchedCells(scan, T, cuts));
   }
 }
 

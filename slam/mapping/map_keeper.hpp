@@ -14,11 +14,13 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "sensor/laser_scan.hpp"
 #include "sensor/pose2.hpp"
 #include "slam/graph/pose_graph.hpp"
+#include "slam/grid/cell_ledger.hpp"
 #include "slam/grid/gain_index.hpp"
 #include "slam/grid/grid_map.hpp"
 #include "slam/mapping/scoped_ms.hpp"
@@ -35,7 +37,9 @@ struct GainTiming {
 
 class MapKeeper {
  public:
-  /// track_gains: the pruned modes' gain index.
+  /// track_gains: the pruned modes' gain index. With it and grid.present_timescale_s > 0, a
+  /// CellLedger too: what removals and cuts take out of the grid, and when each cell was last
+  /// observed (the map as it stands now, present_view.hpp).
   MapKeeper(const GridMapConfig& grid, bool track_gains, GainTiming timing);
 
   /// Renders node id's scan at T (and, with gains, tracks its gain: a new scan is near the
@@ -70,11 +74,15 @@ class MapKeeper {
   /// The gain of node id's scan at T computed afresh from the grid, bits (a check of Gain).
   double FreshGain(const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts) const;
   const GridMap& grid() const { return grid_; }
+  /// Null unless kept (the constructor).
+  const CellLedger* ledger() const { return ledger_.get(); }
 
  private:
   const std::vector<CellUpdate>& Untrack(NodeId id);
   /// A tracked scan rendered at T with `cuts` instead of where the index holds it.
-  void Rerender(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts);
+  /// recut: at the same pose, with other cuts (the ledger archives what they take out).
+  void Rerender(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts,
+                bool recut = false);
   /// Starts tracking node id's scan as rendered at T with `cuts` (a no-op when tracked).
   void Watch(NodeId id, const LaserScan& scan, const Pose2& T, const std::vector<BeamCut>& cuts);
   void Change(const std::vector<CellUpdate>& cells, bool add);
@@ -86,6 +94,7 @@ class MapKeeper {
   bool track_gains_;
   GainTiming timing_;
   GainIndex gains_;                      ///< every node's information gain
+  std::unique_ptr<CellLedger> ledger_;   ///< what left the grid, and when cells were seen
   std::vector<CellState> counts_after_;  ///< scratch: the cells as a change leaves them
   std::vector<CellChange> changes_;      ///< scratch: the cells a move changed
   std::vector<CellUpdate> cells_;        ///< scratch: a tracked scan's cells (GainIndex::Cells)

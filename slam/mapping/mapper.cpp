@@ -8,6 +8,7 @@
 #include <string>
 
 #include "slam/backend/optimizer.hpp"
+#include "slam/grid/present_view.hpp"
 #include "slam/mapping/mapper_state.hpp"
 
 namespace lifelong::slam {
@@ -117,6 +118,14 @@ void Mapper::Finish() {
 const PoseGraph& Mapper::graph() const { return state_->graph; }
 const Values& Mapper::values() const { return state_->values; }
 const GridMap& Mapper::map() const { return state_->keeper.grid(); }
+
+void Mapper::ForEachPresentCell(const std::function<void(CellIndex, double)>& f) const {
+  const ScanStore& scans = state_->scans;
+  const double now_s = scans.size() > 0 ? scans.stamp(scans.size() - 1) : 0.0;
+  const GridMapConfig& grid = state_->config.grid;
+  slam::ForEachPresentCell(map(), state_->keeper.ledger(), now_s,
+                           {grid.present_timescale_s, grid.present_shape}, f);
+}
 void Mapper::set_hypothesis_hook(std::function<void(LoopHypothesis*, const Values&)> hook) {
   state_->closer.set_hypothesis_hook(std::move(hook));
 }

@@ -42,6 +42,9 @@ class Mapper {
   const PoseGraph& graph() const;
   const Values& values() const;
   const GridMap& map() const;
+  /// The map as the world most likely stands at the latest scan: f(cell, p(occ)) for every
+  /// cell map() knows (ForEachPresentCell, grid.present_timescale_s).
+  void ForEachPresentCell(const std::function<void(CellIndex, double)>& f) const;
   /// A pose for every scan seen so far, in stream order (removed nodes' scans included,
   /// held relative to a surviving node).
   std::vector<StampedPose> Trajectory() const;

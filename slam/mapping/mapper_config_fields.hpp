@@ -42,6 +42,8 @@ inline constexpr Range kAnyNumber{-kInf, kInf, false, "a finite number"};
 inline constexpr Range kNonNegative{0.0, kInf, false, ">= 0"};
 inline constexpr Range kPositive{0.0, kInf, true, "> 0"};
 inline constexpr Range kUnit{0.0, 1.0, false, "in [0, 1]"};
+/// A Weibull shape: past 100, exp(-(dt / tau)^k) is a step at tau to the last bit anyway.
+inline constexpr Range kShape{1.0, 100.0, false, "in [1, 100]"};
 /// Cell sides: a finer cell than 5 mm resolves nothing a laser measures, and costs memory and
 /// time by the square (1e-6 m filled 24 GB in one scan).
 inline constexpr Range kCellSide{0.005, 10.0, false, "in [0.005, 10] m"};
@@ -258,6 +260,8 @@ void VisitConfig(V& v, slam::MapperConfig& c) {
     s.Number("max_hit_range_m", c.grid.max_hit_range_m, kPositive);
     s.Int("max_dropout_beams", c.grid.max_dropout_beams, 0);
     s.Bool("hits_mask_own_misses", c.grid.hits_mask_own_misses);
+    s.Number("present_timescale_s", c.grid.present_timescale_s, kNonNegative);
+    s.Number("present_shape", c.grid.present_shape, kShape);
   });
   v.Section("optimizer", [&](auto& s) { VisitOptimizer(s, c.optimizer); });
   v.Section("map_update", [&](auto& s) {

@@ -161,6 +161,8 @@ void ExpectSameConfig(const MapperConfig& a, const MapperConfig& b) {
   EXPECT_EQ(a.grid.max_hit_range_m, b.grid.max_hit_range_m);
   EXPECT_EQ(a.grid.max_dropout_beams, b.grid.max_dropout_beams);
   EXPECT_EQ(a.grid.hits_mask_own_misses, b.grid.hits_mask_own_misses);
+  EXPECT_EQ(a.grid.present_timescale_s, b.grid.present_timescale_s);
+  EXPECT_EQ(a.grid.present_shape, b.grid.present_shape);
   ExpectSameOptimizer(a.optimizer, b.optimizer);
   EXPECT_EQ(a.map_move_epsilon_m, b.map_move_epsilon_m);
   EXPECT_EQ(a.map_move_epsilon_rad, b.map_move_epsilon_rad);

@@ -3,6 +3,7 @@
 // gain comes back equal to a fresh computation when it is tracked again.
 #include "slam/mapping/map_keeper.hpp"
 
+#include <cstdint>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -16,7 +17,7 @@ namespace {
 struct Room {
   testing::World world = testing::RoomWorld();
   NodeStore nodes;
-  MapKeeper keeper{GridMapConfig{}, true, GainTiming{[] { return nullptr; }, nullptr}};
+  MapKeeper keeper;
   std::vector<CellIndex> seen;  ///< every cell a scan was ever rendered in
 
   void Saw(const NodeData& data) {
@@ -24,7 +25,8 @@ struct Room {
       seen.push_back(u.cell);
   }
 
-  Room() {
+  explicit Room(const GridMapConfig& grid = {})
+      : keeper(grid, true, GainTiming{[] { return nullptr; }, nullptr}) {
     const Pose2 poses[] = {{1.5, 2.0, 0.0}, {2.5, 3.3, 0.4}, {3.5, 2.0, -0.3},
                            {4.8, 3.0, 2.0}, {6.0, 2.2, 3.0}, {7.0, 1.0, 1.5}};
     NodeId id = 0;
@@ -32,6 +34,7 @@ struct Room {
       NodeData& data = nodes[id];
       data.T_world_map = pose;
       data.scan = testing::SimulateScan(world, pose);
+      data.scan.stamp_s = 10.0 * static_cast<double>(id);
       keeper.Add(id++, data.scan, pose);
       Saw(data);
     }
@@ -117,6 +120,40 @@ TEST(MapKeeper, AnUntrackedScanIsCutFromItsOldCuts) {
   EXPECT_TRUE(room.keeper.Tracks(3));
   EXPECT_TRUE(room.GridHoldsTheNodes());
   EXPECT_LT(room.WorstGainError(), 1e-9);
+}
+
+// With the present view on, what a cut or a removal takes out of the grid goes to the ledger:
+// the grid plus the ledger hold every scan as it was taken, and the ledger knows when each
+// cell was last observed.
+TEST(MapKeeper, TheLedgerHoldsWhatCutsAndRemovalsTookOut) {
+  EXPECT_EQ(Room().keeper.ledger(), nullptr);  // off by default
+  GridMapConfig grid;
+  grid.present_timescale_s = 600.0;
+  Room room(grid);
+  GridMap taken;
+  for (const auto& [id, data] : room.nodes)
+    taken.Add(taken.TouchedCells(data.scan, data.T_world_map));
+  NodeData& cut = room.nodes.at(3);
+  const std::vector<BeamCut> cuts{{10, 0.5f, 0.0f}, {40, 1.0f, 1.4f}};
+  room.keeper.Retrace(3, cut.scan, cut.T_world_map, cut.cuts, cuts);
+  cut.cuts = cuts;
+  const NodeData& gone = room.nodes.at(5);
+  room.keeper.Remove(5, gone.scan, gone.T_world_map, gone.cuts);
+  const CellLedger& ledger = *room.keeper.ledger();
+  int changed = 0;
+  taken.ForEachKnownCell([&](CellIndex c, CellCounts want) {
+    const CellCounts shown = room.keeper.grid().Counts(c);
+    const CellLedger::Entry* e = ledger.Find(c);
+    ASSERT_NE(e, nullptr);
+    EXPECT_EQ(static_cast<std::int64_t>(shown.hits) + e->hits, want.hits);
+    EXPECT_EQ(static_cast<std::int64_t>(shown.misses) + e->misses, want.misses);
+    EXPECT_LE(ledger.SeenStamp(*e), 50.0);
+    changed += e->changed ? 1 : 0;
+  });
+  EXPECT_GT(changed, 0);
+  // The last scan's cells were last observed at its stamp.
+  const CellUpdate last = room.keeper.grid().TouchedCells(gone.scan, gone.T_world_map).front();
+  EXPECT_EQ(ledger.SeenStamp(*ledger.Find(last.cell)), 50.0);
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ class CellLedger {
     bool changed = false;     ///< a cut changed the cell: the map saw it change
   };
 
-  /// A new scan, stamped stamp_s, observed these cells.
+  /// A scan stamped stamp_s is rendered in these cells: new, or moved (a cell's observation
+  /// time follows the scans that show it where they are rendered now).
   void Observe(const std::vector<CellUpdate>& cells, double stamp_s);
   /// A scan rendered as `cells` left the map.
   void Archive(const std::vector<CellUpdate>& cells);

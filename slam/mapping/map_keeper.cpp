@@ -34,7 +34,9 @@ void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const 
   }
   // Far from the robot: moved as the standard mode moves it, the tracked gains updated.
   Change(grid_.TouchedCells(scan, from, cuts), false);
-  Change(grid_.TouchedCells(scan, to, cuts), true);
+  const std::vector<CellUpdate> moved = grid_.TouchedCells(scan, to, cuts);
+  if (ledger_) ledger_->Observe(moved, scan.stamp_s);
+  Change(moved, true);
 }
 
 void MapKeeper::Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
@@ -48,7 +50,10 @@ void MapKeeper::Rerender(NodeId id, const LaserScan& scan, const Pose2& T,
   // The cells where it is rendered now come from the gain index, which holds them anyway.
   const std::vector<CellUpdate>& from = Untrack(id);
   const std::vector<CellUpdate> to = grid_.TouchedCells(scan, T, cuts);
-  if (recut && ledger_) ledger_->Recut(from, to);
+  if (ledger_) {
+    if (recut) ledger_->Recut(from, to);
+    ledger_->Observe(to, scan.stamp_s);
+  }
   MoveCells(from, to);
   Track(id, to);
 }

@@ -154,6 +154,14 @@ TEST(MapKeeper, TheLedgerHoldsWhatCutsAndRemovalsTookOut) {
   // The last scan's cells were last observed at its stamp.
   const CellUpdate last = room.keeper.grid().TouchedCells(gone.scan, gone.T_world_map).front();
   EXPECT_EQ(ledger.SeenStamp(*ledger.Find(last.cell)), 50.0);
+  // A scan moved (a loop closure) is observed where it is rendered now, tracked or not.
+  room.keeper.TrackOnly({1}, {}, room.nodes);
+  for (const NodeId id : {NodeId{1}, NodeId{4}}) {
+    room.Move(id, room.nodes.at(id).T_world_map * Pose2(0.3, 0.2, 0.1));
+    const NodeData& moved = room.nodes.at(id);
+    for (const CellUpdate& u : room.keeper.grid().TouchedCells(moved.scan, moved.T_world_map))
+      EXPECT_GE(ledger.SeenStamp(*ledger.Find(u.cell)), moved.scan.stamp_s) << id;
+  }
 }
 
 }  // namespace

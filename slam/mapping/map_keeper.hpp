@@ -54,6 +54,9 @@ class MapKeeper {
   /// follow, and its own gain is tracked.
   void Retrace(NodeId id, const LaserScan& scan, const Pose2& T,
                const std::vector<BeamCut>& old_cuts, const std::vector<BeamCut>& cuts);
+  /// A scan that is not a node, taken at T: with a ledger, the cells its returns ended in
+  /// were observed at its stamp (a glimpse between keyframes; the grid does not take it).
+  void Glimpse(const LaserScan& scan, const Pose2& T);
   /// With gains: tracks the gains of the nodes `wanted` (of `nodes`, each rendered at its
   /// T_world_map), keeps tracking those of `kept` that are, and stops tracking every other.
   /// The pruning round asks for the gains of the nodes within its radius only.
@@ -98,6 +101,7 @@ class MapKeeper {
   std::vector<CellState> counts_after_;  ///< scratch: the cells as a change leaves them
   std::vector<CellChange> changes_;      ///< scratch: the cells a move changed
   std::vector<CellUpdate> cells_;        ///< scratch: a tracked scan's cells (GainIndex::Cells)
+  std::vector<CellUpdate> glimpsed_;     ///< scratch: a glimpse's return cells
 };
 
 }  // namespace lifelong::slam

@@ -47,6 +47,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     if (Norm(delta) < s.config.keyframes.min_translation_m &&
         std::abs(delta.theta) < s.config.keyframes.min_rotation_rad) {
       s.scans.AddPending(obs.stamp_s, s.last_node, delta, obs.T_odom_robot);
+      s.keeper.Glimpse(obs.scan, s.values.at(s.last_node) * delta);
       return stats;
     }
   }

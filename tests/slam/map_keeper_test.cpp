@@ -164,5 +164,25 @@ TEST(MapKeeper, TheLedgerHoldsWhatCutsAndRemovalsTookOut) {
   }
 }
 
+// A scan between keyframes is no node and stays out of the grid, but the cells its returns
+// ended in were observed when it was taken.
+TEST(MapKeeper, AGlimpseStampsTheCellsItsReturnsEndedIn) {
+  GridMapConfig grid;
+  grid.present_timescale_s = 600.0;
+  Room room(grid);
+  LaserScan glimpse = testing::SimulateScan(room.world, {3.0, 2.5, 1.0});
+  glimpse.stamp_s = 99.0;
+  const std::size_t known = room.keeper.grid().NumKnownCells();
+  room.keeper.Glimpse(glimpse, {3.0, 2.5, 1.0});
+  EXPECT_EQ(room.keeper.grid().NumKnownCells(), known);
+  int hits = 0;
+  for (const CellUpdate& u : room.keeper.grid().TouchedCells(glimpse, {3.0, 2.5, 1.0})) {
+    if (u.delta.hits == 0) continue;
+    ++hits;
+    EXPECT_EQ(room.keeper.ledger()->SeenStamp(*room.keeper.ledger()->Find(u.cell)), 99.0);
+  }
+  EXPECT_GT(hits, 10);
+}
+
 }  // namespace
 }  // namespace lifelong::slam

@@ -20,14 +20,26 @@ double CellLedger::SeenStamp(const Entry& e) const {
   return e.seen_s < 0.0f ? -std::numeric_limits<double>::infinity() : origin_s_ + e.seen_s;
 }
 
-void CellLedger::Observe(const std::vector<CellUpdate>& cells, double stamp_s) {
+float CellLedger::SinceOrigin(double stamp_s) {
   if (!have_origin_) {
     origin_s_ = stamp_s;
     have_origin_ = true;
   }
-  const float since = static_cast<float>(std::max(0.0, stamp_s - origin_s_));
+  return static_cast<float>(std::max(0.0, stamp_s - origin_s_));
+}
+
+void CellLedger::Observe(const std::vector<CellUpdate>& cells, double stamp_s) {
+  const float since = SinceOrigin(stamp_s);
   for (const CellUpdate& u : cells) {
     Entry& e = At(u.cell);
+    e.seen_s = std::max(e.seen_s, since);
+  }
+}
+
+void CellLedger::Observe(const std::vector<CellIndex>& cells, double stamp_s) {
+  const float since = SinceOrigin(stamp_s);
+  for (const CellIndex c : cells) {
+    Entry& e = At(c);
     e.seen_s = std::max(e.seen_s, since);
   }
 }

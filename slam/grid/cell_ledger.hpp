@@ -28,6 +28,8 @@ class CellLedger {
   /// A scan stamped stamp_s is rendered in these cells: new, or moved (a cell's observation
   /// time follows the scans that show it where they are rendered now).
   void Observe(const std::vector<CellUpdate>& cells, double stamp_s);
+  /// The same for cells given alone (a scan's returns, GridMap::ReturnCells).
+  void Observe(const std::vector<CellIndex>& cells, double stamp_s);
   /// A scan rendered as `cells` left the map.
   void Archive(const std::vector<CellUpdate>& cells);
   /// A scan rendered as `from` is rendered as `to` instead, at the same pose (beams cut):
@@ -43,6 +45,8 @@ class CellLedger {
  private:
   using Chunk = std::array<Entry, chunk::kSide * chunk::kSide>;
   Entry& At(CellIndex c);
+  /// stamp_s as Entry::seen_s (the first stamp ever seen is the origin).
+  float SinceOrigin(double stamp_s);
   void Add(CellIndex c, CellCounts delta, int sign);
 
   std::unordered_map<std::uint64_t, std::unique_ptr<Chunk>> chunks_;

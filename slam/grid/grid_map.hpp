@@ -143,6 +143,10 @@ class GridMap {
   std::vector<CellUpdate> TouchedCells(const LaserScan& scan, const Pose2& T_world_robot,
                                        const std::vector<BeamCut>& cuts = {}) const;
 
+  /// The cells a scan's returns end in, the hits of TouchedCells (without cuts), in beam
+  /// order, one per return (a cell may repeat).
+  std::vector<CellIndex> ReturnCells(const LaserScan& scan, const Pose2& T_world_robot) const;
+
   void AddScan(const LaserScan& scan, const Pose2& T_world_robot);
   /// Exactly undoes AddScan with the same arguments.
   void RemoveScan(const LaserScan& scan, const Pose2& T_world_robot);

@@ -148,7 +148,33 @@ void DropoutClearRanges(const LaserScan& scan, const GridMapConfig& config,
   }
 }
 
+// Whether beam i's return is a hit of the map: returns beyond the usable range are too sparse
+// and too noisy to map (one beam per cell at best), and like "no return" beams only clear space.
+bool TakesHit(const LaserScan& scan, std::size_t i, const GridMapConfig& config) {
+  return scan.IsReturn(i) && scan.ranges_m[i] <= config.max_hit_range_m;
+}
+
+// The cell at distance d along the beam with this bearing from the laser at T_world_laser.
+CellIndex AlongBeam(const GridMap& map, const Pose2& T_world_laser, double bearing, double d) {
+  double x = 0.0, y = 0.0;
+  T_world_laser.Apply(d * std::cos(bearing), d * std::sin(bearing), &x, &y);
+  return map.CellOf(x, y);
+}
+
 }  // namespace
+
+std::vector<CellIndex> GridMap::ReturnCells(const LaserScan& scan,
+                                            const Pose2& T_world_robot) const {
+  const Pose2 T_world_laser = T_world_robot * scan.T_robot_laser;
+  std::vector<CellIndex> cells;
+  cells.reserve(scan.ranges_m.size());
+  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+    if (TakesHit(scan, i, config_)) {
+      cells.push_back(AlongBeam(*this, T_world_laser, scan.Bearing(i), scan.ranges_m[i]));
+    }
+  }
+  return cells;
+}
 
 std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2& T_world_robot,
                                               const std::vector<BeamCut>& cuts) const {
@@ -165,16 +191,10 @@ std::vector<CellUpdate> GridMap::TouchedCells(const LaserScan& scan, const Pose2
     const bool is_cut = cut != cuts.end() && cut->beam == i;
     const double r = scan.ranges_m[i];
     if (!(r > 0.0)) continue;
-    // Returns beyond the usable range are too sparse and too noisy to map (one beam per
-    // cell at best): like "no return" beams they only clear space, up to max_free_range_m.
-    const bool hit = scan.IsReturn(i) && r <= config_.max_hit_range_m;
+    const bool hit = TakesHit(scan, i, config_);  // else it clears up to max_free_range_m
     const double range = hit ? r : std::min({r, config_.max_free_range_m, dropout_clear[i]});
     const double a = scan.Bearing(i);
-    const auto at = [&](double d) {
-      double x = 0.0, y = 0.0;
-      T_world_laser.Apply(d * std::cos(a), d * std::sin(a), &x, &y);
-      return CellOf(x, y);
-    };
+    const auto at = [&](double d) { return AlongBeam(*this, T_world_laser, a, d); };
     const auto add = [&](CellIndex start, double to, bool with_hit) {
       const CellIndex end = at(to);
       beams.push_back({start, end, with_hit});

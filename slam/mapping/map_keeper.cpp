@@ -23,17 +23,7 @@ void MapKeeper::Add(NodeId id, const LaserScan& scan, const Pose2& T) {
 }
 
 void MapKeeper::Glimpse(const LaserScan& scan, const Pose2& T) {
-  if (!ledger_) return;
-  const Pose2 T_world_laser = T * scan.T_robot_laser;
-  glimpsed_.clear();
-  for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-    const double r = scan.ranges_m[i];
-    if (!scan.IsReturn(i) || r > grid_.config().max_hit_range_m) continue;
-    double x = 0.0, y = 0.0;
-    T_world_laser.Apply(r * std::cos(scan.Bearing(i)), r * std::sin(scan.Bearing(i)), &x, &y);
-    glimpsed_.push_back({grid_.CellOf(x, y), CellCounts{1, 0}});
-  }
-  ledger_->Observe(glimpsed_, scan.stamp_s);
+  if (ledger_) ledger_->Observe(grid_.ReturnCells(scan, T), scan.stamp_s);
 }
 
 void MapKeeper::Move(NodeId id, const LaserScan& scan, const Pose2& from, const Pose2& to,

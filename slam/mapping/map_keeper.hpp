@@ -101,7 +101,6 @@ class MapKeeper {
   std::vector<CellState> counts_after_;  ///< scratch: the cells as a change leaves them
   std::vector<CellChange> changes_;      ///< scratch: the cells a move changed
   std::vector<CellUpdate> cells_;        ///< scratch: a tracked scan's cells (GainIndex::Cells)
-  std::vector<CellUpdate> glimpsed_;     ///< scratch: a glimpse's return cells
 };
 
 }  // namespace lifelong::slam

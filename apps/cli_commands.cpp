@@ -63,6 +63,12 @@ CLI::App* AddReplay(CLI::App& app, ReplayArgs* a, CliCommands* c) {
                                "offset that puts relation stamps on scan stamps)")
                   ->check(FiniteNumber())
                   ->default_str("detected");
+  replay
+      ->add_option("--seed", a->seed,
+                   "replay a draw of the log: each odometry step perturbed by about 1 % "
+                   "(docs/cli.md), from this seed")
+      ->check(CLI::NonNegativeNumber)
+      ->default_str("none: the log as recorded");
   return replay;
 }
 

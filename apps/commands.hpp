@@ -5,6 +5,8 @@
 // video (apps/video_module.hpp).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,8 @@ struct ReplayArgs {
   std::string reference;
   bool offset_given = false;  ///< --relations-offset was given: use offset_s, detect nothing
   double offset_s = 0.0;
+  /// --seed: replay a draw of the log (eval/experiment/log_draw.hpp), not the log as recorded.
+  std::optional<std::int64_t> seed;
   std::string command_line;
 };
 

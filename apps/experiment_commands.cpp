@@ -21,6 +21,7 @@
 #include "eval/common/interrupt.hpp"
 #include "eval/common/staged_output.hpp"
 #include "eval/experiment/experiment.hpp"
+#include "eval/experiment/log_draw.hpp"
 #include "eval/experiment/mapper_config_file.hpp"
 #include "eval/experiment/simulation.hpp"
 #include "eval/report/console_table.hpp"
@@ -262,9 +263,15 @@ int Replay(const ReplayArgs& a) {
       ExperimentSettings(a.out, a.modes, a.config, a.command_line);
   // Read before the log, so that a bad reference costs no wait.
   if (!a.reference.empty()) config.reference = lifelong::io::ReadTrajectory(a.reference);
-  const lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
+  lifelong::io::CarmenLog data = lifelong::io::ReadCarmenLog(log);
   const std::vector<double> stamps = SortedScanStamps(data);
   lifelong::eval::LogInfo info = DescribeLog(data, log, stamps);
+  if (a.seed) {
+    lifelong::eval::DrawOdometry(static_cast<std::uint64_t>(*a.seed), {}, &data.observations);
+    info.draw_seed = *a.seed;
+    config.seed = *a.seed;
+    std::cerr << "draw " << *a.seed << ": each odometry step perturbed (replay --seed)\n";
+  }
   if (!a.relations.empty())
     config.relations = LoadRelations(a.relations, a.offset_given, a.offset_s, stamps, &info);
   if (!a.reference.empty()) {

@@ -290,6 +290,7 @@ std::string SummaryJsonText(const RunSummary& s) {
     Put(log, "relations_in_file", s.log->relations_in_file);
     Put(log, "reference", s.log->reference);
     Put(log, "reference_poses", s.log->reference_poses);
+    Put(log, "draw_seed", s.log->draw_seed);
     j["log"] = log;
   }
   if (s.simulation) {

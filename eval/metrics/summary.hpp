@@ -152,6 +152,9 @@ struct LogInfo {
   /// or "corrected FLASER poses" of a GMapping-corrected log.
   std::optional<std::string> reference;
   std::optional<std::int64_t> reference_poses;
+  /// replay --seed: the seed of the draw replayed (eval/experiment/log_draw.hpp); absent:
+  /// the log as recorded.
+  std::optional<std::int64_t> draw_seed;
 };
 
 /// What happened in the simulator (run only): summary.json's "simulation" object. A run

@@ -122,8 +122,10 @@ SweepPlan ExpandSweep(const SweepSpec& spec, const std::string& program) {
   const bool full_keys = last_parts.size() < plan.setting_keys.size();
   for (const SweepSource& source : spec.sources) {
     std::vector<std::optional<std::int64_t>> seeds;
-    if (source.is_log || spec.seeds.empty()) seeds.push_back(std::nullopt);
-    if (!source.is_log) seeds.insert(seeds.end(), spec.seeds.begin(), spec.seeds.end());
+    // A log is replayed as recorded, or, seeded, as one draw per seed (replay --seed).
+    const bool per_seed = !source.is_log || source.seeded;
+    if (!per_seed || spec.seeds.empty()) seeds.push_back(std::nullopt);
+    if (per_seed) seeds.insert(seeds.end(), spec.seeds.begin(), spec.seeds.end());
     for (const auto& seed : seeds) {
       for (const Settings& settings : combinations) {
         SweepPlanCell cell{"", source.given, source.is_log, seed, settings, "", {}, ""};
@@ -178,6 +180,7 @@ std::vector<std::string> CellCommand(const std::string& program, const SweepSpec
                                 modes,
                                 "--config",
                                 config};
+  if (source.is_log && cell.seed) argv.insert(argv.end(), {"--seed", std::to_string(*cell.seed)});
   if (!source.relations.empty()) {
     argv.insert(argv.end(), {"--relations", source.relations});
     if (source.relations_offset_s) {

@@ -96,7 +96,7 @@ class SpecReader {
     s.line = LineOf(n);
     const YAML::Node log = n.IsMap() ? n["log"] : n;
     if (n.IsMap()) {
-      RejectUnknown(n, {"log", "relations", "relations_offset_s"}, field + ".");
+      RejectUnknown(n, {"log", "relations", "relations_offset_s", "seeded"}, field + ".");
       if (!log) Fail(n, field + ".log", "missing");
       if (n["relations"]) {
         s.relations = ExistingFile(n["relations"], field + ".relations", "relations file");
@@ -107,6 +107,11 @@ class SpecReader {
           Fail(off, field + ".relations_offset_s", "expected a finite number of seconds");
         }
         s.relations_offset_s = v;
+      }
+      if (const YAML::Node seeded = n["seeded"]) {
+        if (!seeded.IsScalar() || !YAML::convert<bool>::decode(seeded, s.seeded)) {
+          Fail(seeded, field + ".seeded", "expected true or false");
+        }
       }
     }
     const std::string at = field + (n.IsMap() ? ".log" : "");

@@ -4,8 +4,9 @@
 // a lifelong::InputError naming the SPEC file, the line and the field, before anything runs.
 //
 //   scenarios: [../scenarios/corridor_3.yaml]      # paths relative to the SPEC file
-//   logs: [{log: a.clf.gz, relations: a.relations, relations_offset_s: 0}]
-//   seeds: [1, 2, 3]                   # override each scenario's seed; absent: its own
+//   logs: [{log: a.clf.gz, relations: a.relations, relations_offset_s: 0, seeded: true}]
+//   seeds: [1, 2, 3]                   # override each scenario's seed; absent: its own;
+//                                      # a seeded log is replayed as one draw per seed
 //   modes: [standard, pruned]
 //   settings: {pruning.gain_threshold_bits: [0, 5]}   # dotted mapper-config keys
 //   baseline: standard                 # default: the first mode
@@ -26,7 +27,8 @@ struct SweepSource {
   std::string world_path;                    ///< scenarios: the world file, absolute
   std::string relations;                     ///< logs: relations file, absolute; empty: none
   std::optional<double> relations_offset_s;  ///< logs: given offset; absent: detected
-  int line = 0;                              ///< in the SPEC
+  bool seeded = false;  ///< logs: replayed once per seed as draws (replay --seed); else once
+  int line = 0;         ///< in the SPEC
 };
 
 /// One dotted mapper-config key and the values it takes (YAML scalars, as written).

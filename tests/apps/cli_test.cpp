@@ -272,6 +272,28 @@ TEST(Cli, BackwardStampsAreReportedAndTheDurationNeverNegative) {
   EXPECT_GT(summary["log_duration_s"].get<double>(), 0.0);
 }
 
+// replay --seed replays a draw of the log: its odometry perturbed, its seed recorded; the log
+// as recorded has no seed.
+TEST(Cli, ReplayWithASeedReplaysADrawAndRecordsIt) {
+  const fs::path recorded = Fresh("recorded"), drawn = Fresh("drawn");
+  Result r =
+      Lifelong("replay " + CorridorLog().string() + " --modes standard -o " + recorded.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = Lifelong("replay " + CorridorLog().string() + " --modes standard --seed 2 -o " +
+               drawn.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto a = nlohmann::json::parse(Read(recorded / "summary.json"));
+  const auto b = nlohmann::json::parse(Read(drawn / "summary.json"));
+  EXPECT_FALSE(a["log"].contains("draw_seed"));
+  EXPECT_EQ(b["log"]["draw_seed"].get<int>(), 2);
+  EXPECT_EQ(b["seed"].get<int>(), 2);
+  EXPECT_NE(Read(recorded / "standard" / "trajectory.tum"),
+            Read(drawn / "standard" / "trajectory.tum"));
+  EXPECT_NE(
+      Lifelong("replay " + CorridorLog().string() + " --seed -1 -o " + Fresh("neg").string()).code,
+      0);
+}
+
 TEST(Cli, AScanWithNoBeamsIsAnInputErrorNamingTheLine) {
   const fs::path log = Fresh("zero.clf");
   std::ofstream(log) << "FLASER 3 1 1 1 0 0 0 0 0 0 1.0 h 1.0\nFLASER 0 0 0 0 0 0 0 2.0 h 2.0\n";

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -76,6 +77,34 @@ TEST(SweepSpec, EachKindOfBadInputNamesFileLineAndField) {
   ExpectError("no_source", "modes: [standard]\n", 1, "scenarios", "neither scenarios nor logs");
   ExpectError("no_modes", kScenario, 1, "modes", "missing");
   ExpectError("seed", kScenario + "modes: [standard]\nseeds: [1, x]\n", 3, "seeds[1]", "integer");
+  ExpectError("seeded", kScenario + "modes: [standard]\nlogs:\n  - {log: a.clf, seeded: often}\n",
+              4, "logs[0].seeded", "true or false");
+}
+
+// A log is replayed once, as recorded; a seeded one once per seed, as draws (replay --seed).
+TEST(SweepSpec, ASeededLogIsReplayedAsOneDrawPerSeed) {
+  const fs::path log = fs::path(::testing::TempDir()) / "sweep_spec_test" / "fhw-corrected.log.gz";
+  fs::create_directories(log.parent_path());
+  std::ofstream(log) << "not read while planning\n";
+  const std::string path = WriteSpec("seeded", "logs:\n  - {log: " + log.string() +
+                                                   ", seeded: true}\n  - {log: " + log.string() +
+                                                   "}\nseeds: [3, 4]\nmodes: [standard]\n");
+  const SweepSpec spec = LoadSweepSpec(path);
+  ASSERT_EQ(spec.sources.size(), 2u);
+  EXPECT_TRUE(spec.sources[0].seeded);
+  EXPECT_FALSE(spec.sources[1].seeded);
+  const SweepPlan plan = ExpandSweep(spec, "test");
+  ASSERT_EQ(plan.cells.size(), 3u);
+  EXPECT_EQ(plan.cells[0].name, "fhw-corrected-seed3");
+  EXPECT_EQ(plan.cells[1].name, "fhw-corrected-seed4");
+  EXPECT_EQ(plan.cells[2].name, "fhw-corrected");
+  EXPECT_NE(plan.cells[0].hash, plan.cells[1].hash);
+  const auto argv = CellCommand("/bin/lifelong", spec, plan.cells[1], "", "/in/c.yaml", "/o");
+  const auto seed = std::find(argv.begin(), argv.end(), "--seed");
+  ASSERT_NE(seed, argv.end());
+  EXPECT_EQ(*(seed + 1), "4");
+  const auto once = CellCommand("/bin/lifelong", spec, plan.cells[2], "", "/in/c.yaml", "/o");
+  EXPECT_EQ(std::count(once.begin(), once.end(), "--seed"), 0);
 }
 
 TEST(SweepSpec, ASettingCombinationIsCheckedAsAWhole) {

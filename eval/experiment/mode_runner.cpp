@@ -101,7 +101,9 @@ void ModeRunner::Record(const slam::StepStats& s) {
 
 void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summary) const {
   const std::vector<bool>& correct = truth.correct_each;
-  std::string text = "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg,final_chi2\n";
+  std::string text =
+      "stamp_current_s,stamp_old_s,injected,correct,error_m,error_deg,final_chi2,node_current,"
+      "node_old\n";
   const auto& loops = mapper_->loop_closures();
   const std::vector<std::optional<double>> chi2 = mapper_->LoopEdgeChi2();
   const double end = timeline_.empty() ? 0.0 : timeline_.back().t_s;
@@ -123,7 +125,7 @@ void ModeRunner::WriteLoopsCsv(const LoopClosureResult& truth, ModeSummary* summ
       std::snprintf(line, sizeof(line), "%.4g", *chi2[k]);
       text += line;
     }
-    text += '\n';
+    text += ',' + std::to_string(loops[k].current) + ',' + std::to_string(loops[k].old) + '\n';
     if (known && loops[k].stamp_current_s >= end - 3600.0) {
       ++last_hour;
       last_hour_correct += correct[k] ? 1 : 0;

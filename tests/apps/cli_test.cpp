@@ -102,8 +102,23 @@ TEST(Cli, ARerunWithFewerModesLeavesNothingOfTheEarlierRun) {
     fields >> t >> precision;
     const auto first = nlohmann::json::parse(Read(dir / "summary.json"));
     EXPECT_NEAR(precision, first["modes"]["standard"]["loop_precision"].get<double>(), 1e-6);
-    EXPECT_TRUE(fs::exists(dir / "standard" / "loops.csv"));
     EXPECT_TRUE(fs::exists(dir / "standard" / "loop_attempts.csv"));
+  }
+  {  // Each closure's two nodes: a loop edge between them in the graph (standard keeps all).
+    const std::string graph = Read(dir / "standard" / "graph.g2o");
+    std::istringstream rows(Read(dir / "standard" / "loops.csv"));
+    std::string row;
+    std::getline(rows, row);
+    EXPECT_NE(row.find(",final_chi2,node_current,node_old"), std::string::npos) << row;
+    int closures = 0;
+    while (std::getline(rows, row)) {
+      const std::string old = row.substr(row.rfind(',') + 1);
+      const std::string rest = row.substr(0, row.rfind(','));
+      const std::string current = rest.substr(rest.rfind(',') + 1);
+      EXPECT_NE(graph.find("EDGE_SE2 " + old + " " + current + " "), std::string::npos) << row;
+      ++closures;
+    }
+    EXPECT_GT(closures, 0);
   }
   ExpectTimelineRows(dir / "pruned" / "timeline.csv");
   // The table: modes in --modes order, the baseline first, units in the headers.

@@ -27,6 +27,9 @@ CLI::App* AddRun(CLI::App& app, RunArgs* a, CLI::Option** stride) {
       ->check(NonEmpty());
   *stride = run->add_option("--stride", a->stride, "render every this many scans")
                 ->check(IntRange(1, 1000000));
+  run->add_option("--seed", a->seed, "simulate with this seed instead of the scenario's")
+      ->check(CLI::NonNegativeNumber)
+      ->default_str("the scenario's `seed`");
   return run;
 }
 

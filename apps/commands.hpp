@@ -14,9 +14,10 @@ namespace lifelong::apps {
 
 struct RunArgs {
   std::string scenario, out, modes, config;
-  std::string video, frames;       ///< optional outputs; empty: none
-  int stride = 20;                 ///< render every this many scans
-  std::vector<double> present_at;  ///< s: also score the map of the present at these times
+  std::string video, frames;         ///< optional outputs; empty: none
+  int stride = 20;                   ///< render every this many scans
+  std::vector<double> present_at;    ///< s: also score the map of the present at these times
+  std::optional<std::int64_t> seed;  ///< --seed: instead of the scenario's own
   std::string command_line;
 };
 

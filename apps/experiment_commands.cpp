@@ -121,20 +121,22 @@ lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
   return config;
 }
 
-int Run(const std::string& scenario_path, const std::string& out, const std::string& modes,
-        const std::string& config_path, const VideoArgs& video, std::vector<double> present_at,
-        const std::string& command_line) {
+int Run(const RunArgs& a) {
+  const std::string& scenario_path = a.scenario;
+  const std::string& out = a.out;
+  const VideoArgs video{a.video, a.frames, a.stride};
   lifelong::eval::ExperimentConfig config =
-      ExperimentSettings(out, modes, config_path, command_line);
-  std::sort(present_at.begin(), present_at.end());
-  config.present_at_s = std::move(present_at);
+      ExperimentSettings(out, a.modes, a.config, a.command_line);
+  config.present_at_s = a.present_at;
+  std::sort(config.present_at_s.begin(), config.present_at_s.end());
   config.video_path = video.video;
   config.frames_dir = video.frames;
   config.video_stride = video.stride;
   if (!video.video.empty() || !video.frames.empty()) config.open_video = LoadVideoModule();
   if (!video.video.empty()) lifelong::io::CheckWritableFile(video.video, "--video");
   if (!video.frames.empty()) lifelong::io::CheckWritableDirectory(video.frames, "--frames");
-  const lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  if (a.seed) scenario.seed = static_cast<std::uint64_t>(*a.seed);  // as a sweep's cell does
   lifelong::eval::CheckWorldRaster(scenario, config.mapper.grid.resolution_m);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, config.progress_terminal);
@@ -308,10 +310,7 @@ int Command(F&& f) {
 }
 
 int RunCommand(const RunArgs& a) {
-  return Command([&] {
-    return Run(a.scenario, a.out, a.modes, a.config, VideoArgs{a.video, a.frames, a.stride},
-               a.present_at, a.command_line);
-  });
+  return Command([&] { return Run(a); });
 }
 int SimulateCommand(const SimulateArgs& a) {
   return Command([&] { return Simulate(a.scenario, a.out); });

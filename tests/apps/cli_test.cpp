@@ -287,6 +287,29 @@ TEST(Cli, BackwardStampsAreReportedAndTheDurationNeverNegative) {
   EXPECT_GT(summary["log_duration_s"].get<double>(), 0.0);
 }
 
+// run --seed simulates with that seed instead of the scenario's: the same run as a scenario
+// copy that names the seed (what a sweep's cell writes).
+TEST(Cli, RunWithASeedIsTheScenarioWithThatSeed) {
+  std::string text = Read(kScenario);
+  for (const auto& [key, value] :
+       {std::pair<std::string, std::string>{"seed", "3"},  // corridor_3's own is 7
+        {"world", kSource + "/worlds/corridor.yaml"}}) {
+    const auto at = text.find("\n" + key + ":");
+    ASSERT_NE(at, std::string::npos) << "corridor_3.yaml names its " << key;
+    text.replace(at, text.find('\n', at + 1) - at, "\n" + key + ": " + value);
+  }
+  const fs::path copy = Fresh("seed3.yaml");
+  std::ofstream(copy) << text;
+  const fs::path by_option = Fresh("seed_option"), by_file = Fresh("seed_file");
+  Result r = Lifelong("run " + kScenario + " --modes standard --seed 3 -o " + by_option.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = Lifelong("run " + copy.string() + " --modes standard -o " + by_file.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(Read(by_option / "summary.json"))["seed"].get<int>(), 3);
+  EXPECT_EQ(Read(by_option / "standard" / "trajectory.tum"),
+            Read(by_file / "standard" / "trajectory.tum"));
+}
+
 // replay --seed replays a draw of the log: its odometry perturbed, its seed recorded; the log
 // as recorded has no seed.
 TEST(Cli, ReplayWithASeedReplaysADrawAndRecordsIt) {

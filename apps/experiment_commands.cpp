@@ -96,11 +96,6 @@ int Simulate(const std::string& scenario_path, const std::string& out) {
   return lifelong::eval::Outcome(scenario, run).Failed() ? 1 : 0;
 }
 
-struct VideoArgs {
-  std::string video, frames;
-  int stride = 20;
-};
-
 // Settings every experiment shares; inputs are all checked here, before any work.
 lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
                                                     const std::string& modes,
@@ -124,17 +119,16 @@ lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
 int Run(const RunArgs& a) {
   const std::string& scenario_path = a.scenario;
   const std::string& out = a.out;
-  const VideoArgs video{a.video, a.frames, a.stride};
   lifelong::eval::ExperimentConfig config =
       ExperimentSettings(out, a.modes, a.config, a.command_line);
   config.present_at_s = a.present_at;
   std::sort(config.present_at_s.begin(), config.present_at_s.end());
-  config.video_path = video.video;
-  config.frames_dir = video.frames;
-  config.video_stride = video.stride;
-  if (!video.video.empty() || !video.frames.empty()) config.open_video = LoadVideoModule();
-  if (!video.video.empty()) lifelong::io::CheckWritableFile(video.video, "--video");
-  if (!video.frames.empty()) lifelong::io::CheckWritableDirectory(video.frames, "--frames");
+  config.video_path = a.video;
+  config.frames_dir = a.frames;
+  config.video_stride = a.stride;
+  if (!a.video.empty() || !a.frames.empty()) config.open_video = LoadVideoModule();
+  if (!a.video.empty()) lifelong::io::CheckWritableFile(a.video, "--video");
+  if (!a.frames.empty()) lifelong::io::CheckWritableDirectory(a.frames, "--frames");
   lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
   if (a.seed) scenario.seed = static_cast<std::uint64_t>(*a.seed);  // as a sweep's cell does
   lifelong::eval::CheckWorldRaster(scenario, config.mapper.grid.resolution_m);

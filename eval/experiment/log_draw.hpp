@@ -25,8 +25,8 @@ struct OdometryJitter {
 /// Replaces each observation's odometry pose by the composition of its perturbed steps from
 /// the first observation's pose (which stays). A step with odometry_lost is no measurement
 /// and stays as it is. The same seed gives the same stream on every machine (std::mt19937_64
-/// and a Box-Muller transform of its own, not std::normal_distribution, whose output the
-/// standard leaves to the library).
+/// and the simulator's Box-Muller, sim::Gaussian, not std::normal_distribution, whose output
+/// the standard leaves to the library).
 void DrawOdometry(std::uint64_t seed, const OdometryJitter& jitter,
                   std::vector<Observation>* stream);
 

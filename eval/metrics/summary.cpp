@@ -61,6 +61,7 @@ json LoopVerificationJson(const LoopVerificationSummary& l) {
   if (l.global) {
     lv["global_attempts"] = v.global_attempts;
     lv["global_proposed"] = v.global_proposed;
+    lv["global_searches"] = v.global_searches;
   }
   if (l.injection) {
     lv["injected"] = v.injected;

@@ -32,7 +32,10 @@ std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view,
   const PlaceDescriptor place = DescribePlace(points, g.descriptor);
   if (place.occupied < g.min_occupied) return std::nullopt;
   std::optional<LoopAttempt> attempt;
-  if (search) attempt = MatchPlaces(view, current, points, place, accepted);
+  if (search) {
+    verifier_.NoteGlobalSearch();
+    attempt = MatchPlaces(view, current, points, place, accepted);
+  }
   // Indexed after its own search, so that it never finds itself.
   places_.Add(current, place);
   return attempt;

@@ -89,6 +89,9 @@ struct LoopVerifierStats {
   /// Of the attempts, those of the global search (loops.global), and of its proposals.
   int global_attempts = 0;
   int global_proposed = 0;
+  /// Searches by place that ran (the place dense enough to describe), with a candidate
+  /// within loops.global.max_distance or not: global_searches - global_attempts found none.
+  int global_searches = 0;
 };
 
 /// Why the mapper refused a loop-closure match before it became a hypothesis.
@@ -138,6 +141,7 @@ class LoopVerifier {
     ++stats_.global_attempts;
   }
   void NoteGlobalProposed() { ++stats_.global_proposed; }
+  void NoteGlobalSearch() { ++stats_.global_searches; }
   void NoteBeyondWindow() { ++stats_.beyond_window; }
   /// Counts an attempt the mapper refused before it became a hypothesis.
   void NoteRefused(MatchRefusal why) {

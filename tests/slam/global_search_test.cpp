@@ -112,5 +112,18 @@ TEST(GlobalSearch, ALaneToTheSideIsFoundOnlyFromShiftedOrigins) {
   ExpectTrueRelativePoses(world, accepted);
 }
 
+// A search that finds no place within max_distance makes no attempt, but it is counted: the
+// summary tells "never searched" from "searched and found nothing".
+TEST(GlobalSearch, ASearchThatFindsNoPlaceIsCountedButIsNoAttempt) {
+  const TwoVisits world(1.8, Pose2(40.0, -25.0, 0.6));
+  LoopCloser closer(GlobalOnly(0), IncrementalConfig{});
+  std::vector<LoopHypothesis> accepted;
+  for (NodeId id = 0; id < 30; ++id) closer.SearchGlobal(world.View(), id, id >= 15, &accepted);
+  EXPECT_TRUE(accepted.empty());
+  EXPECT_EQ(closer.stats().global_searches, 15);
+  EXPECT_EQ(closer.stats().global_attempts, 0);
+  EXPECT_EQ(closer.stats().attempts, 0);
+}
+
 }  // namespace
 }  // namespace lifelong::slam

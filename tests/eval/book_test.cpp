@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "eval/sweep/sweep_spec.hpp"
 #include "sensor/input_error.hpp"
 
 namespace lifelong::eval {
@@ -118,6 +119,26 @@ TEST(Book, TheShippedBookLoadsInBothProfiles) {
   EXPECT_GE(quick, 4);
   EXPECT_EQ(full, static_cast<int>(book.experiments.size()));
   EXPECT_GE(claims, 12);
+}
+
+// A claim on a log replayed once can only be "inconclusive": the shipped book replays each
+// log as draws (replay --seed), one paired run per seed.
+TEST(Book, TheShippedBookReplaysEachLogAsSeveralDraws) {
+  const Book book = LoadBook(kSource + "/book/chapter6.yaml");
+  int logs = 0;
+  for (const BookExperiment& e : book.experiments) {
+    for (const std::string& spec : {e.quick_spec, e.full_spec}) {
+      if (spec.empty()) continue;
+      const SweepSpec s = LoadSweepSpec(spec, MissingLogs::kRecord);
+      for (const SweepSource& source : s.sources) {
+        if (!source.is_log) continue;
+        ++logs;
+        EXPECT_TRUE(source.seeded) << spec << ": " << source.given;
+        EXPECT_GE(s.seeds.size(), 5u) << spec;
+      }
+    }
+  }
+  EXPECT_GE(logs, 3);
 }
 
 // Tables of a sweep: pruned's nodes are 10 below standard's on each of three seeds, give or

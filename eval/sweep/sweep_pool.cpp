@@ -12,6 +12,7 @@
 #include <cstring>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 extern char** environ;
@@ -35,7 +36,19 @@ pid_t Spawn(const PoolJob& job) {
   pid_t pid = -1;
   const int err = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  return err == 0 ? pid : -1;
+  if (err == 0) return pid;
+  // A program rebuilt or removed while a sweep runs lands here: say so where the sweep's
+  // failure list points, not in an empty log.
+  const int fd = ::open(job.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd >= 0) {
+    const std::string why = "lifelong sweep: cannot start " + job.argv.front() + ": " +
+                            std::strerror(err) +
+                            " (was the program rebuilt or removed while the sweep ran?)\n";
+    const ssize_t written = ::write(fd, why.data(), why.size());
+    (void)written;  // the exit code 127 says it failed either way
+    ::close(fd);
+  }
+  return -1;
 }
 
 int ExitCode(int status) {

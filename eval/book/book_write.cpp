@@ -68,7 +68,7 @@ const char* kHeader[] = {"claim (figure)",
                          "baseline, mean [95 %]",
                          "mode, mean [95 %]",
                          "difference per seed [95 %]",
-                         "seeds",
+                         "seeds or draws",
                          "verdict"};
 
 }  // namespace
@@ -94,7 +94,8 @@ std::string BookMarkdown(const BookOutcome& o) {
   md << "# The seed's chapter 6, reproduced\n\n"
      << "`lifelong reproduce --profile " << o.profile << "` at " << o.commit << ", " << o.day
      << ". Each claim of Kretzschmar 2009, chapter 6, judged on the per-seed differences "
-        "between two modes of the same simulated world, route and noise: it holds when the "
+        "between two modes of the same simulated world, route and noise, or of the same draw "
+        "of a log (its odometry perturbed by about 1 %, replay --seed): it holds when the "
         "95 % interval of the mean difference lies on the expected side of 0. "
      << ProfileNote(o) << ".\n";
   for (const ExperimentResult& e : o.experiments) {
@@ -145,7 +146,8 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
     << "<h1>The seed's chapter 6, reproduced</h1>\n<p><code>lifelong reproduce --profile "
     << HtmlEscape(o.profile) << "</code> at " << HtmlEscape(o.commit) << ", " << HtmlEscape(o.day)
     << ". Each claim is judged on the per-seed differences between two modes of the same "
-       "world, route and noise: it holds when the 95 % interval of the mean difference lies on "
+       "world, route and noise, or of the same draw of a log (its odometry perturbed by about "
+       "1 %, replay --seed): it holds when the 95 % interval of the mean difference lies on "
        "the expected side of 0. <b>"
     << HtmlEscape(ProfileNote(o))
     << ".</b> The same in <a href=\"results.md\">results.md</a>.</p>\n";

@@ -217,6 +217,7 @@ TEST(Book, TheMarkdownNamesTheProfileAndEachVerdict) {
   EXPECT_EQ(md.find("reported than"), std::string::npos) << md;
   EXPECT_NE(md.find("profile quick: fewer seeds"), std::string::npos) << md;
   EXPECT_NE(md.find("holds at 95 %"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seeds or draws |"), std::string::npos) << md;  // a log's n is its draws
   EXPECT_NE(md.find("constant (Fig. 6.1)"), std::string::npos) << md;
   EXPECT_NE(md.find("abc1234, 2026-12-03"), std::string::npos) << md;
   EXPECT_EQ(md.find("As the seed's"), std::string::npos) << md;

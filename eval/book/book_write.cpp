@@ -61,6 +61,13 @@ std::vector<Row> Rows(const ExperimentResult& e) {
   return rows;
 }
 
+// How a verdict comes about, for the top of both pages.
+constexpr const char* kHowJudged =
+    "is judged on the per-seed differences between two modes of the same simulated world, "
+    "route and noise, or of the same draw of a log (its odometry perturbed by about 1 %, "
+    "replay --seed): it holds when the 95 % interval of the mean difference lies on the "
+    "expected side of 0.";
+
 const char* kHeader[] = {"claim (figure)",
                          "scenario or log",
                          "the seed",
@@ -93,11 +100,8 @@ std::string BookMarkdown(const BookOutcome& o) {
   std::ostringstream md;
   md << "# The seed's chapter 6, reproduced\n\n"
      << "`lifelong reproduce --profile " << o.profile << "` at " << o.commit << ", " << o.day
-     << ". Each claim of Kretzschmar 2009, chapter 6, judged on the per-seed differences "
-        "between two modes of the same simulated world, route and noise, or of the same draw "
-        "of a log (its odometry perturbed by about 1 %, replay --seed): it holds when the "
-        "95 % interval of the mean difference lies on the expected side of 0. "
-     << ProfileNote(o) << ".\n";
+     << ". Each claim of Kretzschmar 2009, chapter 6, " << kHowJudged << " " << ProfileNote(o)
+     << ".\n";
   for (const ExperimentResult& e : o.experiments) {
     md << "\n## " << e.experiment->title << "\n\n";
     if (!e.not_run.empty()) {
@@ -145,11 +149,7 @@ void WriteBook(const BookOutcome& o, const std::string& dir) {
        "figcaption{font-size:90%;color:#444}</style></head><body>\n"
     << "<h1>The seed's chapter 6, reproduced</h1>\n<p><code>lifelong reproduce --profile "
     << HtmlEscape(o.profile) << "</code> at " << HtmlEscape(o.commit) << ", " << HtmlEscape(o.day)
-    << ". Each claim is judged on the per-seed differences between two modes of the same "
-       "world, route and noise, or of the same draw of a log (its odometry perturbed by about "
-       "1 %, replay --seed): it holds when the 95 % interval of the mean difference lies on "
-       "the expected side of 0. <b>"
-    << HtmlEscape(ProfileNote(o))
+    << ". Each claim " << kHowJudged << " <b>" << HtmlEscape(ProfileNote(o))
     << ".</b> The same in <a href=\"results.md\">results.md</a>.</p>\n";
   for (const ExperimentResult& e : o.experiments) {
     h << "<h2>" << HtmlEscape(e.experiment->title) << "</h2>\n";

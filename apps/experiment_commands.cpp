@@ -117,10 +117,8 @@ lifelong::eval::ExperimentConfig ExperimentSettings(const std::string& out,
 }
 
 int Run(const RunArgs& a) {
-  const std::string& scenario_path = a.scenario;
-  const std::string& out = a.out;
   lifelong::eval::ExperimentConfig config =
-      ExperimentSettings(out, a.modes, a.config, a.command_line);
+      ExperimentSettings(a.out, a.modes, a.config, a.command_line);
   config.present_at_s = a.present_at;
   std::sort(config.present_at_s.begin(), config.present_at_s.end());
   config.video_path = a.video;
@@ -129,14 +127,14 @@ int Run(const RunArgs& a) {
   if (!a.video.empty() || !a.frames.empty()) config.open_video = LoadVideoModule();
   if (!a.video.empty()) lifelong::io::CheckWritableFile(a.video, "--video");
   if (!a.frames.empty()) lifelong::io::CheckWritableDirectory(a.frames, "--frames");
-  lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(scenario_path);
+  lifelong::sim::Scenario scenario = lifelong::sim::LoadScenario(a.scenario);
   if (a.seed) scenario.seed = static_cast<std::uint64_t>(*a.seed);  // as a sweep's cell does
   lifelong::eval::CheckWorldRaster(scenario, config.mapper.grid.resolution_m);
   std::cerr << "simulating " << scenario.name << " (" << scenario.duration_s << " s expected)\n";
   const auto run = lifelong::eval::SimulateScenario(scenario, &std::cerr, config.progress_terminal);
   const lifelong::eval::SimulationOutcome outcome = lifelong::eval::Outcome(scenario, run);
   config.simulation = outcome;
-  config.source = scenario_path;
+  config.source = a.scenario;
   config.seed = static_cast<std::int64_t>(scenario.seed);
   config.first_pass_s = lifelong::eval::FirstPassEnd(scenario, run);
   if (!config.first_pass_s) {
@@ -149,11 +147,12 @@ int Run(const RunArgs& a) {
     }
   }
   const lifelong::eval::GroundTruth truth = lifelong::eval::TruthOf(scenario.world, run.duration_s);
-  PrintResult(lifelong::eval::RunExperiment(run.observations, truth, config), out);
+  PrintResult(lifelong::eval::RunExperiment(run.observations, truth, config), a.out);
   if (outcome.collided || outcome.timed_out) {
     std::cerr << (outcome.Failed() ? "error: " : "note: ") << "the robot did not drive "
-              << scenario_path << " as scripted: " << lifelong::eval::OutcomeText(outcome)
-              << (outcome.Failed() ? "the figures in " + out + " are of that run (exit 1)\n" : "");
+              << a.scenario << " as scripted: " << lifelong::eval::OutcomeText(outcome)
+              << (outcome.Failed() ? "the figures in " + a.out + " are of that run (exit 1)\n"
+                                   : "");
   }
   return outcome.Failed() ? 1 : 0;
 }

@@ -22,6 +22,19 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Why a job could not start, in its log, where the sweep's failure list points (a program
+// rebuilt or removed while the sweep ran lands here).
+void WriteStartFailure(const PoolJob& job, int err) {
+  const int fd = ::open(job.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) return;  // the exit code 127 says it failed either way
+  const std::string why = "lifelong sweep: cannot start " + job.argv.front() + ": " +
+                          std::strerror(err) +
+                          " (was the program rebuilt or removed while the sweep ran?)\n";
+  const ssize_t written = ::write(fd, why.data(), why.size());
+  (void)written;
+  ::close(fd);
+}
+
 // Starts one job; returns its pid, or -1 with the reason written to its log.
 pid_t Spawn(const PoolJob& job) {
   posix_spawn_file_actions_t actions;
@@ -37,17 +50,7 @@ pid_t Spawn(const PoolJob& job) {
   const int err = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (err == 0) return pid;
-  // A program rebuilt or removed while a sweep runs lands here: say so where the sweep's
-  // failure list points, not in an empty log.
-  const int fd = ::open(job.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd >= 0) {
-    const std::string why = "lifelong sweep: cannot start " + job.argv.front() + ": " +
-                            std::strerror(err) +
-                            " (was the program rebuilt or removed while the sweep ran?)\n";
-    const ssize_t written = ::write(fd, why.data(), why.size());
-    (void)written;  // the exit code 127 says it failed either way
-    ::close(fd);
-  }
+  WriteStartFailure(job, err);
   return -1;
 }
 

@@ -2,23 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "eval/experiment/mode_csv.hpp"
+#include "test_files.hpp"
 
 namespace lifelong::eval {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
   slam::LoopAttempt refused;
@@ -48,7 +40,7 @@ TEST(LoopAttemptsCsv, OneRowPerSearchWithItsOutcome) {
 
   const fs::path path = fs::temp_directory_path() / "lifelong_loop_attempts_test.csv";
   WriteLoopAttempts(path.string(), {{40, refused}, {41, proposed}, {42, few}});
-  EXPECT_EQ(Read(path),
+  EXPECT_EQ(ReadFileText(path),
             "obs,node,search,candidates,old,window_m,window_rad,score,outcome,accepted,ambiguity\n"
             "40,40,local,2,3,0.5000,0.15000,0.2500,low_score,0,0.0000\n"
             "41,41,global,3,7,4.0000,0.20000,0.8125,proposed,2,0.7500\n"

@@ -4,13 +4,13 @@
 // ends up in.
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "eval/figures/plots.hpp"
 #include "io/atomic_file.hpp"
+#include "test_files.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -38,11 +38,6 @@ std::vector<LoopCurvePoint> NoClosures(int revisits) {
   return curve;
 }
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 fs::path FreshDir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / name;
   fs::remove_all(dir);
@@ -67,7 +62,7 @@ TEST(PlotIsolationTest, ARunWithoutClosuresGivesEveryFigure) {
     EXPECT_EQ(r.files.size(), 10u);
     for (const char* name : kRunFigures)
       EXPECT_FALSE(cv::imread((dir / name).string()).empty()) << name << ", revisits " << revisits;
-    const std::string script = Read(dir / "plot_data" / "loop_closing.gp");
+    const std::string script = ReadFileText(dir / "plot_data" / "loop_closing.gp");
     EXPECT_NE(script.find("'no closures'"), std::string::npos) << script;
     EXPECT_NE(script.find("'standard (no closures)'"), std::string::npos) << script;
     EXPECT_EQ(script.find("'no revisits'") != std::string::npos, revisits == 0) << script;
@@ -83,7 +78,7 @@ TEST(PlotIsolationTest, OnlyTheModeWithoutClosuresIsMarked) {
   const PlotResult r = PlotRun({}, {}, curves, dir.string());
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_FALSE(cv::imread((dir / "loop_closing.png").string()).empty());
-  const std::string script = Read(dir / "plot_data" / "loop_closing.gp");
+  const std::string script = ReadFileText(dir / "plot_data" / "loop_closing.gp");
   EXPECT_NE(script.find("'standard (no closures)'"), std::string::npos) << script;
   EXPECT_EQ(script.find("'pruned (no closures)'"), std::string::npos) << script;
   EXPECT_EQ(script.find("'no closures' at"), std::string::npos) << script;
@@ -102,11 +97,11 @@ TEST(PlotIsolationTest, TheLoopChartFollowsObservationsWhenStampsDoNotAdvance) {
     const PlotResult r = PlotRun({}, {}, {{"pruned", curve}}, dir.string());
     EXPECT_TRUE(r.ok) << r.error;
     EXPECT_FALSE(cv::imread((dir / "loop_closing.png").string()).empty());
-    const std::string script = Read(dir / "plot_data" / "loop_closing.gp");
+    const std::string script = ReadFileText(dir / "plot_data" / "loop_closing.gp");
     EXPECT_EQ(script.find("using 6:2") != std::string::npos, one_stamp) << script;
     EXPECT_EQ(script.find("using 1:2") != std::string::npos, !one_stamp) << script;
     EXPECT_EQ(script.find("'observation'") != std::string::npos, one_stamp) << script;
-    const std::string data = Read(dir / "plot_data" / "loops_pruned.dat");
+    const std::string data = ReadFileText(dir / "plot_data" / "loops_pruned.dat");
     const std::string last =
         std::string(one_stamp ? "\n0 " : "\n19 ") + "1.000000 0.500000 9 6 19\n";
     EXPECT_NE(data.find(last), std::string::npos) << data;
@@ -129,7 +124,8 @@ TEST(PlotIsolationTest, ABrokenFigureLosesOnlyItself) {
   EXPECT_EQ(r.failed[0].log, (dir / "plot_data" / "kld.log").string());
   EXPECT_NE(r.error.find("kld.png"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find(r.failed[0].log), std::string::npos) << r.error;
-  EXPECT_NE(Read(r.failed[0].log).find("range"), std::string::npos) << Read(r.failed[0].log);
+  EXPECT_NE(ReadFileText(r.failed[0].log).find("range"), std::string::npos)
+      << ReadFileText(r.failed[0].log);
   EXPECT_EQ(r.files.size(), 9u);
   for (const char* name : kRunFigures) {
     const bool lost = std::string(name) == "kld.png";
@@ -165,7 +161,8 @@ TEST(PlotIsolationTest, MessagesNameTheFinalDirectory) {
   EXPECT_EQ(r.files.size(), 7u);
   EXPECT_EQ(r.error.find(staging.string()), std::string::npos) << r.error;
   fs::rename(staging, final_dir);
-  EXPECT_NE(Read(r.failed[0].log).find("refused on purpose"), std::string::npos) << r.failed[0].log;
+  EXPECT_NE(ReadFileText(r.failed[0].log).find("refused on purpose"), std::string::npos)
+      << r.failed[0].log;
   EXPECT_FALSE(fs::exists(final_dir / "nodes.png"));
   EXPECT_TRUE(fs::exists(final_dir / "edges.png"));
 }

@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
+#include "test_files.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -29,20 +29,6 @@ std::vector<TimelineRow> Rows(int n) {
     rows.push_back(r);
   }
   return rows;
-}
-
-std::string ReadAll(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("lifelong_eval_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
 }
 
 std::set<std::string> Keys(const nlohmann::json& j) {
@@ -97,10 +83,10 @@ TEST(SummaryJsonTest, ContainsExactlyTheContractNames) {
   s.modes["standard"].observations = 20;
   s.modes["standard"].ate_rmse_m = std::numeric_limits<double>::quiet_NaN();  // never written
 
-  const fs::path dir = TempDir("json");
+  const fs::path dir = FreshTempDir("json");
   WriteSummaryJson((dir / "summary.json").string(), s);
   EXPECT_FALSE(fs::exists(io::TempPathFor((dir / "summary.json").string())));
-  const auto j = nlohmann::json::parse(ReadAll(dir / "summary.json"));
+  const auto j = nlohmann::json::parse(ReadFileText(dir / "summary.json"));
   EXPECT_EQ(Keys(j),
             (std::set<std::string>{"source", "seed", "wall_time_s", "log_duration_s", "modes"}));
   EXPECT_EQ(j["seed"], 7);
@@ -173,9 +159,9 @@ TEST(SummaryJsonTest, BlurOfAMapWithoutOccupiedCellsIsAbsentNotZero) {
   ModeSummary m;
   m.blur = BlurSummary{std::nullopt, std::nullopt, 0.0, 0.0};
   s.modes["standard"] = m;
-  const fs::path dir = TempDir("json_empty_map");
+  const fs::path dir = FreshTempDir("json_empty_map");
   WriteSummaryJson((dir / "summary.json").string(), s);
-  const auto j = nlohmann::json::parse(ReadAll(dir / "summary.json"));
+  const auto j = nlohmann::json::parse(ReadFileText(dir / "summary.json"));
   EXPECT_EQ(Keys(j["modes"]["standard"]["blur"]), (std::set<std::string>{"thickness", "recall"}));
 }
 
@@ -189,7 +175,7 @@ TEST(SummaryJsonTest, SeedAndDurationAbsentWhenUnknown) {
 }
 
 TEST(TimelineCsvTest, HeaderAndRows) {
-  const fs::path p = TempDir("csv") / "timeline.csv";
+  const fs::path p = FreshTempDir("csv") / "timeline.csv";
   WriteTimelineCsv(p.string(), Rows(3));
   EXPECT_FALSE(fs::exists(io::TempPathFor(p.string())));
   std::ifstream in(p);

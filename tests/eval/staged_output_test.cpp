@@ -7,6 +7,7 @@
 
 #include "eval/common/staged_output.hpp"
 #include "sensor/input_error.hpp"
+#include "test_files.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -21,11 +22,6 @@ fs::path Fresh(const std::string& name) {
 
 void Write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST(StagedOutput, CommitReplacesTheWholeEarlierResult) {
   const fs::path dir = Fresh("replace");
   fs::create_directories(dir / "pruned");
@@ -35,10 +31,10 @@ TEST(StagedOutput, CommitReplacesTheWholeEarlierResult) {
     StagedOutput out(dir.string());
     EXPECT_NE(out.path(), dir.string());
     Write(fs::path(out.path()) / "summary.json", "new");
-    EXPECT_EQ(Read(dir / "summary.json"), "old");  // untouched until the commit
+    EXPECT_EQ(ReadFileText(dir / "summary.json"), "old");  // untouched until the commit
     out.Commit();
   }
-  EXPECT_EQ(Read(dir / "summary.json"), "new");
+  EXPECT_EQ(ReadFileText(dir / "summary.json"), "new");
   EXPECT_FALSE(fs::exists(dir / "pruned"));  // nothing of the earlier run is left
   EXPECT_TRUE(fs::exists(dir / kOutputMarker));
   for (const auto& e : fs::directory_iterator(dir.parent_path())) {
@@ -56,7 +52,7 @@ TEST(StagedOutput, WithoutCommitTheEarlierResultStaysAndTheStagingGoes) {
     staging = out.path();
     Write(fs::path(staging) / "summary.json", "partial");
   }  // e.g. an exception or Ctrl-C unwound the run
-  EXPECT_EQ(Read(dir / "summary.json"), "old");
+  EXPECT_EQ(ReadFileText(dir / "summary.json"), "old");
   EXPECT_FALSE(fs::exists(staging));
 }
 
@@ -65,7 +61,7 @@ TEST(StagedOutput, ANewDirectoryIsCreatedOnCommit) {
   StagedOutput out((dir.string() + "/"));  // a trailing slash names the same directory
   Write(fs::path(out.path()) / "summary.json", "new");
   out.Commit();
-  EXPECT_EQ(Read(dir / "summary.json"), "new");
+  EXPECT_EQ(ReadFileText(dir / "summary.json"), "new");
 }
 
 TEST(StagedOutput, RefusesADirectoryThatIsNotAnOutput) {
@@ -73,7 +69,7 @@ TEST(StagedOutput, RefusesADirectoryThatIsNotAnOutput) {
   fs::create_directories(dir);
   Write(dir / "thesis.tex", "precious");
   EXPECT_THROW(StagedOutput{dir.string()}, InputError);
-  EXPECT_EQ(Read(dir / "thesis.tex"), "precious");
+  EXPECT_EQ(ReadFileText(dir / "thesis.tex"), "precious");
   EXPECT_THROW(CheckReplaceableOutput("."), InputError);
   EXPECT_THROW(CheckReplaceableOutput("/"), InputError);
 }

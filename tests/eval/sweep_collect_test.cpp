@@ -14,6 +14,7 @@
 #include "eval/sweep/sweep_report.hpp"
 #include "eval/sweep/sweep_run.hpp"
 #include "sensor/input_error.hpp"
+#include "test_files.hpp"
 
 namespace lifelong::eval {
 namespace {
@@ -21,16 +22,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string Read(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::vector<std::vector<std::string>> Csv(const fs::path& p) {
   std::vector<std::vector<std::string>> rows;
-  std::istringstream in(Read(p));
+  std::istringstream in(ReadFileText(p));
   for (std::string line; std::getline(in, line);) {
     std::vector<std::string> row;
     std::string cell;
@@ -112,7 +106,8 @@ TEST(SweepCollect, RunsCsvHasOneRowPerCellAndModeAndEmptyWhereAbsent) {
   EXPECT_EQ(runs[2], (std::vector<std::string>{"c1", "corridor_3.yaml", "1", "pruned", "2.5", "",
                                                "", "6", "0.25"}));
   EXPECT_EQ(At(runs, 3, "blur/recall"), "");  // seed 2 has no recall: empty, not 0
-  EXPECT_EQ(Read(dir / "runs.csv").find("999"), std::string::npos) << "a stale cell was read";
+  EXPECT_EQ(ReadFileText(dir / "runs.csv").find("999"), std::string::npos)
+      << "a stale cell was read";
 }
 
 TEST(SweepCollect, AggregateHasMeanStdAndTIntervalOverSeeds) {
@@ -159,7 +154,7 @@ TEST(SweepCollect, PairedIsTheDifferenceToTheBaselinePerSeed) {
 TEST(SweepCollect, ReportLinksTablesAndCells) {
   const fs::path dir = Fabricate();
   CollectSweep(dir.string());
-  const std::string html = Read(dir / "report.html");
+  const std::string html = ReadFileText(dir / "report.html");
   EXPECT_NE(html.find("aggregate.csv"), std::string::npos);
   EXPECT_NE(html.find("cells/c1/report.html"), std::string::npos);
   EXPECT_NE(html.find("c3"), std::string::npos) << "the missing cell is named";

@@ -5,50 +5,35 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
+#include "test_files.hpp"
 
 namespace lifelong::eval {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string Read(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-fs::path TempDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("lifelong_pool_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 TEST(SweepPool, AJobsExitCodeAndOutputAreKept) {
-  const fs::path dir = TempDir("exit");
+  const fs::path dir = FreshTempDir("pool_exit");
   const std::string log = (dir / "a.log").string();
   const std::vector<PoolJobResult> r =
       RunProcessPool({{{"/bin/sh", "-c", "echo out; echo err >&2; exit 3"}, log}}, {});
   ASSERT_EQ(r.size(), 1u);
   EXPECT_TRUE(r[0].started);
   EXPECT_EQ(r[0].exit_code, 3);
-  EXPECT_EQ(Read(log), "out\nerr\n");
+  EXPECT_EQ(ReadFileText(log), "out\nerr\n");
 }
 
 // The bug: a sweep whose program was rebuilt under it failed every later cell with exit 127
 // and an empty log; the log now names the program and the reason.
 TEST(SweepPool, AProgramThatCannotStartSaysWhyInItsLog) {
-  const fs::path dir = TempDir("missing");
+  const fs::path dir = FreshTempDir("pool_missing");
   const std::string program = (dir / "gone" / "lifelong").string();
   const std::string log = (dir / "b.log").string();
   const std::vector<PoolJobResult> r = RunProcessPool({{{program, "run"}, log}}, {});
   ASSERT_EQ(r.size(), 1u);
   EXPECT_EQ(r[0].exit_code, 127);
-  const std::string text = Read(log);
+  const std::string text = ReadFileText(log);
   EXPECT_NE(text.find("cannot start " + program), std::string::npos) << text;
   EXPECT_NE(text.find("No such file or directory"), std::string::npos) << text;
 }

@@ -109,7 +109,8 @@ int Reproduce(const ReproduceArgs& a) {
     for (const eval::FailedCell& f : r.failed) {
       std::cout << "  failed: " << f.name << " (exit " << f.exit_code << "), log " << f.log << "\n";
     }
-    failed += static_cast<int>(r.failed.size());
+    if (!r.not_started.empty()) std::cout << "  " << eval::NotStartedNote(r) << "\n";
+    failed += static_cast<int>(r.failed.size() + r.not_started.size());
     er.tables = std::move(r.tables);
     er.charts = Charts(a.out, er.dir);
     er.figures = CellFigures(a.out, er.dir, e.figures);

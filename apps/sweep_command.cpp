@@ -81,7 +81,8 @@ int Sweep(const SweepArgs& a) {
             << "\n";
   PrintTables(r.tables, a.out);
   PrintFailed(r.failed);
-  return r.failed.empty() ? 0 : 1;
+  if (!r.not_started.empty()) std::cout << eval::NotStartedNote(r) << "\n";
+  return r.failed.empty() && r.not_started.empty() ? 0 : 1;
 }
 
 }  // namespace

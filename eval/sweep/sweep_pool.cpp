@@ -72,23 +72,25 @@ std::vector<PoolJobResult> RunProcessPool(const std::vector<PoolJob>& jobs,
   };
   std::size_t next = 0;
   bool stopping = false;
+  bool cannot_start = false;  // the later jobs would fail alike: none is started
   while (next < jobs.size() || !running.empty()) {
     if (!stopping && options.stop && options.stop()) {
       stopping = true;
       for (const auto& entry : running) ::kill(entry.first, SIGTERM);
     }
-    while (!stopping && next < jobs.size() && running.size() < parallel) {
+    while (!stopping && !cannot_start && next < jobs.size() && running.size() < parallel) {
       const std::size_t i = next++;
       const pid_t pid = Spawn(jobs[i]);
       results[i].started = true;
       if (pid < 0) {
         results[i].exit_code = 127;  // as a shell reports a program it cannot start
+        cannot_start = true;
         finish(i);
       } else {
         running[pid] = {i, Clock::now()};
       }
     }
-    if (stopping && running.empty()) break;
+    if ((stopping || cannot_start) && running.empty()) break;
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid > 0 && running.count(pid)) {

@@ -2,7 +2,9 @@
 // stdout and stderr in its own log file and stdin from /dev/null. Started with
 // posix_spawn (no shell), reaped by polling waitpid, so that an interruption is noticed
 // within 50 ms: then no new job starts, the running ones get SIGTERM (they remove their
-// staging directories and exit 130) and are waited for.
+// staging directories and exit 130) and are waited for. A job whose program cannot be
+// started (exit 127, the reason in its log) starts no later job either: they would fail
+// alike (a program rebuilt or removed under the sweep); the running ones finish.
 #pragma once
 
 #include <cstddef>
@@ -29,7 +31,8 @@ struct PoolOptions {
   std::function<bool()> stop;  ///< polled; true: start nothing more, stop the running jobs
 };
 
-/// Runs `jobs`, in order, at most options.parallel at once; returns one result per job.
+/// Runs `jobs`, in order, at most options.parallel at once; returns one result per job
+/// (`started` false for those never started).
 std::vector<PoolJobResult> RunProcessPool(const std::vector<PoolJob>& jobs,
                                           const PoolOptions& options);
 

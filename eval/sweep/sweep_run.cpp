@@ -156,6 +156,13 @@ int RunSweepCell(const std::string& dir, long index, const std::string& program_
   return r.exit_code;
 }
 
+std::string NotStartedNote(const SweepOutcome& outcome) {
+  if (outcome.not_started.empty()) return "";
+  return "not started: " + std::to_string(outcome.not_started.size()) +
+         " cells, because a cell's program could not be started (exit 127, see its log); once "
+         "it is there again, the same command runs them and keeps the finished cells";
+}
+
 SweepOutcome RunSweep(const SweepOptions& o) {
   const PreparedSweep prepared = PrepareSweep(o);
   const SweepPlan& plan = prepared.plan;
@@ -184,9 +191,12 @@ SweepOutcome RunSweep(const SweepOptions& o) {
     }
     progress.Done(r.exit_code != 0, r.wall_s, note);
   };
-  RunProcessPool(jobs, pool);
+  const std::vector<PoolJobResult> results = RunProcessPool(jobs, pool);
   progress.Finish();
   ThrowIfInterrupted();
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    if (!results[i].started) outcome.not_started.push_back(plan.cells[prepared.to_run[i]].name);
+  }
   outcome.tables = CollectSweep(dir.string());
   outcome.wall_s = progress.elapsed_s();
   return outcome;

@@ -39,9 +39,15 @@ struct SweepOutcome {
   int up_to_date = 0;  ///< not run: their result was there for the same inputs
   int ran = 0;
   std::vector<FailedCell> failed;
+  /// Never started: an earlier cell's program could not be started (exit 127), so these
+  /// would have failed alike. Running the sweep again once the program is back runs them.
+  std::vector<std::string> not_started;
   double wall_s = 0.0;
   SweepTables tables;
 };
+
+/// "not started: 4 cells, because ..." for outcome.not_started (empty when there are none).
+std::string NotStartedNote(const SweepOutcome& outcome);
 
 /// The plan with every cell's command and log (absolute paths), and the cells to run.
 struct PreparedSweep {

@@ -158,9 +158,11 @@ int RunSweepCell(const std::string& dir, long index, const std::string& program_
 
 std::string NotStartedNote(const SweepOutcome& outcome) {
   if (outcome.not_started.empty()) return "";
-  return "not started: " + std::to_string(outcome.not_started.size()) +
-         " cells, because a cell's program could not be started (exit 127, see its log); once "
-         "it is there again, the same command runs them and keeps the finished cells";
+  const std::size_t n = outcome.not_started.size();
+  return "not started: " + std::to_string(n) + (n == 1 ? " cell" : " cells") +
+         ", because a cell's program could not be started (exit 127, see its log); once it is "
+         "there again, the same command runs " +
+         (n == 1 ? "it" : "them") + " and keeps the finished cells";
 }
 
 SweepOutcome RunSweep(const SweepOptions& o) {

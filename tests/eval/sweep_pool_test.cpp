@@ -85,6 +85,9 @@ TEST(SweepRun, ASweepWhoseProgramIsGoneStopsAtTheFirstCell) {
   const std::string note = NotStartedNote(r);
   EXPECT_EQ(note.rfind("not started: 2 cells", 0), 0u) << note;
   EXPECT_EQ(NotStartedNote(SweepOutcome{}), "");
+  SweepOutcome one;
+  one.not_started = {"a"};
+  EXPECT_EQ(NotStartedNote(one).rfind("not started: 1 cell,", 0), 0u) << NotStartedNote(one);
 }
 
 }  // namespace

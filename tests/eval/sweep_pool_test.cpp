@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "eval/sweep/sweep_run.hpp"
 #include "test_files.hpp"
@@ -58,10 +59,10 @@ TEST(SweepPool, NoJobStartsAfterOneWhoseProgramCannotStart) {
   EXPECT_EQ(r[0].exit_code, 0) << "a job that started is not stopped";
   EXPECT_EQ(ReadFileText(log("running.log")), "done\n");
   EXPECT_EQ(r[1].exit_code, 127);
-  for (std::size_t i : {2u, 3u}) {
+  for (const auto& [i, name] : {std::pair{2u, "later1.log"}, std::pair{3u, "later2.log"}}) {
     EXPECT_FALSE(r[i].started) << i;
     EXPECT_EQ(r[i].exit_code, -1) << i;
-    EXPECT_FALSE(fs::exists(log(i == 2 ? "later1.log" : "later2.log"))) << i;
+    EXPECT_FALSE(fs::exists(log(name))) << i;
   }
 }
 

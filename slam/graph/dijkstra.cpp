@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 namespace lifelong::slam {
@@ -42,8 +44,37 @@ struct RootGroup {
   std::vector<const CliqueFactor*> factors;
 };
 
-/// Links from the root to each member (the block of the group's joint covariance) and
-/// between members (their sum), from the group's factors and the root's edges to members.
+/// Ad(T) of SE(2) in (x, y, theta): T * v2t(xi) * T^-1 = v2t(Ad(T) xi) to first order.
+Eigen::Matrix3d Adjoint(const Pose2& T) {
+  const double c = std::cos(T.theta), s = std::sin(T.theta);
+  Eigen::Matrix3d ad;
+  ad << c, -s, T.y, s, c, -T.x, 0.0, 0.0, 1.0;
+  return ad;
+}
+
+/// The covariance of a group's root-relative errors y from their information. A group may be
+/// singular alone (GLC conditionals, each rank 3, whose marginal lies in another group): its
+/// uninformative directions come out at ~1e9 m^2, which the projection cannot pass, and the
+/// informative ones exact, so a link along them (between two members) stays usable.
+Eigen::MatrixXd GroupCovariance(const Eigen::MatrixXd& information) {
+  const Eigen::MatrixXd sym = 0.5 * (information + information.transpose());
+  const Eigen::LLT<Eigen::MatrixXd> llt(sym);
+  if (llt.info() == Eigen::Success && llt.rcond() > 1e-10) {
+    return llt.solve(Eigen::MatrixXd::Identity(sym.rows(), sym.cols()));
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(sym);
+  const Eigen::VectorXd& d = eig.eigenvalues();
+  const double floor = 1e-12 * std::max(d.maxCoeff(), 0.0);
+  Eigen::VectorXd inv(d.size());
+  for (Eigen::Index k = 0; k < d.size(); ++k) inv(k) = 1.0 / (std::max(d(k), floor) + 1e-9);
+  return eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+/// Links from the root to each member and between members, from the group's factors and the
+/// root's edges to members. y_j = t2v(Z_j^-1 X_r^-1 X_j) is the error of the relative pose
+/// r -> j in j's frame, so the link r -> j has the block Sigma_jj; the error of i -> j is
+/// d_ij = y_j - Ad(Z_ij^-1) y_i (Z_ij = X_i^-1 X_j), whose covariance takes the pair's
+/// correlation from the group's joint covariance.
 void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, DenseGraph* g) {
   std::vector<NodeId>& members = group->members;
   std::sort(members.begin(), members.end());
@@ -68,19 +99,29 @@ void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, Dense
       information.block<3, 3>(at(e.to), at(e.to)) += e.information;
     }
   }
-  // The root to each member: the block of the inverse; members pairwise: their sum.
-  const Eigen::MatrixXd sigma = (information + 1e-9 * Eigen::MatrixXd::Identity(n, n)).inverse();
+  const Eigen::MatrixXd sigma = GroupCovariance(information);
+  const auto block = [&](std::size_t i, std::size_t j) -> Eigen::Matrix3d {
+    return sigma.block<3, 3>(3 * static_cast<Eigen::Index>(i), 3 * static_cast<Eigen::Index>(j));
+  };
+  const auto link = [&](int from, int to, const Eigen::Matrix3d& c) {
+    g->links[static_cast<std::size_t>(from)].push_back({to, c});
+  };
   const int r = g->IndexOf(root);
   for (std::size_t j = 0; j < members.size(); ++j) {
     const int m = g->IndexOf(members[j]);
-    const Eigen::Matrix3d c = sigma.block<3, 3>(at(members[j]), at(members[j]));
-    g->links[static_cast<std::size_t>(r)].push_back({m, c});
-    g->links[static_cast<std::size_t>(m)].push_back({r, c});
+    link(r, m, block(j, j));
+    link(m, r, block(j, j));
     for (std::size_t i = 0; i < j; ++i) {
       const int mi = g->IndexOf(members[i]);
-      const Eigen::Matrix3d cij = c + sigma.block<3, 3>(at(members[i]), at(members[i]));
-      g->links[static_cast<std::size_t>(mi)].push_back({m, cij});
-      g->links[static_cast<std::size_t>(m)].push_back({mi, cij});
+      const Pose2 Z_ij =
+          Between(*g->poses[static_cast<std::size_t>(mi)], *g->poses[static_cast<std::size_t>(m)]);
+      const Eigen::Matrix3d a = Adjoint(Z_ij.Inverse()), b = Adjoint(Z_ij);
+      link(mi, m,
+           block(j, j) - block(j, i) * a.transpose() - a * block(i, j) +
+               a * block(i, i) * a.transpose());
+      link(m, mi,
+           block(i, i) - block(i, j) * b.transpose() - b * block(j, i) +
+               b * block(j, j) * b.transpose());
     }
   }
 }

@@ -1,6 +1,9 @@
 #include "slam/graph/dijkstra.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 namespace lifelong::slam {
 namespace {
@@ -64,6 +67,96 @@ TEST(ProjectCovariances, PassesThroughASparseGlcTree) {
   // y_2's marginal: Sigma_1 + Omega^-1 = 0.01 + 0.01 per position axis.
   EXPECT_NEAR(proj.at(2).covariance(0, 0), 0.02, 1e-6);
   EXPECT_LT(proj.at(2).covariance(1, 1), 0.03);
+}
+
+// A GLC conditional whose tree marginal went to another group: the clique {0, 1, 2} alone says
+// where 2 is relative to 1 (y_2 given y_1) but not where either is relative to its root 0.
+// Node 1 is tied to the rest by an edge 4 -> 1 and node 2 to the current node 3. The
+// projection from 3 must pass from 2 to 1 along what the clique does say (before the fix,
+// members were linked by Sigma_11 + Sigma_22, ~1e9 m^2 here, and it stopped at 2).
+TEST(ProjectCovariances, PassesBetweenMembersOfAGroupSingularAlone) {
+  PoseGraph g;
+  Values v;
+  AddNodesAlongX(5, &g, &v);
+  g.AddEdge(Edge(2, 3, Pose2(1, 0, 0), 0.1, 1e-3));
+  g.AddEdge(Edge(4, 1, Pose2(-3, 0, 0), 0.1, 1e-3));
+  CliqueFactor f;
+  f.nodes = {0, 1, 2};
+  f.T_root_node = {Pose2(1, 0, 0), Pose2(2, 0, 0)};
+  // d_12 = y_2 - Ad(Z_12^-1) y_1 with Z_12 = (1, 0, 0): Ad = [I, (0, 1)^T; 0 1].
+  Eigen::Matrix3d ad = Eigen::Matrix3d::Identity();
+  ad(1, 2) = 1.0;
+  Eigen::MatrixXd H(3, 6);
+  H << -ad, Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d omega = Eigen::Vector3d(100.0, 100.0, 1e6).asDiagonal();
+  f.information = H.transpose() * omega * H;  // rank 3 of 6
+  g.AddClique(f);
+  ProjectionConfig config;
+  config.max_position_sigma_m = 5.0;
+  const auto proj = ProjectCovariances(g, v, 3, config);
+  ASSERT_EQ(proj.count(1), 1u);
+  EXPECT_EQ(proj.count(4), 1u);
+  EXPECT_EQ(proj.count(0), 0u);  // nothing ties the root to the others
+  // 3 -> 2 -> 1: 0.01 + 0.01 along x; across, the headings (1e-6) swing it by under 1e-5.
+  EXPECT_NEAR(proj.at(1).covariance(0, 0), 0.02, 1e-5);
+  EXPECT_NEAR(proj.at(1).covariance(1, 1), 0.02, 1e-4);
+}
+
+// A dense clique that is the exact marginal of a chain 0 -> 1 -> 2 (relative to root 0):
+// the link it gives from 1 to 2 is the edge 1 -> 2 itself (y_1 and y_2 are correlated
+// through the edge 0 -> 1, and y_2 sees it through the lever arm of Z_12), in both
+// directions. The joint covariance of y comes from numeric Jacobians, not from the adjoint.
+TEST(ProjectCovariances, ADenseMarginalLinksItsMembersAsTheChainDid) {
+  const Pose2 X0(0.0, 0.0, 0.0), X1(1.0, 0.2, 0.5), X2(1.6, 1.1, 1.2);
+  const Pose2 Z1 = Between(X0, X1), Z2 = Between(X0, X2), Z12 = Between(X1, X2);
+  const Eigen::Matrix3d C01 = Eigen::Vector3d(0.01, 0.02, 0.003).asDiagonal();
+  const Eigen::Matrix3d C12 = Eigen::Vector3d(0.02, 0.01, 0.002).asDiagonal();
+  const auto t2v = [](const Pose2& p) { return Eigen::Vector3d(p.x, p.y, p.theta); };
+  const auto v2t = [](const Eigen::VectorXd& e, int at) {
+    return Pose2(e(at), e(at + 1), e(at + 2));
+  };
+  // y(e) with e = (e01, e12), the chain's edge errors; and the reverse error of 2 -> 1.
+  const auto y = [&](const Eigen::VectorXd& e) {
+    Eigen::VectorXd out(6);
+    out << e.head<3>(), t2v(Z2.Inverse() * Z1 * v2t(e, 0) * Z12 * v2t(e, 3));
+    return out;
+  };
+  const auto back = [&](const Eigen::VectorXd& e) {
+    return t2v(Z12 * (Z12 * v2t(e, 3)).Inverse());
+  };
+  Eigen::MatrixXd J(6, 6);
+  Eigen::MatrixXd Jb(3, 6);
+  const double h = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    Eigen::VectorXd plus = Eigen::VectorXd::Zero(6), minus = plus;
+    plus(k) = h;
+    minus(k) = -h;
+    J.col(k) = (y(plus) - y(minus)) / (2 * h);
+    Jb.col(k) = (back(plus) - back(minus)) / (2 * h);
+  }
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(6, 6);
+  C.topLeftCorner<3, 3>() = C01;
+  C.bottomRightCorner<3, 3>() = C12;
+  PoseGraph g;
+  Values v{{0, X0}, {1, X1}, {2, X2}};
+  for (NodeId i = 0; i < 3; ++i) g.AddNode(i);
+  CliqueFactor f;
+  f.nodes = {0, 1, 2};
+  f.T_root_node = {Z1, Z2};
+  f.information = (J * C * J.transpose()).inverse();
+  g.AddClique(f);
+  const auto rotate = [](const Eigen::Matrix3d& c, double theta) {
+    Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+    r.topLeftCorner<2, 2>() << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
+    return Eigen::Matrix3d(r * c * r.transpose());
+  };
+  const auto ahead = ProjectCovariances(g, v, 1);
+  EXPECT_TRUE(ahead.at(2).covariance.isApprox(rotate(C12, X2.theta), 1e-6))
+      << ahead.at(2).covariance;
+  const Eigen::Matrix3d C21 = Jb * C * Jb.transpose();
+  const auto behind = ProjectCovariances(g, v, 2);
+  EXPECT_TRUE(behind.at(1).covariance.isApprox(rotate(C21, X1.theta), 1e-6))
+      << behind.at(1).covariance;
 }
 
 // Heading noise at node 1 swings node 2 sideways by lever arm 1 m: var_y += sigma_th^2.

@@ -72,7 +72,8 @@ Eigen::MatrixXd GroupCovariance(const Eigen::MatrixXd& information) {
 
 /// Links from the root to each member and between members, from the group's factors and the
 /// root's edges to members. y_j = t2v(Z_j^-1 X_r^-1 X_j) is the error of the relative pose
-/// r -> j in j's frame, so the link r -> j has the block Sigma_jj; the error of i -> j is
+/// r -> j in j's frame, so the link r -> j has the block Sigma_jj, and j -> r, whose error
+/// is -Ad(Z_j) y_j in r's frame, Ad(Z_j) Sigma_jj Ad(Z_j)^T; the error of i -> j is
 /// d_ij = y_j - Ad(Z_ij^-1) y_i (Z_ij = X_i^-1 X_j), whose covariance takes the pair's
 /// correlation from the group's joint covariance.
 void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, DenseGraph* g) {
@@ -109,8 +110,10 @@ void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, Dense
   const int r = g->IndexOf(root);
   for (std::size_t j = 0; j < members.size(); ++j) {
     const int m = g->IndexOf(members[j]);
+    const Eigen::Matrix3d back = Adjoint(
+        Between(*g->poses[static_cast<std::size_t>(r)], *g->poses[static_cast<std::size_t>(m)]));
     link(r, m, block(j, j));
-    link(m, r, block(j, j));
+    link(m, r, back * block(j, j) * back.transpose());
     for (std::size_t i = 0; i < j; ++i) {
       const int mi = g->IndexOf(members[i]);
       const Pose2 Z_ij =

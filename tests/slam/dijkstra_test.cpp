@@ -159,6 +159,41 @@ TEST(ProjectCovariances, ADenseMarginalLinksItsMembersAsTheChainDid) {
       << behind.at(1).covariance;
 }
 
+// A member's link back to the root carries its heading's lever arm: the error of j -> r is
+// -Ad(Z_j) y_j in r's frame. A clique {0, 1} 4 m apart with y_1's covariance C; from node 1
+// the root's covariance is that of the reverse error, from a numeric Jacobian.
+TEST(ProjectCovariances, ALinkBackToTheRootCarriesTheLeverArm) {
+  const Pose2 X0(0.0, 0.0, 0.3), X1(3.0, 2.5, 1.0);
+  const Pose2 Z = Between(X0, X1);
+  const Eigen::Matrix3d C = Eigen::Vector3d(0.01, 0.02, 0.004).asDiagonal();
+  const auto back = [&](const Eigen::Vector3d& e) {
+    const Pose2 r = Z * (Z * Pose2(e.x(), e.y(), e.z())).Inverse();
+    return Eigen::Vector3d(r.x, r.y, r.theta);
+  };
+  Eigen::Matrix3d J;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d plus = Eigen::Vector3d::Zero(), minus = plus;
+    plus(k) = 1e-6;
+    minus(k) = -1e-6;
+    J.col(k) = (back(plus) - back(minus)) / 2e-6;
+  }
+  PoseGraph g;
+  Values v{{0, X0}, {1, X1}};
+  g.AddNode(0);
+  g.AddNode(1);
+  CliqueFactor f;
+  f.nodes = {0, 1};
+  f.T_root_node = {Z};
+  f.information = C.inverse();
+  g.AddClique(f);
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  r.topLeftCorner<2, 2>() << std::cos(X0.theta), -std::sin(X0.theta), std::sin(X0.theta),
+      std::cos(X0.theta);
+  const Eigen::Matrix3d expected = r * J * C * J.transpose() * r.transpose();
+  const auto proj = ProjectCovariances(g, v, 1);
+  EXPECT_TRUE(proj.at(0).covariance.isApprox(expected, 1e-6)) << proj.at(0).covariance;
+}
+
 // Heading noise at node 1 swings node 2 sideways by lever arm 1 m: var_y += sigma_th^2.
 TEST(ProjectCovariances, HeadingNoiseGrowsLateralUncertainty) {
   PoseGraph g;

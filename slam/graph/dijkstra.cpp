@@ -76,7 +76,8 @@ Eigen::MatrixXd GroupCovariance(const Eigen::MatrixXd& information) {
 /// is -Ad(Z_j) y_j in r's frame, Ad(Z_j) Sigma_jj Ad(Z_j)^T; the error of i -> j is
 /// d_ij = y_j - Ad(Z_ij^-1) y_i (Z_ij = X_i^-1 X_j), whose covariance takes the pair's
 /// correlation from the group's joint covariance.
-void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, DenseGraph* g) {
+void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, DenseGraph* g,
+                    CliqueGroupCache* cache) {
   std::vector<NodeId>& members = group->members;
   std::sort(members.begin(), members.end());
   members.erase(std::unique(members.begin(), members.end()), members.end());
@@ -100,7 +101,8 @@ void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, Dense
       information.block<3, 3>(at(e.to), at(e.to)) += e.information;
     }
   }
-  const Eigen::MatrixXd sigma = GroupCovariance(information);
+  const Eigen::MatrixXd& sigma =
+      cache ? cache->Covariance(root, information, GroupCovariance) : GroupCovariance(information);
   const auto block = [&](std::size_t i, std::size_t j) -> Eigen::Matrix3d {
     return sigma.block<3, 3>(3 * static_cast<Eigen::Index>(i), 3 * static_cast<Eigen::Index>(j));
   };
@@ -129,7 +131,7 @@ void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, Dense
   }
 }
 
-DenseGraph BuildDense(const PoseGraph& graph, const Values& values) {
+DenseGraph BuildDense(const PoseGraph& graph, const Values& values, CliqueGroupCache* cache) {
   DenseGraph g;
   g.ids = graph.NodeIds();
   g.poses.reserve(g.ids.size());
@@ -153,7 +155,8 @@ DenseGraph BuildDense(const PoseGraph& graph, const Values& values) {
     group.members.insert(group.members.end(), f.nodes.begin() + 1, f.nodes.end());
     group.factors.push_back(&f);
   }
-  for (auto& [root, group] : groups) AddCliqueLinks(graph, root, &group, &g);
+  for (auto& [root, group] : groups) AddCliqueLinks(graph, root, &group, &g, cache);
+  if (cache) cache->DropUnused();
   return g;
 }
 
@@ -161,9 +164,21 @@ double Distance(const Pose2& a, const Pose2& b) { return std::hypot(b.x - a.x, b
 
 }  // namespace
 
+void CliqueGroupCache::DropUnused() {
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (!it->second.used) {
+      it = entries_.erase(it);
+    } else {
+      it->second.used = false;
+      ++it;
+    }
+  }
+}
+
 std::map<NodeId, ProjectedNode> ProjectCovariances(const PoseGraph& graph, const Values& values,
-                                                   NodeId source, const ProjectionConfig& config) {
-  const DenseGraph g = BuildDense(graph, values);
+                                                   NodeId source, const ProjectionConfig& config,
+                                                   CliqueGroupCache* cache) {
+  const DenseGraph g = BuildDense(graph, values, cache);
   const std::size_t n = g.ids.size();
   std::vector<ProjectedNode> best(n);
   std::vector<double> cost(n, std::numeric_limits<double>::infinity());

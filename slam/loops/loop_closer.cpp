@@ -139,7 +139,7 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
   const LoopClosingConfig& lc = config_;
   ProjectionConfig projection;
   projection.max_position_sigma_m = lc.max_position_sigma_m;
-  projected_ = ProjectCovariances(view.graph, view.values, current, projection);
+  projected_ = ProjectCovariances(view.graph, view.values, current, projection, &groups_);
   const auto near = ExpandByPathLength(view.graph, view.values, current, lc.min_path_separation_m);
   int beyond = 0;
   // Wide at every n-th observation, and at every one while hypotheses wait for the others

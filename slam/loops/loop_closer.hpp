@@ -144,6 +144,7 @@ class LoopCloser {
   /// The last local search's covariance projection (loops.max_position_sigma_m), which the
   /// global search of the same observation uses.
   std::map<NodeId, ProjectedNode> projected_;
+  CliqueGroupCache groups_;  ///< the projection's clique-group covariances, between calls
   HypothesisHook hook_;
 };
 

@@ -194,6 +194,44 @@ TEST(ProjectCovariances, ALinkBackToTheRootCarriesTheLeverArm) {
   EXPECT_TRUE(proj.at(0).covariance.isApprox(expected, 1e-6)) << proj.at(0).covariance;
 }
 
+// The group cache gives what a projection without it gives, to the bit, also after the
+// group's factor changed, and it drops the groups that left the graph.
+TEST(ProjectCovariances, TheGroupCacheChangesNothing) {
+  PoseGraph g;
+  Values v;
+  AddNodesAlongX(4, &g, &v);
+  g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 0.1, 0.01));
+  g.AddEdge(Edge(2, 3, Pose2(1, 0, 0), 0.1, 0.01));
+  CliqueFactor f;
+  f.nodes = {1, 2, 3};
+  f.T_root_node = {Pose2(1, 0, 0), Pose2(2, 0, 0)};
+  Eigen::MatrixXd H(3, 6);
+  H << -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity();
+  f.information = H.transpose() * Eigen::Matrix3d(Eigen::Vector3d(100, 100, 1e4).asDiagonal()) * H;
+  g.AddClique(f);
+  CliqueGroupCache cache;
+  const auto same = [&](NodeId source) {
+    const auto with = ProjectCovariances(g, v, source, {}, &cache);
+    const auto without = ProjectCovariances(g, v, source);
+    ASSERT_EQ(with.size(), without.size());
+    for (const auto& [id, node] : without) {
+      EXPECT_TRUE(with.at(id).covariance == node.covariance) << "node " << id;
+    }
+  };
+  same(0);
+  same(3);
+  EXPECT_EQ(cache.size(), 1u);
+  // The factor changes in place (a later removal replaced it): the entry is recomputed.
+  g.RemoveCliquesWithin({1, 2, 3});
+  f.information *= 4.0;
+  g.AddClique(f);
+  same(0);
+  // Its root leaves the graph's cliques: the entry goes.
+  g.RemoveCliquesWithin({1, 2, 3});
+  same(0);
+  EXPECT_EQ(cache.size(), 0u);
+}
+
 // Heading noise at node 1 swings node 2 sideways by lever arm 1 m: var_y += sigma_th^2.
 TEST(ProjectCovariances, HeadingNoiseGrowsLateralUncertainty) {
   PoseGraph g;

@@ -27,6 +27,20 @@ void AddNodesAlongX(int n, PoseGraph* g, Values* v) {
   }
 }
 
+// A GLC-style conditional over {r, p, c} with nodes 1 m apart along x: information on
+// y_c - a y_p only (rank 3 of 6), with the given precisions.
+CliqueFactor Conditional(NodeId r, NodeId p, NodeId c, const Eigen::Matrix3d& a,
+                         const Eigen::Vector3d& precision) {
+  CliqueFactor f;
+  f.nodes = {r, p, c};
+  f.T_root_node = {Pose2(static_cast<double>(p - r), 0, 0),
+                   Pose2(static_cast<double>(c - r), 0, 0)};
+  Eigen::MatrixXd H(3, 6);
+  H << -a, Eigen::Matrix3d::Identity();
+  f.information = H.transpose() * precision.asDiagonal() * H;
+  return f;
+}
+
 // Chain 0 -> 1 -> 2 along +x, 1 m apart. With only translational noise, covariances add:
 // node 2 relative to node 0 has position variance 2 sigma^2 per axis.
 TEST(ProjectCovariances, TranslationOnlyNoiseAddsUp) {
@@ -52,14 +66,8 @@ TEST(ProjectCovariances, PassesThroughASparseGlcTree) {
   Values v;
   AddNodesAlongX(3, &g, &v);
   g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 0.1, 0.01));  // Sigma_1 = diag(0.01, 0.01, 1e-4)
-  CliqueFactor f;
-  f.nodes = {0, 1, 2};
-  f.T_root_node = {Pose2(1, 0, 0), Pose2(2, 0, 0)};
-  Eigen::MatrixXd H(3, 6);
-  H << -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity();  // y_2 = y_1 + w
-  const Eigen::Matrix3d omega = Eigen::Vector3d(100.0, 100.0, 1e4).asDiagonal();
-  f.information = H.transpose() * omega * H;  // rank 3 of 6
-  g.AddClique(f);
+  // y_2 = y_1 + w, rank 3 of 6.
+  g.AddClique(Conditional(0, 1, 2, Eigen::Matrix3d::Identity(), {100.0, 100.0, 1e4}));
   ProjectionConfig config;
   config.max_position_sigma_m = 5.0;
   const auto proj = ProjectCovariances(g, v, 0, config);
@@ -80,17 +88,10 @@ TEST(ProjectCovariances, PassesBetweenMembersOfAGroupSingularAlone) {
   AddNodesAlongX(5, &g, &v);
   g.AddEdge(Edge(2, 3, Pose2(1, 0, 0), 0.1, 1e-3));
   g.AddEdge(Edge(4, 1, Pose2(-3, 0, 0), 0.1, 1e-3));
-  CliqueFactor f;
-  f.nodes = {0, 1, 2};
-  f.T_root_node = {Pose2(1, 0, 0), Pose2(2, 0, 0)};
   // d_12 = y_2 - Ad(Z_12^-1) y_1 with Z_12 = (1, 0, 0): Ad = [I, (0, 1)^T; 0 1].
   Eigen::Matrix3d ad = Eigen::Matrix3d::Identity();
   ad(1, 2) = 1.0;
-  Eigen::MatrixXd H(3, 6);
-  H << -ad, Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d omega = Eigen::Vector3d(100.0, 100.0, 1e6).asDiagonal();
-  f.information = H.transpose() * omega * H;  // rank 3 of 6
-  g.AddClique(f);
+  g.AddClique(Conditional(0, 1, 2, ad, {100.0, 100.0, 1e6}));
   ProjectionConfig config;
   config.max_position_sigma_m = 5.0;
   const auto proj = ProjectCovariances(g, v, 3, config);
@@ -202,12 +203,7 @@ TEST(ProjectCovariances, TheGroupCacheChangesNothing) {
   AddNodesAlongX(4, &g, &v);
   g.AddEdge(Edge(0, 1, Pose2(1, 0, 0), 0.1, 0.01));
   g.AddEdge(Edge(2, 3, Pose2(1, 0, 0), 0.1, 0.01));
-  CliqueFactor f;
-  f.nodes = {1, 2, 3};
-  f.T_root_node = {Pose2(1, 0, 0), Pose2(2, 0, 0)};
-  Eigen::MatrixXd H(3, 6);
-  H << -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity();
-  f.information = H.transpose() * Eigen::Matrix3d(Eigen::Vector3d(100, 100, 1e4).asDiagonal()) * H;
+  CliqueFactor f = Conditional(1, 2, 3, Eigen::Matrix3d::Identity(), {100.0, 100.0, 1e4});
   g.AddClique(f);
   CliqueGroupCache cache;
   const auto same = [&](NodeId source) {

@@ -13,6 +13,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "slam/graph/se2.hpp"
+
 namespace lifelong::slam {
 namespace {
 
@@ -43,14 +45,6 @@ struct RootGroup {
   std::vector<NodeId> members;  // nodes other than the root, ascending
   std::vector<const CliqueFactor*> factors;
 };
-
-/// Ad(T) of SE(2) in (x, y, theta): T * v2t(xi) * T^-1 = v2t(Ad(T) xi) to first order.
-Eigen::Matrix3d Adjoint(const Pose2& T) {
-  const double c = std::cos(T.theta), s = std::sin(T.theta);
-  Eigen::Matrix3d ad;
-  ad << c, -s, T.y, s, c, -T.x, 0.0, 0.0, 1.0;
-  return ad;
-}
 
 /// The covariance of a group's root-relative errors y from their information. A group may be
 /// singular alone (GLC conditionals, each rank 3, whose marginal lies in another group): its
@@ -101,8 +95,9 @@ void AddCliqueLinks(const PoseGraph& graph, NodeId root, RootGroup* group, Dense
       information.block<3, 3>(at(e.to), at(e.to)) += e.information;
     }
   }
-  const Eigen::MatrixXd& sigma =
-      cache ? cache->Covariance(root, information, GroupCovariance) : GroupCovariance(information);
+  Eigen::MatrixXd fresh;  // without a cache
+  const Eigen::MatrixXd& sigma = cache ? cache->Covariance(root, information, GroupCovariance)
+                                       : (fresh = GroupCovariance(information));
   const auto block = [&](std::size_t i, std::size_t j) -> Eigen::Matrix3d {
     return sigma.block<3, 3>(3 * static_cast<Eigen::Index>(i), 3 * static_cast<Eigen::Index>(j));
   };

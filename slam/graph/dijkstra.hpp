@@ -39,8 +39,7 @@ class CliqueGroupCache {
                                     Invert&& invert) {
     Entry& e = entries_[root];
     e.used = true;
-    if (e.information.size() == 0 || e.information.rows() != information.rows() ||
-        e.information != information) {
+    if (e.information.rows() != information.rows() || e.information != information) {
       e.information = information;
       e.covariance = invert(information);
     }

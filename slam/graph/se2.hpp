@@ -2,6 +2,8 @@
 // (x, y, theta) with additive increments, as g2o's VertexSE2.
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Core>
 
 #include "sensor/pose2.hpp"
@@ -10,6 +12,15 @@ namespace lifelong::slam {
 
 inline Eigen::Vector3d T2V(const Pose2& p) { return {p.x, p.y, p.theta}; }
 inline Pose2 V2T(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// Adjoint of SE(2) in (x, y, theta): T * v2t(d) * T^-1 = v2t(Ad(T) d) to first order, i.e.
+/// T * exp(d) = exp(Ad(T) d) * T.
+inline Eigen::Matrix3d Adjoint(const Pose2& T) {
+  const double c = std::cos(T.theta), s = std::sin(T.theta);
+  Eigen::Matrix3d ad;
+  ad << c, -s, T.y, s, c, -T.x, 0.0, 0.0, 1.0;
+  return ad;
+}
 
 /// Error of a relative-pose constraint (DESIGN.md):  e = t2v(Z^-1 * (Xi^-1 * Xj)),
 /// with the angle normalized. Written out, with R(.) the 2D rotation:

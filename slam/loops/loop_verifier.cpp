@@ -11,14 +11,6 @@
 namespace lifelong::slam {
 namespace {
 
-/// Adjoint of SE(2): A * exp(d) = exp(Adj(A) d) * A, d = (x, y, theta).
-Eigen::Matrix3d Adjoint(const Pose2& T) {
-  const double c = std::cos(T.theta), s = std::sin(T.theta);
-  Eigen::Matrix3d A;
-  A << c, -s, T.y, s, c, -T.x, 0.0, 0.0, 1.0;
-  return A;
-}
-
 /// Covariance of a chain of incremental estimates d metres long, in its end frame: a
 /// translational random walk plus the lateral error a heading random walk builds up
 /// (integral of var_rad s ds over the chain: var_rad_per_m d^3 / 3).

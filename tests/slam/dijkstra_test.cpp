@@ -41,6 +41,26 @@ CliqueFactor Conditional(NodeId r, NodeId p, NodeId c, const Eigen::Matrix3d& a,
   return f;
 }
 
+// The central-difference Jacobian (rows x cols) of f at 0.
+template <typename F>
+Eigen::MatrixXd NumericJacobian(F&& f, int rows, int cols) {
+  Eigen::MatrixXd J(rows, cols);
+  for (int k = 0; k < cols; ++k) {
+    Eigen::VectorXd plus = Eigen::VectorXd::Zero(cols), minus = plus;
+    plus(k) = 1e-6;
+    minus(k) = -1e-6;
+    J.col(k) = (f(plus) - f(minus)) / 2e-6;
+  }
+  return J;
+}
+
+// A covariance of a pose's frame turned into the world's (x, y rotated by theta).
+Eigen::Matrix3d RotateXy(const Eigen::Matrix3d& c, double theta) {
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+  r.topLeftCorner<2, 2>() << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
+  return r * c * r.transpose();
+}
+
 // Chain 0 -> 1 -> 2 along +x, 1 m apart. With only translational noise, covariances add:
 // node 2 relative to node 0 has position variance 2 sigma^2 per axis.
 TEST(ProjectCovariances, TranslationOnlyNoiseAddsUp) {
@@ -123,18 +143,9 @@ TEST(ProjectCovariances, ADenseMarginalLinksItsMembersAsTheChainDid) {
     return out;
   };
   const auto back = [&](const Eigen::VectorXd& e) {
-    return t2v(Z12 * (Z12 * v2t(e, 3)).Inverse());
+    return Eigen::VectorXd(t2v(Z12 * (Z12 * v2t(e, 3)).Inverse()));
   };
-  Eigen::MatrixXd J(6, 6);
-  Eigen::MatrixXd Jb(3, 6);
-  const double h = 1e-6;
-  for (int k = 0; k < 6; ++k) {
-    Eigen::VectorXd plus = Eigen::VectorXd::Zero(6), minus = plus;
-    plus(k) = h;
-    minus(k) = -h;
-    J.col(k) = (y(plus) - y(minus)) / (2 * h);
-    Jb.col(k) = (back(plus) - back(minus)) / (2 * h);
-  }
+  const Eigen::MatrixXd J = NumericJacobian(y, 6, 6), Jb = NumericJacobian(back, 3, 6);
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(6, 6);
   C.topLeftCorner<3, 3>() = C01;
   C.bottomRightCorner<3, 3>() = C12;
@@ -146,17 +157,12 @@ TEST(ProjectCovariances, ADenseMarginalLinksItsMembersAsTheChainDid) {
   f.T_root_node = {Z1, Z2};
   f.information = (J * C * J.transpose()).inverse();
   g.AddClique(f);
-  const auto rotate = [](const Eigen::Matrix3d& c, double theta) {
-    Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
-    r.topLeftCorner<2, 2>() << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
-    return Eigen::Matrix3d(r * c * r.transpose());
-  };
   const auto ahead = ProjectCovariances(g, v, 1);
-  EXPECT_TRUE(ahead.at(2).covariance.isApprox(rotate(C12, X2.theta), 1e-6))
+  EXPECT_TRUE(ahead.at(2).covariance.isApprox(RotateXy(C12, X2.theta), 1e-6))
       << ahead.at(2).covariance;
   const Eigen::Matrix3d C21 = Jb * C * Jb.transpose();
   const auto behind = ProjectCovariances(g, v, 2);
-  EXPECT_TRUE(behind.at(1).covariance.isApprox(rotate(C21, X1.theta), 1e-6))
+  EXPECT_TRUE(behind.at(1).covariance.isApprox(RotateXy(C21, X1.theta), 1e-6))
       << behind.at(1).covariance;
 }
 
@@ -167,17 +173,11 @@ TEST(ProjectCovariances, ALinkBackToTheRootCarriesTheLeverArm) {
   const Pose2 X0(0.0, 0.0, 0.3), X1(3.0, 2.5, 1.0);
   const Pose2 Z = Between(X0, X1);
   const Eigen::Matrix3d C = Eigen::Vector3d(0.01, 0.02, 0.004).asDiagonal();
-  const auto back = [&](const Eigen::Vector3d& e) {
+  const auto back = [&](const Eigen::VectorXd& e) {
     const Pose2 r = Z * (Z * Pose2(e.x(), e.y(), e.z())).Inverse();
-    return Eigen::Vector3d(r.x, r.y, r.theta);
+    return Eigen::VectorXd(Eigen::Vector3d(r.x, r.y, r.theta));
   };
-  Eigen::Matrix3d J;
-  for (int k = 0; k < 3; ++k) {
-    Eigen::Vector3d plus = Eigen::Vector3d::Zero(), minus = plus;
-    plus(k) = 1e-6;
-    minus(k) = -1e-6;
-    J.col(k) = (back(plus) - back(minus)) / 2e-6;
-  }
+  const Eigen::Matrix3d J = NumericJacobian(back, 3, 3);
   PoseGraph g;
   Values v{{0, X0}, {1, X1}};
   g.AddNode(0);
@@ -187,10 +187,7 @@ TEST(ProjectCovariances, ALinkBackToTheRootCarriesTheLeverArm) {
   f.T_root_node = {Z};
   f.information = C.inverse();
   g.AddClique(f);
-  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
-  r.topLeftCorner<2, 2>() << std::cos(X0.theta), -std::sin(X0.theta), std::sin(X0.theta),
-      std::cos(X0.theta);
-  const Eigen::Matrix3d expected = r * J * C * J.transpose() * r.transpose();
+  const Eigen::Matrix3d expected = RotateXy(J * C * J.transpose(), X0.theta);
   const auto proj = ProjectCovariances(g, v, 1);
   EXPECT_TRUE(proj.at(0).covariance.isApprox(expected, 1e-6)) << proj.at(0).covariance;
 }

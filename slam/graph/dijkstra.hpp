@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "slam/graph/clique_links.hpp"
 #include "slam/graph/pose_graph.hpp"
 
 namespace lifelong::slam {
@@ -25,42 +26,11 @@ struct ProjectionConfig {
   double max_path_length_m = 1e9;      ///< stop expanding past this path length
 };
 
-/// The covariances of the clique groups (the clique factors sharing a root, inverted
-/// together), kept between projections. A group's information changes only when its factors
-/// do, and inverting it is the projection's dearest step on a GLC graph (its singular groups
-/// take an eigen decomposition). An entry is reused only for the same information to the
-/// bit, so a projection gives the same result with the cache or without it.
-class CliqueGroupCache {
- public:
-  /// The covariance for `information` of the group rooted at `root`; `invert` computes it
-  /// when the entry is missing or was for another information.
-  template <typename Invert>
-  const Eigen::MatrixXd& Covariance(NodeId root, const Eigen::MatrixXd& information,
-                                    Invert&& invert) {
-    Entry& e = entries_[root];
-    e.used = true;
-    if (e.information.rows() != information.rows() || e.information != information) {
-      e.information = information;
-      e.covariance = invert(information);
-    }
-    return e.covariance;
-  }
-  /// Drops the groups no projection used since the last call (their roots left or changed).
-  void DropUnused();
-  std::size_t size() const { return entries_.size(); }
-
- private:
-  struct Entry {
-    Eigen::MatrixXd information, covariance;
-    bool used = false;
-  };
-  std::map<NodeId, Entry> entries_;
-};
-
 /// Dijkstra projection from `source`, ordered by the trace of the position covariance.
 /// Each edge compounds  Sigma_v = A Sigma_u A^T + B C_e B^T  with C_e = Omega^-1, A and B
 /// the Jacobians of X_v = X_u * Z with respect to X_u and to Z (Z at the current estimate).
-/// `cache` (optional) keeps the clique groups' covariances for the next call.
+/// Clique factors give links by group (clique_links.hpp); `cache` (optional) keeps the
+/// groups' covariances for the next call.
 std::map<NodeId, ProjectedNode> ProjectCovariances(const PoseGraph& graph, const Values& values,
                                                    NodeId source,
                                                    const ProjectionConfig& config = {},

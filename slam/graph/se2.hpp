@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "sensor/pose2.hpp"
 
@@ -20,6 +21,14 @@ inline Eigen::Matrix3d Adjoint(const Pose2& T) {
   Eigen::Matrix3d ad;
   ad << c, -s, T.y, s, c, -T.x, 0.0, 0.0, 1.0;
   return ad;
+}
+
+/// The inverse of a 3x3 information or covariance, symmetrized and regularized by 1e-9 so a
+/// singular one inverts to a very large (not an infinite) one.
+inline Eigen::Matrix3d RegularizedInverse(const Eigen::Matrix3d& m) {
+  Eigen::Matrix3d sym = 0.5 * (m + m.transpose());
+  sym += 1e-9 * Eigen::Matrix3d::Identity();
+  return sym.inverse();
 }
 
 /// Error of a relative-pose constraint (DESIGN.md):  e = t2v(Z^-1 * (Xi^-1 * Xj)),

@@ -225,6 +225,37 @@ TEST(ProjectCovariances, TheGroupCacheChangesNothing) {
   EXPECT_EQ(cache.size(), 0u);
 }
 
+// A GLC conditional of y_2 given y_1 (relative to root 0) whose regression is not the
+// adjoint (A = I/2: node 2 also leans on the root), and whose tree marginal, the link 0 -> 1,
+// lies in the group rooted at 5 (a clique over {5, 0, 1}, y_0 and y_1 independent). Alone,
+// group 0 leaves y_1 free, and (A - Ad) carries that into every link it gives: the projection
+// from 3 (tied to 2 by an edge) stopped at 2 before group 0 was anchored by group 5's link.
+TEST(ProjectCovariances, AGroupTakesItsMissingMarginalFromAnother) {
+  PoseGraph g;
+  Values v;
+  AddNodesAlongX(6, &g, &v);
+  g.AddEdge(Edge(2, 3, Pose2(1, 0, 0), 0.1, 1e-3));  // 0.01 per axis
+  g.AddClique(Conditional(0, 1, 2, 0.5 * Eigen::Matrix3d::Identity(), {100.0, 100.0, 1e6}));
+  CliqueFactor marginal;  // y_0, y_1 relative to 5: 0.02 per position axis each
+  marginal.nodes = {5, 0, 1};
+  marginal.T_root_node = {Pose2(-5, 0, 0), Pose2(-4, 0, 0)};
+  marginal.information =
+      Eigen::VectorXd((Eigen::VectorXd(6) << 50.0, 50.0, 1e7, 50.0, 50.0, 1e7).finished())
+          .asDiagonal();
+  g.AddClique(marginal);
+  ProjectionConfig config;
+  config.max_position_sigma_m = 5.0;
+  const auto proj = ProjectCovariances(g, v, 3, config);
+  ASSERT_EQ(proj.count(0), 1u);
+  ASSERT_EQ(proj.count(1), 1u);
+  EXPECT_EQ(proj.count(5), 1u);
+  // Anchored, Sigma_11 = 0.04 (group 5's link 0 -> 1), Sigma_22 = A Sigma_11 A^T + 0.01 =
+  // 0.02: node 0 is 3 -> 2 -> 0, 0.01 + 0.02; node 1 is 3 -> 2 -> 1, 0.01 + the variance of
+  // y_1 - y_2 = y_1 / 2 - w, 0.01 + 0.01 (the headings add under 1e-4).
+  EXPECT_NEAR(proj.at(0).covariance(0, 0), 0.03, 1e-4);
+  EXPECT_NEAR(proj.at(1).covariance(0, 0), 0.03, 1e-4);
+}
+
 // Heading noise at node 1 swings node 2 sideways by lever arm 1 m: var_y += sigma_th^2.
 TEST(ProjectCovariances, HeadingNoiseGrowsLateralUncertainty) {
   PoseGraph g;

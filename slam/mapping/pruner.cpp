@@ -163,8 +163,8 @@ void Pruner::KeepEdgeBudget(PoseGraph* graph_ptr, const Values& values,
     if (config_.factor_means != FactorMeans::kEstimate) {  // keep the edges' pull too
       const LocalSystem replaced = LinearizeEdges(best, values, graph.EdgesWithin(best));
       std::vector<CliqueFactor> no_cliques;
-      MoveMeans(config_.factor_means, best, values, replaced.H, replaced.g, &result.edges,
-                &no_cliques);
+      MoveMeans(config_.factor_means, best, values, replaced.H, replaced.g, replaced.chi2,
+                &result.edges, &no_cliques);
     }
     ApplySparsification(&graph, result);
     sparsified_.push_back(

@@ -33,6 +33,7 @@ struct Assembly {
   const std::map<NodeId, std::size_t>& position;
   std::vector<Eigen::Triplet<double, int>> triplets;
   VectorXd g;
+  double chi2 = 0.0;
 
   void Add(const std::vector<NodeId>& nodes, const MatrixXd& h, const VectorXd& gf) {
     for (std::size_t a = 0; a < nodes.size(); ++a) {
@@ -52,12 +53,14 @@ struct Assembly {
     const std::vector<NodeId> nodes{e.from, e.to};
     const LocalSystem s = LinearizeEdges(nodes, values, {e});
     Add(nodes, s.H, s.g);
+    chi2 += s.chi2;
   }
   void AddClique(const CliqueFactor& c, const Values& values) {
     MatrixXd h = MatrixXd::Zero(clique::Block(c.nodes.size()), clique::Block(c.nodes.size()));
     VectorXd gf = VectorXd::Zero(h.rows());
     AddCliqueLinearized(c, values, c.nodes, &h, &gf);
     Add(c.nodes, h, gf);
+    chi2 += CliqueChi2(c, values);
   }
 };
 
@@ -149,6 +152,7 @@ std::optional<SetMarginal> MarginalizeSet(const PoseGraph& graph, const Values& 
   const MatrixXd lambda = MatrixXd(H.bottomRightCorner(nb, nb)) - h_bs * x.leftCols(nb);
   out.marginal.lambda_N = 0.5 * (lambda + lambda.transpose());
   out.marginal.g_N = assembly.g.tail(nb) - h_bs * x.col(nb);
+  out.marginal.chi2 = assembly.chi2;
   return out;
 }
 

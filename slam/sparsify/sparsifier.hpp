@@ -22,6 +22,7 @@
 // (the KL divergence's mean term vanishes); for an exact method both agree.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -118,6 +119,7 @@ struct LocalSystem {
   std::vector<NodeId> neighbours;
   Eigen::MatrixXd H;
   Eigen::VectorXd g;
+  double chi2 = 0.0;  ///< sum of e^T Omega e over the factors linearized
 };
 LocalSystem LinearizeClique(const PoseGraph& graph, const Values& values, NodeId k,
                             bool edges_within, bool cliques_within);
@@ -135,16 +137,29 @@ void EliminateFirstBlock(const LocalSystem& system, Eigen::MatrixXd* lambda_N,
 /// residual past what a measurement can carry (about pi). With `lambda_N` (the exact
 /// marginal's information): z = lambda_N^+ g_N - Lambda_q^+ g_q instead, so the factors'
 /// minimum (to first order) moves to the marginal's mean rather than their gradient to g_N.
+/// With lambda_N, none is kept either when the moved factors would hold more error at
+/// `values` than `chi2_replaced`, that of the factors they replace, plus one per coordinate
+/// of g_N: the exact marginal never holds more than that chi2 (g_N^T Lambda_N^+ g_N), but a
+/// sparsified one whose information is stiff where Lambda_N is nearly free can, and then
+/// pulls far harder than g_N (a GLC tree after a 9-neighbour elimination held chi2 5e8, and
+/// the back-end diverged). Without lambda_N the pull at `values` is g_N itself.
 void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values,
                       const Eigen::VectorXd& g_N, std::vector<PoseEdge>* edges,
-                      std::vector<CliqueFactor>* cliques,
-                      const Eigen::MatrixXd* lambda_N = nullptr);
+                      std::vector<CliqueFactor>* cliques, const Eigen::MatrixXd* lambda_N = nullptr,
+                      double chi2_replaced = std::numeric_limits<double>::infinity());
 
 /// Moves the factors as `means` asks, given the exact marginal (lambda_N, g_N) they replace:
 /// nothing for kEstimate, PreserveGradient for kGradient, and with lambda_N for kMarginalMean.
+/// `chi2_replaced`: the error the replaced factors held (LocalSystem::chi2).
 void MoveMeans(FactorMeans means, const std::vector<NodeId>& nodes, const Values& values,
-               const Eigen::MatrixXd& lambda_N, const Eigen::VectorXd& g_N,
+               const Eigen::MatrixXd& lambda_N, const Eigen::VectorXd& g_N, double chi2_replaced,
                std::vector<PoseEdge>* edges, std::vector<CliqueFactor>* cliques);
+
+/// e^T Lambda e of a clique factor, e its stacked root-relative errors at `values`.
+double CliqueChi2(const CliqueFactor& clique, const Values& values);
+/// The summed e^T Omega e of `edges` and `cliques` at `values`.
+double FactorsChi2(const Values& values, const std::vector<PoseEdge>& edges,
+                   const std::vector<CliqueFactor>& cliques);
 
 /// Hessian J^T Omega J and gradient J^T Omega e of `edges` over `nodes` (ascending) at
 /// `values` (LocalSystem::neighbours is left empty).
@@ -163,6 +178,7 @@ Eigen::MatrixXd FactorsHessian(const std::vector<NodeId>& nodes, const Values& v
 struct CliqueMarginal {
   Eigen::MatrixXd lambda_N;
   Eigen::VectorXd g_N;
+  double chi2 = 0.0;  ///< of the factors it replaces
 };
 bool MarginalToReplace(const SparsifierConfig& config, const PoseGraph& graph, const Values& values,
                        NodeId k, Replacement* r, CliqueMarginal* m);

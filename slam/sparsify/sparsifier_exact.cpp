@@ -25,8 +25,8 @@ class ExactSparsifier final : public Sparsifier {
     Replacement r;
     r.neighbours = m->boundary;
     r.cliques.push_back(ToCliqueFactor(r.neighbours, values, m->marginal.lambda_N));
-    MoveMeans(config_.means, r.neighbours, values, m->marginal.lambda_N, m->marginal.g_N, &r.edges,
-              &r.cliques);
+    MoveMeans(config_.means, r.neighbours, values, m->marginal.lambda_N, m->marginal.g_N,
+              m->marginal.chi2, &r.edges, &r.cliques);
     return r;
   }
 

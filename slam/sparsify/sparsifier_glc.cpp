@@ -29,7 +29,7 @@ class GlcSparsifier final : public Sparsifier {
       f = GlcDense(r.neighbours, values, m.lambda_N, tol);
       SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), &r);
     }
-    MoveMeans(config_.means, r.neighbours, values, m.lambda_N, m.g_N, &r.edges, &r.cliques);
+    MoveMeans(config_.means, r.neighbours, values, m.lambda_N, m.g_N, m.chi2, &r.edges, &r.cliques);
     return r;
   }
 

@@ -38,7 +38,8 @@ class GlcDenseSparsifier final : public Sparsifier {
   void Fill(const Values& values, const CliqueMarginal& m, Replacement* r) const {
     GlcFactors f = GlcDense(r->neighbours, values, m.lambda_N, config_.eigen_tolerance);
     SetFactors(config_, values, m, std::move(f.edges), std::move(f.cliques), r);
-    MoveMeans(config_.means, r->neighbours, values, m.lambda_N, m.g_N, &r->edges, &r->cliques);
+    MoveMeans(config_.means, r->neighbours, values, m.lambda_N, m.g_N, m.chi2, &r->edges,
+              &r->cliques);
   }
   SparsifierConfig config_;
 };

@@ -229,5 +229,32 @@ TEST(Sparsifier, KeepGradientNeverWrapsAHeadingResidual) {
   EXPECT_TRUE((K.transpose() * (edges[0].information * moved)).isApprox(reachable, 1e-9));
 }
 
+// The moved factors may hold no more error than the factors they replace (the exact marginal
+// never does), plus one unit per coordinate. Here the marginal is weak (unit information) and
+// the new edge stiff (1e4): moved to the marginal's mean, 1 m off, the edge would hold chi2 1e4
+// against the 2 + 6 allowed, and the back-end would be pulled by what no factor said. It keeps
+// measuring x* instead.
+TEST(Sparsifier, MovedFactorsHoldNoMoreErrorThanTheReplacedOnes) {
+  const Values v{{0, Pose2()}, {1, Pose2(1.0, 0.0, 0.0)}};
+  PoseEdge edge;
+  edge.from = 0;
+  edge.to = 1;
+  edge.T_from_to = Between(v.at(0), v.at(1));
+  edge.information = 1e4 * Eigen::Matrix3d::Identity();
+  MatrixXd lambda_N(6, 6);
+  lambda_N << Eigen::Matrix3d::Identity(), -Eigen::Matrix3d::Identity(),
+      -Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity();
+  VectorXd g_N = VectorXd::Zero(6);
+  g_N(3) = 1.0;  // the marginal's mean: node 1 one metre along x
+  std::vector<CliqueFactor> cliques;
+  std::vector<PoseEdge> edges{edge};
+  PreserveGradient({0, 1}, v, g_N, &edges, &cliques, &lambda_N, 2.0);
+  EXPECT_LT(RelativeError(v.at(0), v.at(1), edges[0].T_from_to).norm(), 1e-12);
+  // Without the bound it moves by the metre.
+  edges = {edge};
+  PreserveGradient({0, 1}, v, g_N, &edges, &cliques, &lambda_N);
+  EXPECT_NEAR(RelativeError(v.at(0), v.at(1), edges[0].T_from_to).norm(), 1.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace lifelong::slam

@@ -99,14 +99,9 @@ double Chi2(const Layout& layout, const OptimizerParams& params) {
     chi2 += ApplyKernel(e.dot(s.edge->information * e), s.edge->robust, params).cost;
   }
   for (const CliqueSlot& s : layout.cliques) {
-    const Eigen::Index k = static_cast<Eigen::Index>(s.nodes.size() - 1);
-    Eigen::VectorXd e(3 * k);
-    const Pose2& Xr = *layout.poses[static_cast<std::size_t>(s.nodes[0])];
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const std::size_t uj = static_cast<std::size_t>(j);
-      e.segment<3>(3 * j) = RelativeError(
-          Xr, *layout.poses[static_cast<std::size_t>(s.nodes[uj + 1])], s.clique->T_root_node[uj]);
-    }
+    const Eigen::VectorXd e = CliqueError(*s.clique, [&](std::size_t u) -> const Pose2& {
+      return *layout.poses[static_cast<std::size_t>(s.nodes[u])];
+    });
     chi2 += e.dot(s.clique->information * e);
   }
   return chi2;

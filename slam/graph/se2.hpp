@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "sensor/pose2.hpp"
+#include "types/pose_factors.hpp"
 
 namespace lifelong::slam {
 
@@ -37,6 +38,20 @@ inline Eigen::Matrix3d RegularizedInverse(const Eigen::Matrix3d& m) {
 ///   e_theta = th_j - th_i - th_z
 inline Eigen::Vector3d RelativeError(const Pose2& Xi, const Pose2& Xj, const Pose2& Z) {
   return T2V(Z.Inverse() * (Xi.Inverse() * Xj));
+}
+
+/// The stacked errors of a clique factor (pose_graph.hpp): block j is RelativeError(X_r,
+/// X_j, Z_j) for member j + 1, with `pose(u)` the pose of clique.nodes[u] (0: the root).
+template <typename PoseOf>
+Eigen::VectorXd CliqueError(const CliqueFactor& clique, PoseOf&& pose) {
+  const Eigen::Index k = static_cast<Eigen::Index>(clique.nodes.size()) - 1;
+  Eigen::VectorXd e(3 * k);
+  const Pose2& Xr = pose(std::size_t{0});
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const auto uj = static_cast<std::size_t>(j);
+    e.segment<3>(3 * j) = RelativeError(Xr, pose(uj + 1), clique.T_root_node[uj]);
+  }
+  return e;
 }
 
 /// The chi2 of the relative-pose measurement Z between Xi and Xj under `information`:

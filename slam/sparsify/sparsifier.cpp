@@ -337,6 +337,7 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
       MoveEdge(values, Delta(step, nodes, edge.from), Delta(step, nodes, edge.to), &edge);
     for (CliqueFactor& f : *c) MoveClique(values, step, nodes, &f);
   };
+  if (lambda_N == nullptr) return move(z, edges, cliques);  // the pull is g_N itself
   std::vector<PoseEdge> moved_edges = *edges;
   std::vector<CliqueFactor> moved_cliques = *cliques;
   move(z, &moved_edges, &moved_cliques);
@@ -344,9 +345,8 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // approximation may hold a little more (up to 1.4x on office_5min's Chow-Liu trees), so the
   // bound grants one unit per coordinate, a chi-square variable's mean.
   const double bound = chi2_replaced + static_cast<double>(g_N.size());
-  if (lambda_N != nullptr && FactorsChi2(values, moved_edges, moved_cliques) > bound) {
-    move(VectorXd::Zero(z.size()), edges, cliques);
-    return;
+  if (FactorsChi2(values, moved_edges, moved_cliques) > bound) {
+    return move(VectorXd::Zero(z.size()), edges, cliques);
   }
   *edges = std::move(moved_edges);
   *cliques = std::move(moved_cliques);

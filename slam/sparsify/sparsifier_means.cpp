@@ -2,22 +2,17 @@
 // hands SparsifierConfig::means to PreserveGradient (sparsifier.cpp) with that bound.
 #include <vector>
 
-#include "slam/backend/clique_algebra.hpp"
 #include "slam/graph/se2.hpp"
 #include "slam/sparsify/sparsifier.hpp"
 
 namespace lifelong::slam {
 
-using clique::Block;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 double CliqueChi2(const CliqueFactor& c, const Values& values) {
-  VectorXd e(c.information.rows());
-  for (std::size_t j = 0; j + 1 < c.nodes.size(); ++j) {
-    e.segment<3>(Block(j)) =
-        RelativeError(values.at(c.nodes[0]), values.at(c.nodes[j + 1]), c.T_root_node[j]);
-  }
+  const VectorXd e =
+      CliqueError(c, [&](std::size_t u) -> const Pose2& { return values.at(c.nodes[u]); });
   return e.dot(c.information * e);
 }
 

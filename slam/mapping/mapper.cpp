@@ -10,6 +10,7 @@
 #include "slam/backend/optimizer.hpp"
 #include "slam/grid/present_view.hpp"
 #include "slam/mapping/mapper_state.hpp"
+#include "slam/matching/scan_matcher.hpp"
 
 namespace lifelong::slam {
 namespace {
@@ -46,8 +47,7 @@ StepStats Mapper::AddObservation(const Observation& obs) {
     const Pose2 delta = Between(s.nodes.at(s.last_node).T_odom_robot, obs.T_odom_robot);
     if (Norm(delta) < s.config.keyframes.min_translation_m &&
         std::abs(delta.theta) < s.config.keyframes.min_rotation_rad) {
-      s.scans.AddPending(obs.stamp_s, s.last_node, delta, obs.T_odom_robot);
-      s.keeper.Glimpse(obs.scan, s.values.at(s.last_node) * delta);
+      s.AddBetweenScan(obs, delta);
       return stats;
     }
   }
@@ -77,6 +77,17 @@ StepStats Mapper::AddObservation(const Observation& obs) {
   stats.nodes_removed_total = s.pruner ? static_cast<int>(s.pruner->marginalizations().size()) : 0;
   if (on_observation) on_observation(stats);
   return stats;
+}
+
+void Mapper::State::AddBetweenScan(const Observation& obs, const Pose2& delta) {
+  const IncrementalConfig& inc = config.incremental;
+  std::optional<Pose2> measured;
+  if (inc.between_refine_m > 0.0) {
+    measured = sequential.RefineBetween(ScanToPoints(obs.scan, inc.point_spacing_m), delta);
+  }
+  const Pose2 T_last_scan = measured.value_or(delta);
+  scans.AddPending(obs.stamp_s, last_node, T_last_scan, obs.T_odom_robot, measured.has_value());
+  keeper.Glimpse(obs.scan, values.at(last_node) * T_last_scan);
 }
 
 void Mapper::State::OptimizeAndSyncMap() {

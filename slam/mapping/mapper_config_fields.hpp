@@ -118,6 +118,8 @@ void VisitIncremental(V& v, slam::IncrementalConfig& c) {
   v.Number("lost_window_m", c.lost_window_m, Range{0.0, 50.0, true, "in (0, 50] m"});
   v.Number("recovery_window_m", c.recovery_window_m, Range{0.0, 50.0, false, "in [0, 50] m"});
   v.Bool("recover_past_odometry", c.recover_past_odometry);
+  v.Number("between_refine_m", c.between_refine_m, Range{0.0, 1.0, false, "in [0, 1] m"});
+  v.Number("between_refine_rad", c.between_refine_rad, Range{0.0, 1.0, false, "in [0, 1] rad"});
 }
 
 template <class V>

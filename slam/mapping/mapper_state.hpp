@@ -61,6 +61,9 @@ struct Mapper::State {
   }
 
   void AddSequentialNode(const Observation& obs, StepStats* stats);
+  /// A scan taken between keyframes: held by the last node (ScanStore::AddPending), placed by
+  /// odometry or, with incremental.between_refine_m, refined against the local map.
+  void AddBetweenScan(const Observation& obs, const Pose2& delta);
   /// The odometry edge last_node -> id: `points` matched against the local map around the
   /// odometry guess X_last * delta (the odometry alone when the match fails; the odometry along
   /// a degenerate direction; a lost step is searched over a full turn). *X_new: the new

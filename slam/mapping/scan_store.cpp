@@ -10,8 +10,8 @@ std::size_t ScanStore::AddNodeScan(double stamp_s, NodeId node, const Pose2& T_o
 }
 
 void ScanStore::AddPending(double stamp_s, NodeId node, const Pose2& T_node_scan,
-                           const Pose2& T_odom_robot) {
-  scans_.push_back(Anchored{stamp_s, node, T_node_scan, T_odom_robot});
+                           const Pose2& T_odom_robot, bool measured) {
+  scans_.push_back(Anchored{stamp_s, node, T_node_scan, T_odom_robot, measured});
   of_node_[node].push_back(scans_.size() - 1);
   pending_.push_back(scans_.size() - 1);
 }
@@ -19,7 +19,7 @@ void ScanStore::AddPending(double stamp_s, NodeId node, const Pose2& T_node_scan
 void ScanStore::AnchorPending(NodeId previous, NodeId node, const Pose2& T_odom_node) {
   for (std::size_t idx : pending_) {
     Anchored& a = scans_[idx];
-    if (a.anchor != previous) continue;
+    if (a.anchor != previous || a.measured) continue;
     const Pose2 from_new = Between(T_odom_node, a.T_odom_robot);
     if (Norm(from_new) < Norm(a.T_anchor_scan)) {
       Reanchor(idx, node);

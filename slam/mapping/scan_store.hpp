@@ -20,10 +20,12 @@ class ScanStore {
   /// Node `node`'s own scan; returns its index (the stream's scan count before it).
   std::size_t AddNodeScan(double stamp_s, NodeId node, const Pose2& T_odom_robot);
   /// A scan between keyframes, anchored at `node` by odometry (T_node_scan) until the next
-  /// node arrives (AnchorPending).
-  void AddPending(double stamp_s, NodeId node, const Pose2& T_node_scan, const Pose2& T_odom_robot);
-  /// A new node (odometry T_odom_node) follows `previous`: each pending scan goes to whichever
-  /// of the two is nearer by odometry.
+  /// node arrives (AnchorPending); or, `measured` (matched against the table `node` was
+  /// matched on: SequentialMatcher::RefineBetween), held at `node` for good.
+  void AddPending(double stamp_s, NodeId node, const Pose2& T_node_scan, const Pose2& T_odom_robot,
+                  bool measured = false);
+  /// A new node (odometry T_odom_node) follows `previous`: each pending scan placed by
+  /// odometry goes to whichever of the two is nearer by odometry.
   void AnchorPending(NodeId previous, NodeId node, const Pose2& T_odom_node);
   /// Node `removed` leaves the graph: its scans are held by `heir`, T_heir_removed being the
   /// removed node's pose in the heir's frame.
@@ -46,6 +48,7 @@ class ScanStore {
     NodeId anchor = 0;
     Pose2 T_anchor_scan;
     Pose2 T_odom_robot;
+    bool measured = false;  ///< T_anchor_scan was measured, not taken from odometry
   };
   void Reanchor(std::size_t scan, NodeId anchor);
 

@@ -73,6 +73,16 @@ struct IncrementalConfig {
   /// against the odometry's 0.45 went to the odometry and bent the map by a metre
   /// (docs/results.md "Large real logs"). false: the odometry takes it (before 2026-12-06).
   bool recover_past_odometry = true;
+  /// A scan taken between keyframes is placed by the odometry since the last node, then
+  /// refined against the table the last node was matched on (RefinePose: continuous ascent of
+  /// the match score, within this shift and turn of the odometry's pose); the refinement is
+  /// kept when it scores matcher.min_score or more. The odometry's heading errs by about a
+  /// degree over a keyframe step on the benchmark's raw logs, and every scan is a trajectory
+  /// pose that relations and ATE read. Chosen on the raw aces, fr079 and mit-csail logs
+  /// (0.1 / 0.05 and 0.3 / 0.2 measured too; docs/results.md "The benchmark's raw logs").
+  /// 0 m: the odometry alone (before 2026-12-07).
+  double between_refine_m = 0.2;
+  double between_refine_rad = 0.1;  ///< ...and turn (rad)
 };
 
 /// The weak-match rule above: true when `match` (ok) is to be refused.

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "slam/matching/match_degeneracy.hpp"
+#include "slam/matching/scan_refiner.hpp"
 
 namespace lifelong::slam {
 
@@ -33,6 +34,28 @@ SequentialMatch SequentialMatcher::Match(const ScanPoseFn& scan_pose, const Pose
                                          const Pose2& delta,
                                          const std::vector<Eigen::Vector2d>& points,
                                          bool odometry_lost) {
+  grid_built_ = false;
+  SequentialMatch out = MatchStep(scan_pose, X_last, delta, points, odometry_lost);
+  grid_anchor_.reset();
+  if (grid_built_) grid_anchor_ = out.X_new;
+  return out;
+}
+
+std::optional<Pose2> SequentialMatcher::RefineBetween(const std::vector<Eigen::Vector2d>& points,
+                                                      const Pose2& T_last_scan) const {
+  if (!grid_anchor_ || !(config_.between_refine_m > 0.0) || points.size() < 10) {
+    return std::nullopt;
+  }
+  const RefinedPose r = RefinePose(grid_, points, *grid_anchor_ * T_last_scan,
+                                   config_.between_refine_m, config_.between_refine_rad);
+  if (!(r.score >= config_.matcher.min_score)) return std::nullopt;
+  return Between(*grid_anchor_, r.T_ref_cur);
+}
+
+SequentialMatch SequentialMatcher::MatchStep(const ScanPoseFn& scan_pose, const Pose2& X_last,
+                                             const Pose2& delta,
+                                             const std::vector<Eigen::Vector2d>& points,
+                                             bool odometry_lost) {
   const Pose2 guess = X_last * delta;
   SequentialMatch out;
   out.X_new = guess;
@@ -82,6 +105,7 @@ MatchResult SequentialMatcher::Search(const std::vector<Eigen::Vector2d>& points
   CropToSearch(points, guess, mc, &reference);
   if (reference.size() < 10 || points.size() < 10) return {};
   grid_.Build(reference, mc);
+  grid_built_ = true;
   return ::lifelong::slam::Match(grid_, points, guess, mc);
 }
 

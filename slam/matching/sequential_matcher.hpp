@@ -67,6 +67,14 @@ class SequentialMatcher {
   SequentialMatch Match(const ScanPoseFn& scan_pose, const Pose2& X_last, const Pose2& delta,
                         const std::vector<Eigen::Vector2d>& points, bool odometry_lost = false);
 
+  /// A scan taken after the last node, `T_last_scan` from it by odometry (`points`: its
+  /// thinned returns), refined against the table the last node was matched on, in that
+  /// match's frame (IncrementalConfig::between_refine_m). Returns the refined T_last_scan, or
+  /// nothing when refinement is off, the last node's step built no table, or the refined
+  /// pose scores under matcher.min_score.
+  std::optional<Pose2> RefineBetween(const std::vector<Eigen::Vector2d>& points,
+                                     const Pose2& T_last_scan) const;
+
  private:
   struct LocalScan {
     NodeId id = 0;
@@ -84,8 +92,14 @@ class SequentialMatcher {
   /// first search's best score around the odometry's guess (0 when it found nothing).
   bool Recovers(const MatchResult& match, double guess_score) const;
 
+  SequentialMatch MatchStep(const ScanPoseFn& scan_pose, const Pose2& X_last, const Pose2& delta,
+                            const std::vector<Eigen::Vector2d>& points, bool odometry_lost);
+
   IncrementalConfig config_;
-  ReferenceGrid grid_;           ///< the matcher's table, rebuilt for each match
+  ReferenceGrid grid_;       ///< the matcher's table, rebuilt for each match
+  bool grid_built_ = false;  ///< Search built grid_ during the current Match
+  /// The last node's pose in grid_'s frame, when its step built grid_ (RefineBetween).
+  std::optional<Pose2> grid_anchor_;
   std::deque<LocalScan> local_;  ///< the last local_map_nodes observed nodes' scans, oldest first
 };
 

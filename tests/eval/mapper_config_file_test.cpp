@@ -116,6 +116,8 @@ void ExpectSameIncremental(const slam::IncrementalConfig& ia, const slam::Increm
   EXPECT_EQ(ia.lost_window_m, ib.lost_window_m);
   EXPECT_EQ(ia.recovery_window_m, ib.recovery_window_m);
   EXPECT_EQ(ia.recover_past_odometry, ib.recover_past_odometry);
+  EXPECT_EQ(ia.between_refine_m, ib.between_refine_m);
+  EXPECT_EQ(ia.between_refine_rad, ib.between_refine_rad);
 }
 
 /// Field-by-field equality of two configs (exact: the file format must round-trip doubles).
@@ -203,6 +205,8 @@ MapperConfig AllChanged() {
   c.incremental.lost_window_m = 1.5;
   c.incremental.recovery_window_m = 2.5;
   c.incremental.recover_past_odometry = false;
+  c.incremental.between_refine_m = 0.15;
+  c.incremental.between_refine_rad = 0.07;
   slam::LoopClosingConfig& l = c.loops;
   l.enabled = false;
   l.min_path_separation_m = 4.0;

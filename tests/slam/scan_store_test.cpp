@@ -31,6 +31,17 @@ TEST(ScanStore, PendingScansGoToTheNearerNodeAndFollowIt) {
   EXPECT_DOUBLE_EQ(store.Last(values).stamp_s, 0.3);
 }
 
+TEST(ScanStore, AMeasuredPendingScanStaysWithItsNode) {
+  ScanStore store;
+  store.AddNodeScan(0.0, 0, Pose2());
+  // Nearer node 1 by odometry, but measured against node 0: it stays there.
+  store.AddPending(0.1, 0, Pose2(0.75, 0.05, 0.0), Pose2(0.8, 0.0, 0.0), true);
+  store.AnchorPending(0, 1, Pose2(1.0, 0.0, 0.0));
+  store.AddNodeScan(0.2, 1, Pose2(1.0, 0.0, 0.0));
+  const Values values{{0, Pose2(0.0, 0.0, 0.0)}, {1, Pose2(1.0, 1.0, 0.0)}};
+  ExpectPose(store.Trajectory(values)[1].T_world_robot, Pose2(0.75, 0.05, 0.0));
+}
+
 TEST(ScanStore, ARemovedNodeHandsItsScansOnInPlace) {
   ScanStore store;
   store.AddNodeScan(0.0, 0, Pose2());

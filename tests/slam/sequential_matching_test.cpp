@@ -4,6 +4,7 @@
 // ambiguous along one direction takes the odometry's position along it (simulated corridors
 // slipped by it).
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -202,6 +203,39 @@ TEST(SequentialMatching, TheRecoverySearchTakesNoAmbiguousMatch) {
                                       Pose2(-0.6, 1.0, 0.0), Pose2(0.6, 1.0, 0.0), &last);
   EXPECT_FALSE(again.incremental_match_recovered);
   EXPECT_NEAR(last.T_world_robot.x, 0.6, 0.05);
+}
+
+// A scan between keyframes (0.2 m past the second node, under keyframes.min_translation_m)
+// whose odometry turned 0.04 rad and slid 4 cm that the robot did not: with
+// incremental.between_refine_m it is refined against the table the second node was matched
+// on (the default); without, it sits where the odometry put it. Returns its pose's error
+// against the truth.
+Pose2 BetweenScanError(const MapperConfig& config) {
+  const testing::World room = testing::RoomWorld();
+  const Pose2 first(3.0, 2.5, 0.0), second(3.6, 2.5, 0.0), between(3.8, 2.5, 0.0);
+  Mapper mapper(config);
+  double stamp = 0.0;
+  for (const auto& [truth, odometry] :
+       {std::pair{first, first}, std::pair{second, second},
+        std::pair{between, Pose2(between.x + 0.03, between.y + 0.03, 0.04)}}) {
+    Observation o;
+    o.stamp_s = stamp++;
+    o.T_odom_robot = odometry;
+    o.scan = testing::SimulateScan(room, truth);
+    mapper.AddObservation(o);
+  }
+  // The mapper's frame is the first pose's.
+  return Between(Between(first, between), mapper.LastScanPose().T_world_robot);
+}
+
+TEST(SequentialMatching, AScanBetweenKeyframesIsRefinedAgainstTheLocalMap) {
+  MapperConfig off;
+  off.incremental.between_refine_m = 0.0;
+  const Pose2 odometry_only = BetweenScanError(off);
+  EXPECT_NEAR(odometry_only.theta, 0.04, 0.01);
+  const Pose2 error = BetweenScanError(MapperConfig{});
+  EXPECT_LT(std::abs(error.theta), 0.01);
+  EXPECT_LT(std::hypot(error.x, error.y), 0.02);
 }
 
 }  // namespace

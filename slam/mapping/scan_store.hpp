@@ -1,8 +1,9 @@
 // Every scan of the stream, held relative to the graph node that anchors it, so that the
 // trajectory follows the graph as it is optimized and survives the removal of nodes
 // (DESIGN.md "The mapper as components"). A node's own scan is anchored at it; a scan taken
-// between keyframes is anchored by odometry at the nearer of the nodes before and after it;
-// a removed node hands its scans to a surviving neighbour.
+// between keyframes is anchored at the node before it where the front end refined it against
+// the local map, else by odometry at the nearer of the nodes before and after it; a removed
+// node hands its scans to a surviving neighbour.
 #pragma once
 
 #include <cstddef>

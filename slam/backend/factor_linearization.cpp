@@ -73,8 +73,8 @@ Eigen::Vector3d CliqueLinearization::g(std::size_t u) const {
   return N[u - 1].transpose() * w.segment<3>(Block(u - 1));
 }
 
-void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
-                         const std::vector<NodeId>& index, MatrixXd* H, Eigen::VectorXd* g) {
+double AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
+                           const std::vector<NodeId>& index, MatrixXd* H, Eigen::VectorXd* g) {
   std::vector<Pose2> poses;
   std::vector<Eigen::Index> at;  // member u's block in H
   for (NodeId n : clique.nodes) {
@@ -86,6 +86,7 @@ void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
     for (std::size_t v = 0; v < at.size(); ++v) H->block<3, 3>(at[u], at[v]) += l.H(u, v);
     if (g != nullptr) g->segment<3>(at[u]) += l.g(u);
   }
+  return g != nullptr ? l.e.dot(l.w) : 0.0;
 }
 
 }  // namespace lifelong::slam

@@ -36,8 +36,10 @@ struct CliqueLinearization {
 CliqueLinearization LinearizeCliqueFactor(const CliqueFactor& clique,
                                           const std::vector<Pose2>& poses, bool gradient);
 /// AddCliqueHessian, and J^T Lambda e into g when g is not null (e: the clique's stacked
-/// errors at `values`), through CliqueLinearization.
-void AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
-                         const std::vector<NodeId>& index, Eigen::MatrixXd* H, Eigen::VectorXd* g);
+/// errors at `values`), through CliqueLinearization. Returns e^T Lambda e, the factor's chi2
+/// (0 without g).
+double AddCliqueLinearized(const CliqueFactor& clique, const Values& values,
+                           const std::vector<NodeId>& index, Eigen::MatrixXd* H,
+                           Eigen::VectorXd* g);
 
 }  // namespace lifelong::slam

@@ -58,9 +58,8 @@ struct Assembly {
   void AddClique(const CliqueFactor& c, const Values& values) {
     MatrixXd h = MatrixXd::Zero(clique::Block(c.nodes.size()), clique::Block(c.nodes.size()));
     VectorXd gf = VectorXd::Zero(h.rows());
-    AddCliqueLinearized(c, values, c.nodes, &h, &gf);
+    chi2 += AddCliqueLinearized(c, values, c.nodes, &h, &gf);
     Add(c.nodes, h, gf);
-    chi2 += CliqueChi2(c, values);
   }
 };
 

@@ -83,8 +83,7 @@ void AddEdge(const PoseEdge& edge, const Values& values, const std::vector<NodeI
 
 void AddClique(const CliqueFactor& c, const Values& values, const std::vector<NodeId>& index,
                LocalSystem* s) {
-  AddCliqueLinearized(c, values, index, &s->H, &s->g);
-  s->chi2 += CliqueChi2(c, values);
+  s->chi2 += AddCliqueLinearized(c, values, index, &s->H, &s->g);
 }
 
 }  // namespace
@@ -346,6 +345,8 @@ void PreserveGradient(const std::vector<NodeId>& nodes, const Values& values, co
   // bound grants one unit per coordinate, a chi-square variable's mean.
   const double bound = chi2_replaced + static_cast<double>(g_N.size());
   if (FactorsChi2(values, moved_edges, moved_cliques) > bound) {
+    // Not moved; the zero step still re-expresses each factor at `values` as the moved path
+    // does (a rank-deficient clique keeps only its row-space residual).
     return move(VectorXd::Zero(z.size()), edges, cliques);
   }
   *edges = std::move(moved_edges);

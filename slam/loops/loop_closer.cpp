@@ -195,7 +195,8 @@ std::optional<LoopAttempt> LoopCloser::SearchLocal(const LoopClosingView& view, 
 std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
                                                    const std::set<NodeId>& submap, NodeId current,
                                                    const Pose2& guess, const MatcherConfig& mc,
-                                                   MatchRefusal* why, MatchMeasure* measured) {
+                                                   MatchRefusal* why, MatchMeasure* measured,
+                                                   const std::vector<Eigen::Vector2d>* near) {
   const LoopClosingConfig& lc = config_;
   const std::vector<Eigen::Vector2d>& points = view.nodes.at(current).points;
   std::vector<Eigen::Vector2d> reference;
@@ -209,14 +210,22 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
     return std::nullopt;
   }
   grid_.Build(reference, mc);
-  const MatchResult match = Match(grid_, points, guess, Cutting(mc));
+  MatchResult match = Match(grid_, points, guess, Cutting(mc));
+  const std::vector<Eigen::Vector2d>* query = &points;
+  if (near != nullptr && !(match.ok && match.score >= lc.min_score)) {
+    MatchResult again = Match(grid_, *near, guess, Cutting(mc));
+    if (!std::isnan(again.score) && (std::isnan(match.score) || again.score > match.score)) {
+      match = again;
+      query = near;
+    }
+  }
   measured->score = match.score;
   measured->ambiguity = match.ambiguity;
   if (!match.ok || match.score < lc.min_score) {
     *why = MatchRefusal::kLowScore;
   } else if (match.ambiguity > lc.max_ambiguity) {
     *why = MatchRefusal::kAmbiguous;
-  } else if (!LocallyUnique(match, points)) {
+  } else if (!LocallyUnique(match, *query)) {
     *why = MatchRefusal::kNotUnique;
   } else if (match.ambiguity >= lc.context_ambiguity &&
              !ApproachAgrees(view, current, match.T_ref_cur, match.T_ref_rival, lc, &reach_,

@@ -4,8 +4,10 @@
 // it (loops.global.lateral_steps), for a polar descriptor changes with a lane's offset. Each
 // candidate is matched by the correlative matcher's branch and bound in a window of
 // loops.global.linear_window_m around the candidate node's position, at the heading the
-// descriptors agree on, against the candidate and its graph neighbours. A match must pass
-// the local search's tests (score, ambiguity, local uniqueness). The test against the
+// descriptors agree on, against the candidate, its graph neighbours and the nodes of its
+// visit (loops.global.submap_travel_m); where the whole scan scores too low, its near returns
+// alone are matched again (near_range_m): both for a place driven the other way. A match must
+// pass the local search's tests (score, ambiguity, local uniqueness). The test against the
 // projected uncertainty is widened (plausible_sigmas) where the projection reaches the
 // candidate and left out where it does not, since the drift is what is being corrected; and
 // no other proposal far from the best may score nearly as well (cross-map ambiguity). Then
@@ -22,6 +24,33 @@
 #include "slam/matching/scan_matcher.hpp"
 
 namespace lifelong::slam {
+namespace {
+
+// The old scans a candidate is matched against: the candidate and its first graph
+// neighbours, and with loops.global.submap_travel_m the old nodes within that much odometry
+// travel of it. Nodes less than min_path_separation_m of travel back from the current one
+// are left out, as they are for candidates.
+std::set<NodeId> CandidateSubmap(const LoopClosingView& view, NodeId candidate, NodeId current,
+                                 const LoopClosingConfig& lc) {
+  std::set<NodeId> submap{candidate};
+  int added = 0;
+  for (NodeId n : view.graph.Neighbours(candidate)) {
+    if (added++ >= lc.neighbours_per_candidate) break;
+    submap.insert(n);
+  }
+  const double span_m = lc.global.submap_travel_m;
+  if (span_m <= 0.0) return submap;
+  const double at_m = view.nodes.at(candidate).travelled_m;
+  const double recent_m = view.nodes.at(current).travelled_m - lc.min_path_separation_m;
+  for (const auto& [id, node] : view.nodes) {
+    if (std::abs(node.travelled_m - at_m) <= span_m && node.travelled_m <= recent_m) {
+      submap.insert(id);
+    }
+  }
+  return submap;
+}
+
+}  // namespace
 
 std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view, NodeId current,
                                                     bool search,
@@ -104,27 +133,23 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::SimilarPlaces(
 }
 
 std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
-    const LoopClosingView& view, NodeId current, const std::vector<PlaceCandidate>& candidates,
-    const MatcherConfig& mc, MatchRefusal* why, LoopAttempt* attempt) {
+    const LoopClosingView& view, NodeId current, const std::vector<Eigen::Vector2d>* near,
+    const std::vector<PlaceCandidate>& candidates, const MatcherConfig& mc, MatchRefusal* why,
+    LoopAttempt* attempt) {
   const double k2 = config_.global.plausible_sigmas * config_.global.plausible_sigmas;
   std::vector<PlaceCandidate> matched;
   // The most similar place, unless one is measured (a search cut at min_score measures none).
   if (!candidates.empty()) attempt->old = candidates.front().id;
   for (const PlaceCandidate& p : candidates) {
     // The current scan placed at the candidate, turned by the descriptors' heading (and moved
-    // back from the query's shifted origin), against the candidate and its graph neighbours.
+    // back from the query's shifted origin), against the candidate's submap.
     const Pose2 guess =
         view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad) * Pose2(0.0, -p.lateral_m, 0.0);
-    std::set<NodeId> submap{p.id};
-    int added = 0;
-    for (NodeId n : view.graph.Neighbours(p.id)) {
-      if (added++ >= config_.neighbours_per_candidate) break;
-      submap.insert(n);
-    }
+    const std::set<NodeId> submap = CandidateSubmap(view, p.id, current, config_);
     MatchRefusal refused = MatchRefusal::kLowScore;
     MatchMeasure measured;
     const std::optional<MatchResult> match =
-        MatchSubmap(view, submap, current, guess, mc, &refused, &measured);
+        MatchSubmap(view, submap, current, guess, mc, &refused, &measured, near);
     const double best = attempt->measured.score;
     if (!std::isnan(measured.score) && (std::isnan(best) || measured.score > best)) {
       attempt->measured = measured;
@@ -172,8 +197,13 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   // Every proposal is matched: a place that another, distant place matches about as well
   // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
   MatchRefusal why = MatchRefusal::kLowScore;
+  std::vector<Eigen::Vector2d> near;
+  for (const Eigen::Vector2d& p : view.nodes.at(current).points) {
+    if (p.norm() <= g.near_range_m) near.push_back(p);
+  }
+  const bool has_far = near.size() < view.nodes.at(current).points.size();
   const std::vector<PlaceCandidate> matched =
-      MatchCandidates(view, current, proposals, mc, &why, &attempt);
+      MatchCandidates(view, current, has_far ? &near : nullptr, proposals, mc, &why, &attempt);
   if (matched.empty()) return refuse(why);
   const auto best = std::max_element(matched.begin(), matched.end(),
                                      [](const PlaceCandidate& a, const PlaceCandidate& b) {

@@ -22,16 +22,28 @@ struct GlobalLoopConfig {
   /// closures keep coming, the local search holds the estimate and a search by place costs
   /// time for nothing (office_5min: 1.38x the whole process at 0).
   double after_m = 20.0;
-  int candidates = 3;          ///< places matched per search, most similar first
-  int index_neighbours = 25;   ///< ring-key neighbours compared in full per search
-  double max_distance = 0.35;  ///< descriptor distance in [0, 1]: farther is no candidate
-  int min_occupied = 30;       ///< descriptor bins: sparser places are neither indexed nor searched
-  int context_nodes = 10;      ///< recent nodes whose points, with the node's, make its place
+  int candidates = 3;         ///< places matched per search, most similar first
+  int index_neighbours = 25;  ///< ring-key neighbours compared in full per search
+  double max_distance = 0.5;  ///< descriptor distance in [0, 1]: farther is no candidate
+  int min_occupied = 30;      ///< descriptor bins: sparser places are neither indexed nor searched
+  int context_nodes = 10;     ///< recent nodes whose points, with the node's, make its place
   /// A search also describes the query from origins this far to each side (m)...
   double lateral_step_m = 1.0;
   int lateral_steps = 2;            ///< ...this many on each side (0: from the robot only)
   double linear_window_m = 4.0;     ///< m, search half-width around the candidate's position
   double angular_window_rad = 0.2;  ///< rad, around the descriptor's heading
+  /// m of odometry travel: the candidate's submap also holds the old nodes within this much
+  /// travel of it, before and after (its visit). A revisit driven the other way sees what the
+  /// first pass saw before it reached the candidate, not what it saw there; 0: the candidate
+  /// and its neighbours_per_candidate graph neighbours only.
+  double submap_travel_m = 20.0;
+  /// m: a candidate the whole scan matches under loops.min_score is matched again with the
+  /// scan's returns within this range of the robot alone (0: never). Returns farther out are
+  /// sparse and meet walls at grazing angles (grid.max_hit_range_m, 12 m, maps none of them
+  /// for that reason), and a place driven the other way has its far returns on ground the old
+  /// scans saw only from elsewhere. The whole scan goes first: outdoors its far returns are
+  /// the structure there is.
+  double near_range_m = 12.0;
   /// A match within reach of the covariance projection must pass the local search's
   /// consistency gate (consistency_chi2) against that covariance scaled by this squared: 1 is
   /// the local search's test. At 3 (before 2026-12-04) the next aisle of the simulated

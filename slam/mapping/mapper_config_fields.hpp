@@ -151,6 +151,8 @@ void VisitGlobal(V& v, slam::GlobalLoopConfig& g) {
   v.Int("lateral_steps", g.lateral_steps, 0, 20);
   v.Number("linear_window_m", g.linear_window_m, kWindowM);
   v.Number("angular_window_rad", g.angular_window_rad, kWindowRad);
+  v.Number("submap_travel_m", g.submap_travel_m, kNonNegative);
+  v.Number("near_range_m", g.near_range_m, kNonNegative);
   v.Number("plausible_sigmas", g.plausible_sigmas, kPositive);
   v.Int("rings", g.descriptor.rings, 1, 1000);
   v.Int("sectors", g.descriptor.sectors, 4, 3600);

@@ -76,6 +76,8 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(ga.lateral_steps, gb.lateral_steps);
   EXPECT_EQ(ga.linear_window_m, gb.linear_window_m);
   EXPECT_EQ(ga.angular_window_rad, gb.angular_window_rad);
+  EXPECT_EQ(ga.submap_travel_m, gb.submap_travel_m);
+  EXPECT_EQ(ga.near_range_m, gb.near_range_m);
   EXPECT_EQ(ga.plausible_sigmas, gb.plausible_sigmas);
   EXPECT_EQ(ga.descriptor.rings, gb.descriptor.rings);
   EXPECT_EQ(ga.descriptor.sectors, gb.descriptor.sectors);
@@ -236,7 +238,7 @@ MapperConfig AllChanged() {
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
   l.verify = {false, 2, 9.0, 30.0, 20.0, 0.004, 0.002, 0.0005, 0.0001};
-  l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 0.5, 3, 3.0, 0.3, 2.5, {15, 72, 25.0}};
+  l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 0.5, 3, 3.0, 0.3, 7.0, 9.0, 2.5, {15, 72, 25.0}};
   l.suspect_chi2 = 12.0;
   c.pruning = {slam::NamedMode("standard"),
                -0.5,

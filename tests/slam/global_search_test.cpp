@@ -32,7 +32,8 @@ testing::World Street() {
 }
 
 // Nodes 0..14 drive east along y = 0; the robot then leaves (100 m of travel), and nodes
-// 15..29 drive east again along y = `lane`, their estimate `drift` off.
+// 15..29 drive along y = `lane` again, east or (`westward`) back west, their estimate `drift`
+// off. The laser sees 180 degrees ahead.
 struct TwoVisits {
   PoseGraph graph;
   Values values;
@@ -40,10 +41,12 @@ struct TwoVisits {
   std::vector<NodeId> recent;
   std::vector<Pose2> truth;
 
-  TwoVisits(double lane, const Pose2& drift) {
+  TwoVisits(double lane, const Pose2& drift, bool westward = false) {
     const testing::World street = Street();
     for (int i = 0; i < 15; ++i) truth.emplace_back(-2.0 + i, 0.0, 0.0);
-    for (int i = 0; i < 15; ++i) truth.emplace_back(-2.0 + i, lane, 0.0);
+    for (int i = 0; i < 15; ++i) {
+      truth.push_back(westward ? Pose2(12.0 - i, lane, kPi) : Pose2(-2.0 + i, lane, 0.0));
+    }
     for (std::size_t i = 0; i < truth.size(); ++i) {
       const auto id = static_cast<NodeId>(i);
       graph.AddNode(id);
@@ -76,11 +79,15 @@ LoopClosingConfig GlobalOnly(int lateral_steps) {
 }
 
 /// Runs the global search at every node of the second visit; returns the closures accepted.
-std::vector<LoopHypothesis> SearchSecondVisit(const TwoVisits& world, int lateral_steps) {
-  LoopCloser closer(GlobalOnly(lateral_steps), IncrementalConfig{});
+std::vector<LoopHypothesis> SearchSecondVisit(const TwoVisits& world, const LoopClosingConfig& lc) {
+  LoopCloser closer(lc, IncrementalConfig{});
   std::vector<LoopHypothesis> accepted;
   for (NodeId id = 0; id < 30; ++id) closer.SearchGlobal(world.View(), id, id >= 15, &accepted);
   return accepted;
+}
+
+std::vector<LoopHypothesis> SearchSecondVisit(const TwoVisits& world, int lateral_steps) {
+  return SearchSecondVisit(world, GlobalOnly(lateral_steps));
 }
 
 /// Every closure measures the true relative pose of its two nodes.
@@ -112,11 +119,35 @@ TEST(GlobalSearch, ALaneToTheSideIsFoundOnlyFromShiftedOrigins) {
   ExpectTrueRelativePoses(world, accepted);
 }
 
+TEST(GlobalSearch, AStreetDrivenBackClosesWithTheFirstVisitsSubmapAndTheNearReturns) {
+  // Driving back west, the laser sees what the first pass saw before it reached the
+  // candidate, while the candidate's own scan looks east, away from it; and its far returns
+  // fall on facades the first pass saw only from elsewhere. Neither the submap of the first
+  // visit's nodes within 6 m of travel nor the returns within 6 m alone closes this street
+  // more than once; together they close it, at the true relative poses.
+  const TwoVisits world(0.0, Pose2(40.0, -25.0, 0.6), true);
+  const auto search = [&](double submap_travel_m, double near_range_m) {
+    LoopClosingConfig lc = GlobalOnly(0);
+    lc.global.submap_travel_m = submap_travel_m;
+    lc.global.near_range_m = near_range_m;
+    return SearchSecondVisit(world, lc);
+  };
+  EXPECT_TRUE(search(0.0, 0.0).empty());
+  EXPECT_TRUE(search(6.0, 0.0).empty());
+  const std::size_t near_only = search(0.0, 6.0).size();
+  EXPECT_LE(near_only, 1U);
+  const std::vector<LoopHypothesis> both = search(6.0, 6.0);
+  EXPECT_GE(both.size(), 3U);
+  ExpectTrueRelativePoses(world, both);
+}
+
 // A search that finds no place within max_distance makes no attempt, but it is counted: the
 // summary tells "never searched" from "searched and found nothing".
 TEST(GlobalSearch, ASearchThatFindsNoPlaceIsCountedButIsNoAttempt) {
   const TwoVisits world(1.8, Pose2(40.0, -25.0, 0.6));
-  LoopCloser closer(GlobalOnly(0), IncrementalConfig{});
+  LoopClosingConfig lc = GlobalOnly(0);
+  lc.global.max_distance = 0.35;  // from its own origin, no place of the lane 1.8 m off is as near
+  LoopCloser closer(lc, IncrementalConfig{});
   std::vector<LoopHypothesis> accepted;
   for (NodeId id = 0; id < 30; ++id) closer.SearchGlobal(world.View(), id, id >= 15, &accepted);
   EXPECT_TRUE(accepted.empty());

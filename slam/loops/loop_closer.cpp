@@ -196,9 +196,10 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
                                                    const std::set<NodeId>& submap, NodeId current,
                                                    const Pose2& guess, const MatcherConfig& mc,
                                                    MatchRefusal* why, MatchMeasure* measured,
-                                                   const std::vector<Eigen::Vector2d>* near) {
+                                                   const std::vector<Eigen::Vector2d>* query) {
   const LoopClosingConfig& lc = config_;
-  const std::vector<Eigen::Vector2d>& points = view.nodes.at(current).points;
+  const std::vector<Eigen::Vector2d>& points =
+      query != nullptr ? *query : view.nodes.at(current).points;
   std::vector<Eigen::Vector2d> reference;
   for (NodeId id : submap) {
     const std::vector<Eigen::Vector2d> pts = Reference(view, id);
@@ -210,22 +211,14 @@ std::optional<MatchResult> LoopCloser::MatchSubmap(const LoopClosingView& view,
     return std::nullopt;
   }
   grid_.Build(reference, mc);
-  MatchResult match = Match(grid_, points, guess, Cutting(mc));
-  const std::vector<Eigen::Vector2d>* query = &points;
-  if (near != nullptr && !(match.ok && match.score >= lc.min_score)) {
-    MatchResult again = Match(grid_, *near, guess, Cutting(mc));
-    if (!std::isnan(again.score) && (std::isnan(match.score) || again.score > match.score)) {
-      match = again;
-      query = near;
-    }
-  }
+  const MatchResult match = Match(grid_, points, guess, Cutting(mc));
   measured->score = match.score;
   measured->ambiguity = match.ambiguity;
   if (!match.ok || match.score < lc.min_score) {
     *why = MatchRefusal::kLowScore;
   } else if (match.ambiguity > lc.max_ambiguity) {
     *why = MatchRefusal::kAmbiguous;
-  } else if (!LocallyUnique(match, *query)) {
+  } else if (!LocallyUnique(match, points)) {
     *why = MatchRefusal::kNotUnique;
   } else if (match.ambiguity >= lc.context_ambiguity &&
              !ApproachAgrees(view, current, match.T_ref_cur, match.T_ref_rival, lc, &reach_,

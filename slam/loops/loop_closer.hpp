@@ -78,14 +78,13 @@ class LoopCloser {
   /// Matches the current node's points against the submap's references around `guess`: the
   /// match when it has enough points in reach, scores, is unambiguous and locally unique;
   /// else nothing and *why. *measured: the match's score and ambiguity whenever one ran
-  /// (else untouched). `near`, when given: the scan's near returns, matched on the same table
-  /// when the whole scan scores under loops.min_score (loops.global.near_range_m); the tests
-  /// then go on with whichever of the two scored higher.
+  /// (else untouched). `query`, when given, is matched in place of the node's points (in its
+  /// frame): the global search's near returns (loops.global.near_range_m).
   std::optional<MatchResult> MatchSubmap(const LoopClosingView& view,
                                          const std::set<NodeId>& submap, NodeId current,
                                          const Pose2& guess, const MatcherConfig& mc,
                                          MatchRefusal* why, MatchMeasure* measured,
-                                         const std::vector<Eigen::Vector2d>* near = nullptr);
+                                         const std::vector<Eigen::Vector2d>* query = nullptr);
   /// `mc` as the loop searches run it: nothing below loops.min_score passes, and unless
   /// loops.measure_low_scores the search stops there (MatcherConfig::cut_below_min_score).
   MatcherConfig Cutting(MatcherConfig mc) const;

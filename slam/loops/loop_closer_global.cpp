@@ -4,11 +4,11 @@
 // it (loops.global.lateral_steps), for a polar descriptor changes with a lane's offset. Each
 // candidate is matched by the correlative matcher's branch and bound in a window of
 // loops.global.linear_window_m around the candidate node's position, at the heading the
-// descriptors agree on, against the candidate, its graph neighbours and the nodes of its
-// visit (loops.global.submap_travel_m); where the whole scan scores too low, its near returns
-// alone are matched again (near_range_m): both for a place driven the other way. A match must
-// pass the local search's tests (score, ambiguity, local uniqueness). The test against the
-// projected uncertainty is widened (plausible_sigmas) where the projection reaches the
+// descriptors agree on, against the candidate and its graph neighbours. Where the scan scores
+// too low there, its near returns alone (loops.global.near_range_m) are matched again against
+// the scans of the candidate's whole visit (submap_travel_m): a place driven the other way. A
+// match must pass the local search's tests (score, ambiguity, local uniqueness). The test against
+// the projected uncertainty is widened (plausible_sigmas) where the projection reaches the
 // candidate and left out where it does not, since the drift is what is being corrected; and
 // no other proposal far from the best may score nearly as well (cross-map ambiguity). Then
 // it goes through the same group verification (slam/loops/loop_verifier.hpp).
@@ -27,10 +27,8 @@ namespace lifelong::slam {
 namespace {
 
 // The old scans a candidate is matched against: the candidate and its first graph
-// neighbours, and with loops.global.submap_travel_m the old nodes within that much odometry
-// travel of it. Nodes less than min_path_separation_m of travel back from the current one
-// are left out, as they are for candidates.
-std::set<NodeId> CandidateSubmap(const LoopClosingView& view, NodeId candidate, NodeId current,
+// neighbours.
+std::set<NodeId> CandidateSubmap(const LoopClosingView& view, NodeId candidate,
                                  const LoopClosingConfig& lc) {
   std::set<NodeId> submap{candidate};
   int added = 0;
@@ -38,8 +36,17 @@ std::set<NodeId> CandidateSubmap(const LoopClosingView& view, NodeId candidate, 
     if (added++ >= lc.neighbours_per_candidate) break;
     submap.insert(n);
   }
+  return submap;
+}
+
+// ...and for the near returns' second match, with them the old nodes within
+// loops.global.submap_travel_m of odometry travel of the candidate (its visit). Nodes less than
+// min_path_separation_m of travel back from the current one are left out, as they are for
+// candidates.
+std::set<NodeId> VisitSubmap(const LoopClosingView& view, NodeId candidate, NodeId current,
+                             const LoopClosingConfig& lc) {
+  std::set<NodeId> submap = CandidateSubmap(view, candidate, lc);
   const double span_m = lc.global.submap_travel_m;
-  if (span_m <= 0.0) return submap;
   const double at_m = view.nodes.at(candidate).travelled_m;
   const double recent_m = view.nodes.at(current).travelled_m - lc.min_path_separation_m;
   for (const auto& [id, node] : view.nodes) {
@@ -145,11 +152,21 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
     // back from the query's shifted origin), against the candidate's submap.
     const Pose2 guess =
         view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad) * Pose2(0.0, -p.lateral_m, 0.0);
-    const std::set<NodeId> submap = CandidateSubmap(view, p.id, current, config_);
     MatchRefusal refused = MatchRefusal::kLowScore;
     MatchMeasure measured;
-    const std::optional<MatchResult> match =
-        MatchSubmap(view, submap, current, guess, mc, &refused, &measured, near);
+    std::optional<MatchResult> match = MatchSubmap(view, CandidateSubmap(view, p.id, config_),
+                                                   current, guess, mc, &refused, &measured);
+    const bool weak = refused == MatchRefusal::kLowScore || refused == MatchRefusal::kFewPoints;
+    if (!match && weak && near != nullptr) {
+      // A place driven the other way: the near returns against the scans of its visit.
+      MatchMeasure again;
+      match = MatchSubmap(view, VisitSubmap(view, p.id, current, config_), current, guess, mc,
+                          &refused, &again, near);
+      if (!std::isnan(again.score) &&
+          (std::isnan(measured.score) || again.score > measured.score)) {
+        measured = again;
+      }
+    }
     const double best = attempt->measured.score;
     if (!std::isnan(measured.score) && (std::isnan(best) || measured.score > best)) {
       attempt->measured = measured;
@@ -201,9 +218,9 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   for (const Eigen::Vector2d& p : view.nodes.at(current).points) {
     if (p.norm() <= g.near_range_m) near.push_back(p);
   }
-  const bool has_far = near.size() < view.nodes.at(current).points.size();
+  const bool again = g.near_range_m > 0.0 && !near.empty();
   const std::vector<PlaceCandidate> matched =
-      MatchCandidates(view, current, has_far ? &near : nullptr, proposals, mc, &why, &attempt);
+      MatchCandidates(view, current, again ? &near : nullptr, proposals, mc, &why, &attempt);
   if (matched.empty()) return refuse(why);
   const auto best = std::max_element(matched.begin(), matched.end(),
                                      [](const PlaceCandidate& a, const PlaceCandidate& b) {

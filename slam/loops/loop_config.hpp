@@ -32,18 +32,17 @@ struct GlobalLoopConfig {
   int lateral_steps = 2;            ///< ...this many on each side (0: from the robot only)
   double linear_window_m = 4.0;     ///< m, search half-width around the candidate's position
   double angular_window_rad = 0.2;  ///< rad, around the descriptor's heading
-  /// m of odometry travel: the candidate's submap also holds the old nodes within this much
-  /// travel of it, before and after (its visit). A revisit driven the other way sees what the
-  /// first pass saw before it reached the candidate, not what it saw there; 0: the candidate
-  /// and its neighbours_per_candidate graph neighbours only.
-  double submap_travel_m = 20.0;
-  /// m: a candidate the whole scan matches under loops.min_score is matched again with the
-  /// scan's returns within this range of the robot alone (0: never). Returns farther out are
-  /// sparse and meet walls at grazing angles (grid.max_hit_range_m, 12 m, maps none of them
-  /// for that reason), and a place driven the other way has its far returns on ground the old
-  /// scans saw only from elsewhere. The whole scan goes first: outdoors its far returns are
-  /// the structure there is.
-  double near_range_m = 12.0;
+  /// A candidate the scan matches under loops.min_score against it and its graph neighbours
+  /// is matched again: the scan's returns within near_range_m of the robot (0: never) against
+  /// the old nodes within submap_travel_m of odometry travel of the candidate, before and
+  /// after (its visit). Both for a place driven the other way: the laser then sees what the
+  /// first pass saw before it reached the candidate, not what it saw there, and its far
+  /// returns fall on ground the old scans saw only from elsewhere; returns beyond 12 m are
+  /// also sparse and meet walls at grazing angles (grid.max_hit_range_m leaves them out of the
+  /// map for that reason). The whole scan goes first: outdoors its far returns are the
+  /// structure there is.
+  double submap_travel_m = 20.0;  ///< m of travel each side of the candidate: its visit
+  double near_range_m = 12.0;     ///< m from the robot: the returns matched again
   /// A match within reach of the covariance projection must pass the local search's
   /// consistency gate (consistency_chi2) against that covariance scaled by this squared: 1 is
   /// the local search's test. At 3 (before 2026-12-04) the next aisle of the simulated

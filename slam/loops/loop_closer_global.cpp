@@ -57,6 +57,18 @@ std::set<NodeId> VisitSubmap(const LoopClosingView& view, NodeId candidate, Node
   return submap;
 }
 
+// The returns a failed candidate is matched with again (loops.global.near_range_m): those
+// within that range of the robot; none when it is 0.
+std::vector<Eigen::Vector2d> NearReturns(const std::vector<Eigen::Vector2d>& points,
+                                         const GlobalLoopConfig& g) {
+  std::vector<Eigen::Vector2d> near;
+  if (g.near_range_m <= 0.0) return near;
+  for (const Eigen::Vector2d& p : points) {
+    if (p.norm() <= g.near_range_m) near.push_back(p);
+  }
+  return near;
+}
+
 }  // namespace
 
 std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view, NodeId current,
@@ -214,13 +226,9 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   // Every proposal is matched: a place that another, distant place matches about as well
   // (identical aisles, look-alike rooms) is ambiguous across the map, whatever its score.
   MatchRefusal why = MatchRefusal::kLowScore;
-  std::vector<Eigen::Vector2d> near;
-  for (const Eigen::Vector2d& p : view.nodes.at(current).points) {
-    if (p.norm() <= g.near_range_m) near.push_back(p);
-  }
-  const bool again = g.near_range_m > 0.0 && !near.empty();
+  const std::vector<Eigen::Vector2d> near = NearReturns(view.nodes.at(current).points, g);
   const std::vector<PlaceCandidate> matched =
-      MatchCandidates(view, current, again ? &near : nullptr, proposals, mc, &why, &attempt);
+      MatchCandidates(view, current, near.empty() ? nullptr : &near, proposals, mc, &why, &attempt);
   if (matched.empty()) return refuse(why);
   const auto best = std::max_element(matched.begin(), matched.end(),
                                      [](const PlaceCandidate& a, const PlaceCandidate& b) {

@@ -36,7 +36,7 @@ void WriteLoopAttempts(const std::string& path, const std::vector<LoopAttemptRow
   char line[192];
   for (const LoopAttemptRow& r : rows) {
     const slam::LoopAttempt& a = r.attempt;
-    const char* search = a.search == slam::LoopAttempt::Search::kGlobal ? "global" : "local";
+    const char* search = slam::SearchName(a.search);
     const char* outcome =
         a.refused ? slam::MatchRefusalName(*a.refused) : (a.proposed ? "proposed" : "none");
     char score[32] = "";  // empty: no match ran

@@ -62,6 +62,8 @@ json LoopVerificationJson(const LoopVerificationSummary& l) {
     lv["global_attempts"] = v.global_attempts;
     lv["global_proposed"] = v.global_proposed;
     lv["global_searches"] = v.global_searches;
+    lv["follow_attempts"] = v.follow_attempts;
+    lv["follow_proposed"] = v.follow_proposed;
   }
   if (l.injection) {
     lv["injected"] = v.injected;

@@ -21,7 +21,8 @@ struct MatchMeasure {
 };
 
 struct LoopAttempt {
-  enum class Search { kLocal, kGlobal };
+  /// kFollow: matched where a pending closure by place puts the robot (loop_closer_follow.cpp).
+  enum class Search { kLocal, kGlobal, kFollow };
   Search search = Search::kLocal;
   NodeId current = -1;  ///< the node searched for
   /// The node the best match was against: the likeliest candidate (local) or the most similar
@@ -36,5 +37,18 @@ struct LoopAttempt {
   bool proposed = false;                ///< a hypothesis went to the verifier
   int accepted = 0;  ///< closures the verifier accepted on it (its own or pending ones)
 };
+
+/// The search's name in loop_attempts.csv.
+inline const char* SearchName(LoopAttempt::Search search) {
+  switch (search) {
+    case LoopAttempt::Search::kGlobal:
+      return "global";
+    case LoopAttempt::Search::kFollow:
+      return "follow";
+    case LoopAttempt::Search::kLocal:
+      break;
+  }
+  return "local";
+}
 
 }  // namespace lifelong::slam

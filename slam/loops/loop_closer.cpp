@@ -24,10 +24,6 @@ struct Candidate {
   Eigen::Matrix3d covariance;
 };
 
-double Clamp3Sigma(double variance, double lo, double hi) {
-  return std::clamp(3.0 * std::sqrt(std::max(variance, 0.0)), lo, hi);
-}
-
 const Candidate& Likeliest(const std::vector<Candidate>& candidates) {
   return *std::min_element(
       candidates.begin(), candidates.end(),
@@ -122,6 +118,10 @@ NodeId NearestCandidate(const Values& values, const std::vector<Candidate>& cand
 }
 
 }  // namespace
+
+double LoopCloser::Clamp3Sigma(double variance, double lo, double hi) {
+  return std::clamp(3.0 * std::sqrt(std::max(variance, 0.0)), lo, hi);
+}
 
 LoopCloser::LoopCloser(const LoopClosingConfig& loops, const IncrementalConfig& incremental)
     : config_(loops), incremental_(incremental), verifier_(loops.verify) {}

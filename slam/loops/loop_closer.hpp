@@ -9,7 +9,9 @@
 //    current scan is matched in a window of 3 sigma against a submap of the candidates' scans;
 //  - the global one (loop_closer_global.cpp, loops.global): where the local one closed
 //    nothing, place descriptors (slam/loops/place_descriptor.hpp) propose the most similar earlier
-//    places wherever the estimate puts them, each matched in a wide window.
+//    places wherever the estimate puts them, each matched in a wide window. While a closure
+//    it proposed waits for confirmation, the scan is matched instead where that closure puts
+//    the robot (loop_closer_follow.cpp, loops.global.follow_m).
 // A match must score, be unambiguous and locally unique, and be plausible; it then waits in
 // the group verifier (slam/loops/loop_verifier.hpp) until others confirm it.
 #pragma once
@@ -58,8 +60,9 @@ class LoopCloser {
   std::optional<LoopAttempt> SearchLocal(const LoopClosingView& view, NodeId current,
                                          int observation, std::vector<LoopHypothesis>* accepted);
   /// The global search (loops.global) when `search` (the local one closed nothing and this is
-  /// a searching observation), then indexes `current`'s place. Uses the projection of the
-  /// last SearchLocal, which must have been for `current`.
+  /// a searching observation), or the match where a waiting closure by place puts the robot
+  /// while one is followed (loops.global.follow_m); then indexes `current`'s place. Uses the
+  /// projection of the last SearchLocal, which must have been for `current`.
   std::optional<LoopAttempt> SearchGlobal(const LoopClosingView& view, NodeId current, bool search,
                                           std::vector<LoopHypothesis>* accepted);
   /// A node left the graph (marginalized): its closures no longer count as evidence, and its
@@ -85,6 +88,12 @@ class LoopCloser {
                                          const Pose2& guess, const MatcherConfig& mc,
                                          MatchRefusal* why, MatchMeasure* measured,
                                          const std::vector<Eigen::Vector2d>* query = nullptr);
+  /// A search window: 3 sigma of `variance`, clamped to [lo, hi].
+  static double Clamp3Sigma(double variance, double lo, double hi);
+  /// The returns a failed candidate is matched with again (loops.global.near_range_m): those
+  /// within that range of the robot; none when it is 0.
+  static std::vector<Eigen::Vector2d> NearReturns(const std::vector<Eigen::Vector2d>& points,
+                                                  const GlobalLoopConfig& g);
   /// `mc` as the loop searches run it: nothing below loops.min_score passes, and unless
   /// loops.measure_low_scores the search stops there (MatcherConfig::cut_below_min_score).
   MatcherConfig Cutting(MatcherConfig mc) const;
@@ -111,6 +120,9 @@ class LoopCloser {
     NodeId id;
     PlaceComparison cmp;
     double lateral_m = 0.0;  ///< the query described from this far to its left (y)
+    /// Where the current scan is matched from: at the place, turned by the descriptors'
+    /// heading and moved back from the query's shifted origin.
+    Pose2 guess;
     MatchResult match;
   };
   /// The loops.global.candidates places most similar to `place` (described from `points`)
@@ -120,7 +132,7 @@ class LoopCloser {
   std::vector<PlaceCandidate> SimilarPlaces(const LoopClosingView& view, NodeId current,
                                             const std::vector<Eigen::Vector2d>& points,
                                             const PlaceDescriptor& place) const;
-  /// Each candidate matched around the descriptor's heading; those that match and are
+  /// Each candidate matched around its guess; those that match and are
   /// plausible where the covariance projection reaches them. *why: the last refusal;
   /// attempt->old and ->measured: the best-scoring candidate's, refused or not (old: the most
   /// similar place when no score was measured).
@@ -133,6 +145,13 @@ class LoopCloser {
                                          const std::vector<Eigen::Vector2d>& points,
                                          const PlaceDescriptor& place,
                                          std::vector<LoopHypothesis>* accepted);
+  /// The scan matched where the pending closure by place being followed puts the robot
+  /// (loops.global.follow_m, loop_closer_follow.cpp); nothing when none is followed or no old
+  /// node lies near there.
+  std::optional<LoopAttempt> Follow(const LoopClosingView& view, NodeId current,
+                                    std::vector<LoopHypothesis>* accepted);
+  /// Starts following the closure just proposed for `current`, if it waits unconfirmed.
+  void StartFollowing(const LoopClosingView& view, NodeId old, NodeId current);
 
   LoopClosingConfig config_;
   IncrementalConfig incremental_;  ///< for its surface rule and point spacing
@@ -144,6 +163,12 @@ class LoopCloser {
   /// the lookups on Intel hit, against 83 % with 256 and 57 % with 32).
   SurfaceCache surfaces_{64};
   PlaceIndex places_;  ///< the nodes' place descriptors (loops.global)
+  /// The pending closure by place being followed, and the travel (m) where following stops.
+  struct Following {
+    NodeId old = -1, current = -1;
+    double until_m = 0.0;
+  };
+  std::optional<Following> following_;
   /// The last local search's covariance projection (loops.max_position_sigma_m), which the
   /// global search of the same observation uses.
   std::map<NodeId, ProjectedNode> projected_;

@@ -57,10 +57,10 @@ std::set<NodeId> VisitSubmap(const LoopClosingView& view, NodeId candidate, Node
   return submap;
 }
 
-// The returns a failed candidate is matched with again (loops.global.near_range_m): those
-// within that range of the robot; none when it is 0.
-std::vector<Eigen::Vector2d> NearReturns(const std::vector<Eigen::Vector2d>& points,
-                                         const GlobalLoopConfig& g) {
+}  // namespace
+
+std::vector<Eigen::Vector2d> LoopCloser::NearReturns(const std::vector<Eigen::Vector2d>& points,
+                                                     const GlobalLoopConfig& g) {
   std::vector<Eigen::Vector2d> near;
   if (g.near_range_m <= 0.0) return near;
   for (const Eigen::Vector2d& p : points) {
@@ -68,8 +68,6 @@ std::vector<Eigen::Vector2d> NearReturns(const std::vector<Eigen::Vector2d>& poi
   }
   return near;
 }
-
-}  // namespace
 
 std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view, NodeId current,
                                                     bool search,
@@ -80,7 +78,9 @@ std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view,
   const PlaceDescriptor place = DescribePlace(points, g.descriptor);
   if (place.occupied < g.min_occupied) return std::nullopt;
   std::optional<LoopAttempt> attempt;
-  if (search) {
+  // While a closure by place waits for confirmation, it is followed instead of searching.
+  if (following_) attempt = Follow(view, current, accepted);
+  if (!following_ && search && !attempt) {
     verifier_.NoteGlobalSearch();
     attempt = MatchPlaces(view, current, points, place, accepted);
   }
@@ -126,7 +126,9 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::SimilarPlaces(
       if (cmp.distance > g.max_distance) continue;
       const auto it = best.find(id);
       if (it == best.end() || cmp.distance < it->second.cmp.distance) {
-        best[id] = {id, cmp, lateral_m, {}};
+        const Pose2 guess =
+            view.values.at(id) * Pose2(0.0, 0.0, cmp.yaw_rad) * Pose2(0.0, -lateral_m, 0.0);
+        best[id] = {id, cmp, lateral_m, guess, {}};
       }
     }
   };
@@ -160,10 +162,7 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
   // The most similar place, unless one is measured (a search cut at min_score measures none).
   if (!candidates.empty()) attempt->old = candidates.front().id;
   for (const PlaceCandidate& p : candidates) {
-    // The current scan placed at the candidate, turned by the descriptors' heading (and moved
-    // back from the query's shifted origin), against the candidate's submap.
-    const Pose2 guess =
-        view.values.at(p.id) * Pose2(0.0, 0.0, p.cmp.yaw_rad) * Pose2(0.0, -p.lateral_m, 0.0);
+    const Pose2& guess = p.guess;
     MatchRefusal refused = MatchRefusal::kLowScore;
     MatchMeasure measured;
     std::optional<MatchResult> match = MatchSubmap(view, CandidateSubmap(view, p.id, config_),
@@ -197,7 +196,7 @@ std::vector<LoopCloser::PlaceCandidate> LoopCloser::MatchCandidates(
       *why = MatchRefusal::kImplausible;
       continue;
     }
-    matched.push_back({p.id, p.cmp, p.lateral_m, *match});
+    matched.push_back({p.id, p.cmp, p.lateral_m, p.guess, *match});
   }
   return matched;
 }
@@ -246,6 +245,9 @@ std::optional<LoopAttempt> LoopCloser::MatchPlaces(const LoopClosingView& view, 
   attempt.measured = {best->match.score, best->match.ambiguity};
   attempt.proposed = true;
   attempt.accepted = Propose(view, best->id, current, best->match, accepted);
+  // Following gives a place its confirmation without a second look by place: only a place
+  // without a look-alike rival (the approach test's bar, loops.context_ambiguity) is followed.
+  if (best->match.ambiguity < lc.context_ambiguity) StartFollowing(view, best->id, current);
   return attempt;
 }
 

@@ -22,11 +22,11 @@ struct GlobalLoopConfig {
   /// closures keep coming, the local search holds the estimate and a search by place costs
   /// time for nothing (office_5min: 1.38x the whole process at 0).
   double after_m = 20.0;
-  int candidates = 3;         ///< places matched per search, most similar first
-  int index_neighbours = 25;  ///< ring-key neighbours compared in full per search
-  double max_distance = 0.5;  ///< descriptor distance in [0, 1]: farther is no candidate
-  int min_occupied = 30;      ///< descriptor bins: sparser places are neither indexed nor searched
-  int context_nodes = 10;     ///< recent nodes whose points, with the node's, make its place
+  int candidates = 3;          ///< places matched per search, most similar first
+  int index_neighbours = 100;  ///< ring-key neighbours compared in full per search
+  double max_distance = 0.5;   ///< descriptor distance in [0, 1]: farther is no candidate
+  int min_occupied = 30;       ///< descriptor bins: sparser places are neither indexed nor searched
+  int context_nodes = 10;      ///< recent nodes whose points, with the node's, make its place
   /// A search also describes the query from origins this far to each side (m)...
   double lateral_step_m = 1.0;
   int lateral_steps = 2;            ///< ...this many on each side (0: from the robot only)
@@ -43,6 +43,10 @@ struct GlobalLoopConfig {
   /// structure there is.
   double submap_travel_m = 20.0;  ///< m of travel each side of the candidate: its visit
   double near_range_m = 12.0;     ///< m from the robot: the returns matched again
+  /// m of travel after a place's closure is proposed and waits for confirmation, during which
+  /// every observation's scan is matched where that closure puts the robot (0: never;
+  /// loop_closer_follow.cpp).
+  double follow_m = 10.0;
   /// A match within reach of the covariance projection must pass the local search's
   /// consistency gate (consistency_chi2) against that covariance scaled by this squared: 1 is
   /// the local search's test. At 3 (before 2026-12-04) the next aisle of the simulated

@@ -74,6 +74,13 @@ void LoopVerifier::ForgetNode(NodeId id) {
   pending_.erase(std::remove_if(pending_.begin(), pending_.end(), involves), pending_.end());
 }
 
+const LoopHypothesis* LoopVerifier::FindPending(NodeId old, NodeId current) const {
+  for (const LoopHypothesis& h : pending_) {
+    if (h.old == old && h.current == current) return &h;
+  }
+  return nullptr;
+}
+
 bool LoopVerifier::IsPending(NodeId id) const {
   return std::any_of(pending_.begin(), pending_.end(),
                      [id](const LoopHypothesis& h) { return h.old == id || h.current == id; });

@@ -92,6 +92,10 @@ struct LoopVerifierStats {
   /// Searches by place that ran (the place dense enough to describe), with a candidate
   /// within loops.global.max_distance or not: global_searches - global_attempts found none.
   int global_searches = 0;
+  /// Of the attempts, the matches where a pending closure by place puts the robot
+  /// (loops.global.follow_m), and of their proposals.
+  int follow_attempts = 0;
+  int follow_proposed = 0;
 };
 
 /// Why the mapper refused a loop-closure match before it became a hypothesis.
@@ -142,6 +146,11 @@ class LoopVerifier {
   }
   void NoteGlobalProposed() { ++stats_.global_proposed; }
   void NoteGlobalSearch() { ++stats_.global_searches; }
+  void NoteFollowAttempt() {
+    ++stats_.attempts;
+    ++stats_.follow_attempts;
+  }
+  void NoteFollowProposed() { ++stats_.follow_proposed; }
   void NoteBeyondWindow() { ++stats_.beyond_window; }
   /// Counts an attempt the mapper refused before it became a hypothesis.
   void NoteRefused(MatchRefusal why) {
@@ -154,6 +163,8 @@ class LoopVerifier {
   }
   /// True when a pending hypothesis involves the node (pruning must keep it).
   bool IsPending(NodeId id) const;
+  /// The pending hypothesis from `old` to `current`, if one waits.
+  const LoopHypothesis* FindPending(NodeId old, NodeId current) const;
 
   /// Whether two closures are consistent at the current estimate (the header's test).
   bool Consistent(const LoopHypothesis& a, const LoopHypothesis& b, const Values& values) const;

@@ -153,6 +153,7 @@ void VisitGlobal(V& v, slam::GlobalLoopConfig& g) {
   v.Number("angular_window_rad", g.angular_window_rad, kWindowRad);
   v.Number("submap_travel_m", g.submap_travel_m, kNonNegative);
   v.Number("near_range_m", g.near_range_m, kNonNegative);
+  v.Number("follow_m", g.follow_m, kNonNegative);
   v.Number("plausible_sigmas", g.plausible_sigmas, kPositive);
   v.Int("rings", g.descriptor.rings, 1, 1000);
   v.Int("sectors", g.descriptor.sectors, 4, 3600);

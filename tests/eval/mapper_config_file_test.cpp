@@ -78,6 +78,7 @@ void ExpectSameLoops(const slam::LoopClosingConfig& a, const slam::LoopClosingCo
   EXPECT_EQ(ga.angular_window_rad, gb.angular_window_rad);
   EXPECT_EQ(ga.submap_travel_m, gb.submap_travel_m);
   EXPECT_EQ(ga.near_range_m, gb.near_range_m);
+  EXPECT_EQ(ga.follow_m, gb.follow_m);
   EXPECT_EQ(ga.plausible_sigmas, gb.plausible_sigmas);
   EXPECT_EQ(ga.descriptor.rings, gb.descriptor.rings);
   EXPECT_EQ(ga.descriptor.sectors, gb.descriptor.sectors);

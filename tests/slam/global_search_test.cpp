@@ -141,6 +141,44 @@ TEST(GlobalSearch, AStreetDrivenBackClosesWithTheFirstVisitsSubmapAndTheNearRetu
   ExpectTrueRelativePoses(world, both);
 }
 
+// A place proposed once is followed: the group verifier needs three closures that agree,
+// and a place crossed rather than driven along gives the search by place one look. Matched
+// where the waiting closure puts the robot, the next scans bring the confirmation. A place
+// with a look-alike rival (at loops.context_ambiguity of its score or more) is not followed.
+TEST(GlobalSearch, AClosureByPlaceIsFollowedUntilConfirmed) {
+  const TwoVisits world(0.0, Pose2(40.0, -25.0, 0.6));
+  const auto run = [&](double follow_m, double context_ambiguity, LoopVerifierStats* stats) {
+    LoopClosingConfig lc = GlobalOnly(0);
+    lc.verify.enabled = true;
+    lc.global.follow_m = follow_m;
+    lc.context_ambiguity = context_ambiguity;
+    LoopCloser closer(lc, IncrementalConfig{});
+    std::vector<LoopHypothesis> accepted;
+    for (NodeId id = 0; id < 30; ++id) {
+      // One search by place only: until the first proposal.
+      const bool search = id >= 15 && closer.stats().global_proposed == 0;
+      closer.SearchGlobal(world.View(), id, search, &accepted);
+    }
+    *stats = closer.stats();
+    return accepted;
+  };
+  LoopVerifierStats stats;
+  EXPECT_TRUE(run(0.0, 1.0, &stats).empty());
+  EXPECT_EQ(stats.global_proposed, 1);
+  EXPECT_EQ(stats.follow_attempts, 0);
+  const std::vector<LoopHypothesis> accepted = run(10.0, 1.0, &stats);
+  EXPECT_GE(accepted.size(), 3U);
+  EXPECT_EQ(stats.global_proposed, 1);
+  EXPECT_GE(stats.follow_proposed, 2);
+  ExpectTrueRelativePoses(world, accepted);
+  // Once confirmed, nothing waits and nothing is followed.
+  EXPECT_EQ(stats.follow_attempts, stats.follow_proposed);
+  // The street's posts stand at intervals: its matches have rivals.
+  EXPECT_TRUE(run(10.0, 0.1, &stats).empty());
+  EXPECT_EQ(stats.global_proposed, 1);
+  EXPECT_EQ(stats.follow_attempts, 0);
+}
+
 // A search that finds no place within max_distance makes no attempt, but it is counted: the
 // summary tells "never searched" from "searched and found nothing".
 TEST(GlobalSearch, ASearchThatFindsNoPlaceIsCountedButIsNoAttempt) {

@@ -239,7 +239,8 @@ MapperConfig AllChanged() {
   l.optimize_edge_chi2 = 4.0;
   l.optimize_every = 3;
   l.verify = {false, 2, 9.0, 30.0, 20.0, 0.004, 0.002, 0.0005, 0.0001};
-  l.global = {false, 3, 15.0, 2, 30, 0.3, 20, 8, 0.5, 3, 3.0, 0.3, 7.0, 9.0, 2.5, {15, 72, 25.0}};
+  l.global = {false, 3,   15.0, 2,   30,  0.3,           20, 8, 0.5, 3, 3.0,
+              0.3,   7.0, 9.0,  4.0, 2.5, {15, 72, 25.0}};
   l.suspect_chi2 = 12.0;
   c.pruning = {slam::NamedMode("standard"),
                -0.5,

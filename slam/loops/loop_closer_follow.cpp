@@ -24,20 +24,20 @@ namespace lifelong::slam {
 namespace {
 
 // The old node nearest `at` (position) among those the robot has left (min_path_separation_m
-// of travel), and its distance; -1 when there is none.
-NodeId NearestOld(const LoopClosingView& view, NodeId current, const Pose2& at,
-                  const LoopClosingConfig& lc, double* distance_m) {
+// of travel), and its distance; id -1 when there is none.
+struct NearestNode {
+  NodeId id = -1;
+  double distance_m = std::numeric_limits<double>::infinity();
+};
+NearestNode NearestOld(const LoopClosingView& view, NodeId current, const Pose2& at,
+                       const LoopClosingConfig& lc) {
   const double left_m = view.nodes.at(current).travelled_m - lc.min_path_separation_m;
-  NodeId nearest = -1;
-  *distance_m = std::numeric_limits<double>::infinity();
+  NearestNode nearest;
   for (const auto& [id, node] : view.nodes) {
     if (node.travelled_m > left_m) continue;
     const Pose2& X = view.values.at(id);
     const double d = std::hypot(X.x - at.x, X.y - at.y);
-    if (d < *distance_m) {
-      *distance_m = d;
-      nearest = id;
-    }
+    if (d < nearest.distance_m) nearest = {id, d};
   }
   return nearest;
 }
@@ -64,9 +64,8 @@ std::optional<LoopAttempt> LoopCloser::Follow(const LoopClosingView& view, NodeI
   const Pose2& X_c = view.values.at(h->current);
   const Pose2 guess =
       view.values.at(h->old) * h->T_old_current * Between(X_c, view.values.at(current));
-  double apart_m = 0.0;
-  const NodeId old = NearestOld(view, current, guess, lc, &apart_m);
-  if (old < 0 || apart_m > lc.global.near_range_m) return std::nullopt;
+  const NearestNode old = NearestOld(view, current, guess, lc);
+  if (old.id < 0 || old.distance_m > lc.global.near_range_m) return std::nullopt;
   verifier_.NoteFollowAttempt();
   LoopAttempt attempt;
   attempt.search = LoopAttempt::Search::kFollow;
@@ -85,7 +84,7 @@ std::optional<LoopAttempt> LoopCloser::Follow(const LoopClosingView& view, NodeI
   MatchRefusal why = MatchRefusal::kLowScore;
   const std::vector<Eigen::Vector2d> near = NearReturns(cur.points, lc.global);
   const std::vector<PlaceCandidate> matched =
-      MatchCandidates(view, current, near.empty() ? nullptr : &near, {{old, {}, 0.0, guess, {}}},
+      MatchCandidates(view, current, near.empty() ? nullptr : &near, {{old.id, {}, 0.0, guess, {}}},
                       mc, &why, &attempt);
   if (matched.empty()) {
     verifier_.NoteRefused(why);
@@ -93,8 +92,8 @@ std::optional<LoopAttempt> LoopCloser::Follow(const LoopClosingView& view, NodeI
     return attempt;
   }
   const MatchResult& match = matched.front().match;
-  double unused = 0.0;
-  const NodeId to = NearestOld(view, current, match.T_ref_cur, lc, &unused);
+  // The closure goes to the old node nearest where the match puts the robot.
+  const NodeId to = NearestOld(view, current, match.T_ref_cur, lc).id;
   verifier_.NoteFollowProposed();
   attempt.old = to;
   attempt.measured = {match.score, match.ambiguity};

@@ -76,10 +76,11 @@ std::optional<LoopAttempt> LoopCloser::SearchGlobal(const LoopClosingView& view,
   if (!g.enabled) return std::nullopt;
   const std::vector<Eigen::Vector2d> points = PlacePoints(view, current);
   const PlaceDescriptor place = DescribePlace(points, g.descriptor);
-  if (place.occupied < g.min_occupied) return std::nullopt;
   std::optional<LoopAttempt> attempt;
-  // While a closure by place waits for confirmation, it is followed instead of searching.
+  // While a closure by place waits for confirmation, it is followed instead of searching
+  // (the follow-up matches the scan, not the place: a sparse place does not stop it).
   if (following_) attempt = Follow(view, current, accepted);
+  if (place.occupied < g.min_occupied) return attempt;
   if (!following_ && search && !attempt) {
     verifier_.NoteGlobalSearch();
     attempt = MatchPlaces(view, current, points, place, accepted);

@@ -1,6 +1,7 @@
 // The loop closer's global search (loops.global) on its own: a street driven twice, the second
 // time a lane to the side and with the estimate far off, so that only the place descriptor can
 // find the first visit again.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -177,6 +178,45 @@ TEST(GlobalSearch, AClosureByPlaceIsFollowedUntilConfirmed) {
   EXPECT_TRUE(run(10.0, 0.1, &stats).empty());
   EXPECT_EQ(stats.global_proposed, 1);
   EXPECT_EQ(stats.follow_attempts, 0);
+}
+
+// Following matches the scan, not the place: once a closure by place is followed, a stretch
+// whose places are too sparse to search or index (loops.global.min_occupied) still brings
+// its confirmation. Here every scan after the proposal keeps only its returns within 6 m.
+TEST(GlobalSearch, FollowingGoesOnWhereThePlaceIsTooSparseToSearch) {
+  TwoVisits world(0.0, Pose2(40.0, -25.0, 0.6));
+  LoopClosingConfig lc = GlobalOnly(0);
+  lc.verify.enabled = true;
+  lc.global.follow_m = 10.0;
+  lc.context_ambiguity = 1.0;
+  lc.global.context_nodes = 0;  // a place is its own scan
+  const auto near = [&](NodeId id) {
+    std::vector<Eigen::Vector2d> kept;
+    for (const Eigen::Vector2d& p : world.nodes.at(id).points) {
+      if (p.norm() <= 6.0) kept.push_back(p);
+    }
+    return kept;
+  };
+  // Between the thinned scans' places and the whole ones'.
+  int thin = 0, whole = 1 << 30;
+  for (NodeId id = 15; id < 30; ++id) {
+    thin = std::max(thin, DescribePlace(near(id), lc.global.descriptor).occupied);
+    whole =
+        std::min(whole, DescribePlace(world.nodes.at(id).points, lc.global.descriptor).occupied);
+  }
+  ASSERT_LT(thin, whole);
+  lc.global.min_occupied = (thin + whole) / 2 + 1;
+  LoopCloser closer(lc, IncrementalConfig{});
+  std::vector<LoopHypothesis> accepted;
+  for (NodeId id = 0; id < 30; ++id) {
+    if (closer.stats().global_proposed > 0) world.nodes.at(id).points = near(id);
+    closer.SearchGlobal(world.View(), id, id >= 15 && closer.stats().global_proposed == 0,
+                        &accepted);
+  }
+  EXPECT_EQ(closer.stats().global_proposed, 1);
+  EXPECT_GE(closer.stats().follow_proposed, 2);
+  EXPECT_GE(accepted.size(), 3U);
+  ExpectTrueRelativePoses(world, accepted);
 }
 
 // A search that finds no place within max_distance makes no attempt, but it is counted: the

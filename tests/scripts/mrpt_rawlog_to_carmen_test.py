@@ -15,27 +15,19 @@ import subprocess
 import sys
 import tempfile
 
+import walls
+
 SCRIPT = os.path.join(sys.argv[1], "scripts", "mrpt_rawlog_to_carmen.py")
 
 
 # A corridor 20 m x 6 m with pillars along both walls: segments (x0, y0, x1, y1).
 WALLS = [(0, 0, 20, 0), (20, 0, 20, 6), (20, 6, 0, 6), (0, 6, 0, 0)] + [
-    seg for x, y in ((3, 1), (7, 4.5), (11, 1), (15, 4.5), (17.5, 1.5))
-    for seg in ((x, y, x + 0.5, y), (x + 0.5, y, x + 0.5, y + 0.5), (x + 0.5, y + 0.5, x, y + 0.5),
-                (x, y + 0.5, x, y))]
+    wall for x, y in ((3, 1), (7, 4.5), (11, 1), (15, 4.5), (17.5, 1.5))
+    for wall in walls.box(x, y, 0.5)]
 
 
 def cast(x, y, a):
-    best = 30.0
-    dx, dy = math.cos(a), math.sin(a)
-    for x0, y0, x1, y1 in WALLS:
-        ex, ey = x1 - x0, y1 - y0
-        det = ex * dy - ey * dx
-        if abs(det) > 1e-12:
-            t, u = (ex * (y0 - y) - ey * (x0 - x)) / det, (dx * (y0 - y) - dy * (x0 - x)) / det
-            if t > 0 and 0 <= u <= 1:
-                best = min(best, t)
-    return best
+    return walls.cast(WALLS, x, y, a)
 
 
 def header(name, version):

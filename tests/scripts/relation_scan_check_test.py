@@ -9,26 +9,15 @@ import subprocess
 import sys
 import tempfile
 
+import walls
+
 SCRIPT = os.path.join(sys.argv[1], "scripts", "relation_scan_check.py")
 # A room 10 m x 6 m, and a pillar 0.6 m square at (6, 1): segments (x0, y0, x1, y1).
-WALLS = [(0, 0, 10, 0), (10, 0, 10, 6), (10, 6, 0, 6), (0, 6, 0, 0),
-         (6, 1, 6.6, 1), (6.6, 1, 6.6, 1.6), (6.6, 1.6, 6, 1.6), (6, 1.6, 6, 1)]
+WALLS = [(0, 0, 10, 0), (10, 0, 10, 6), (10, 6, 0, 6), (0, 6, 0, 0)] + walls.box(6, 1, 0.6)
 
 
 def cast(x, y, a):
-    """Range of the nearest wall along heading a from (x, y)."""
-    best = 30.0
-    dx, dy = math.cos(a), math.sin(a)
-    for x0, y0, x1, y1 in WALLS:
-        ex, ey = x1 - x0, y1 - y0
-        det = ex * dy - ey * dx
-        if abs(det) < 1e-12:
-            continue
-        t = (ex * (y0 - y) - ey * (x0 - x)) / det  # along the ray
-        u = (dx * (y0 - y) - dy * (x0 - x)) / det  # along the wall
-        if t > 0 and 0 <= u <= 1:
-            best = min(best, t)
-    return best
+    return walls.cast(WALLS, x, y, a)
 
 
 def flaser(pose, stamp):

@@ -23,13 +23,16 @@ gets that relation's stamp, and the others the lattice's. The odometry is checke
 way: where its heading changes agree best with the relations at another shift, it is stored
 with the wrong scan, and each scan takes the odometry that many objects away (Killian's
 rawlog: the odometry stored with scan n is scan n+1's). It stops (exit 2) when the stamps do
-not fit a lattice (a residual over a fifth of P). Standard library only.
+not fit a lattice (a residual over a fifth of P). Standard library only (and
+relation_scan_check.py beside it).
 """
 import gzip
 import math
 import os
 import struct
 import sys
+
+import relation_scan_check  # its scan returns and alignment share
 
 END_FLAG = 0x88
 
@@ -176,31 +179,25 @@ def fit_lattice(stamps):
     return t0, period, k
 
 
-def scan_points(ranges):
-    """The returns of a FLASER scan (1 degree apart from -90) within 20 m, robot frame."""
-    return [(r * math.cos(math.radians(b - 90)), r * math.sin(math.radians(b - 90)))
-            for b, r in enumerate(ranges) if 0.05 < r < 20.0]
+class Scans:
+    """The scans' returns as relation_scan_check.py reads them (FLASER: 1 degree apart from
+    -90), each with its lookup grid, made once for the scans the relations name."""
+
+    def __init__(self, scans):
+        self.scans, self.seen = scans, {}
+
+    def __getitem__(self, i):
+        if i not in self.seen:
+            points = relation_scan_check.scan_points(self.scans[i][0], -math.pi / 2,
+                                                     math.radians(1.0), 0.0)
+            self.seen[i] = (relation_scan_check.Grid(points), points)
+        return self.seen[i]
 
 
-def aligned_share(points_a, points_b, relation):
-    """Share of b's returns within 10 cm of a's once b is placed at relation (dx, dy, dth)."""
-    cells = {}
-    for p in points_a:
-        cells.setdefault((math.floor(p[0] / 0.1), math.floor(p[1] / 0.1)), []).append(p)
-    dx, dy, dth = relation
-    c, s = math.cos(dth), math.sin(dth)
-    near = 0
-    for x, y in points_b:
-        qx, qy = c * x - s * y + dx, s * x + c * y + dy
-        kx, ky = math.floor(qx / 0.1), math.floor(qy / 0.1)
-        near += any(math.hypot(p[0] - qx, p[1] - qy) < 0.1 for ox in (-1, 0, 1)
-                    for oy in (-1, 0, 1) for p in cells.get((kx + ox, ky + oy), ()))
-    return near / max(len(points_b), 1)
-
-
-def scan_agreement(points, relations, index):
+def scan_agreement(scans, relations, index):
     """Mean share of returns the relations align (higher: the pairing the scans support)."""
-    shares = [aligned_share(points[index[a]], points[index[b]], (dx, dy, dth))
+    shares = [relation_scan_check.aligned_share(scans[index[a]][0], scans[index[b]][1],
+                                                (dx, dy, dth))
               for a, b, dx, dy, dth in relations]
     return sum(shares) / max(len(shares), 1)
 
@@ -226,8 +223,8 @@ def recover_stamps(scans, relations):
     short = short[::max(1, len(short) // 400)]
     shifts = range(len(scans) - span + 1)
     index = lambda c: {t: v + c for t, v in zip(stamps, k)}
-    points = [scan_points(ranges) for ranges, _, _ in scans]
-    by_scans = max(shifts, key=lambda c: scan_agreement(points, short, index(c)))
+    seen = Scans(scans)
+    by_scans = max(shifts, key=lambda c: scan_agreement(seen, short, index(c)))
     odom = [o for _, _, o in scans]
     by_odometry = min(shifts, key=lambda c: odometry_disagreement(odom, short, index(c)))
     out = [t0 + period * (i - by_scans) for i in range(len(scans))]
